@@ -1,0 +1,87 @@
+//! Typed errors of the model. Every message names the offending value and its allowed range.
+
+use std::fmt;
+
+/// Everything that can go wrong while building or running a model.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ModelError {
+    /// A parameter outside its allowed range.
+    InvalidParameter {
+        name: &'static str,
+        value: f64,
+        allowed: String,
+    },
+    /// Reference conditions that leave a rigid-body mode in or over-constrain the rod.
+    ReferenceConditions { message: String },
+    /// More modes requested than the reduced rod has.
+    TooManyModes { requested: usize, available: usize },
+    /// The eigenproblem or a factorization failed (mass matrix not positive definite, ...).
+    Numerical { message: String },
+    /// A scene file that does not parse or names an unknown key.
+    Scene { origin: String, message: String },
+    /// The integrator could not complete a step; the state before the step is kept.
+    StepFailed {
+        time: f64,
+        step: f64,
+        reason: String,
+    },
+    /// A call that the model cannot serve in its current state (e.g. bad state bytes).
+    State { message: String },
+}
+
+impl fmt::Display for ModelError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ModelError::InvalidParameter {
+                name,
+                value,
+                allowed,
+            } => write!(f, "parameter {name} = {value:e} is out of range: allowed {allowed}"),
+            ModelError::ReferenceConditions { message } => {
+                write!(f, "reference conditions rejected: {message}")
+            }
+            ModelError::TooManyModes {
+                requested,
+                available,
+            } => write!(
+                f,
+                "rod.modes = {requested} is out of range: allowed 0..={available} (the number of elastic coordinates left by the reference conditions)"
+            ),
+            ModelError::Numerical { message } => write!(f, "numerical failure: {message}"),
+            ModelError::Scene { origin, message } => write!(f, "scene {origin}: {message}"),
+            ModelError::StepFailed { time, step, reason } => write!(
+                f,
+                "step from t = {time} s with h = {step:e} s failed: {reason}; the state before the step is kept"
+            ),
+            ModelError::State { message } => write!(f, "{message}"),
+        }
+    }
+}
+
+impl std::error::Error for ModelError {}
+
+/// Check that `value` is finite and strictly positive.
+pub fn require_positive(name: &'static str, value: f64) -> Result<(), ModelError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(())
+    } else {
+        Err(ModelError::InvalidParameter {
+            name,
+            value,
+            allowed: "a finite value > 0".into(),
+        })
+    }
+}
+
+/// Check that `value` is finite and >= 0.
+pub fn require_non_negative(name: &'static str, value: f64) -> Result<(), ModelError> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(())
+    } else {
+        Err(ModelError::InvalidParameter {
+            name,
+            value,
+            allowed: "a finite value >= 0".into(),
+        })
+    }
+}

@@ -1,0 +1,1 @@
+//! FMI 2.0 Co-Simulation layer (owned by the FMI work).

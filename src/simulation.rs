@@ -1,0 +1,208 @@
+//! The simulation facade: one slider-crank with a flexible rod, driven by crank inputs.
+//!
+//! This is the whole surface the FMI layer (and the command-line tools) use. It knows
+//! nothing of FMI: times in s, angles in rad, forces in N.
+//!
+//! Input law between communication points (fmu-contract.md, "Behaviour"):
+//! `theta(t_k + s) = theta_k + omega_k s + alpha_k s^2 / 2`, `omega(t_k + s) = omega_k + alpha_k s`.
+
+use crate::error::ModelError;
+use crate::mechanism::{Mechanism, MechanismState, Outputs};
+use crate::scene::Scene;
+
+/// Crank input at a communication point.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct CrankInput {
+    /// theta_k, rad.
+    pub angle: f64,
+    /// omega_k, rad/s.
+    pub speed: f64,
+    /// alpha_k, rad/s^2 (from fmi2SetRealInputDerivatives; 0 otherwise).
+    pub acceleration: f64,
+}
+
+/// Counters of the integrator, cumulative since the start.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct StepStats {
+    /// Internal steps taken (accepted).
+    pub steps: u64,
+    /// Newton iterations over all accepted and rejected steps.
+    pub newton_iterations: u64,
+    /// Steps that failed and were retried with half the step.
+    pub halvings: u64,
+}
+
+/// A saved state: restoring it and replaying the same calls gives bit-identical outputs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Snapshot {
+    state: MechanismState,
+}
+
+/// One slider-crank simulation.
+pub struct Simulation {
+    mechanism: Mechanism,
+    state: MechanismState,
+}
+
+/// Magic bytes and version of serialized snapshots.
+const SNAPSHOT_MAGIC: &[u8; 8] = b"FLEXROD\0";
+const SNAPSHOT_VERSION: u32 = 1;
+
+impl Simulation {
+    /// Build the model of `scene`: validate the parameters, preprocess the rod (modes,
+    /// shape integrals). Errors name the parameter and its allowed range.
+    pub fn new(scene: &Scene) -> Result<Simulation, ModelError> {
+        let mechanism = Mechanism::new(scene)?;
+        let state = mechanism.initial_state(0.0, CrankInput::default(), 0.0)?;
+        Ok(Simulation { mechanism, state })
+    }
+
+    /// Natural frequencies of the rod under its reference conditions, Hz, lowest first
+    /// (all of them, retained or not).
+    pub fn frequencies_hz(&self) -> &[f64] {
+        self.mechanism.frequencies_hz()
+    }
+
+    /// Consistent start at `t0`: rod undeformed, rigid coordinates and velocities
+    /// consistent with the crank input, accelerations and joint forces consistent too.
+    pub fn start(
+        &mut self,
+        t0: f64,
+        input: CrankInput,
+        slider_force: f64,
+    ) -> Result<(), ModelError> {
+        check_input(input, slider_force)?;
+        self.state = self.mechanism.initial_state(t0, input, slider_force)?;
+        Ok(())
+    }
+
+    /// Set the crank input that holds from the current time on.
+    pub fn set_input(&mut self, input: CrankInput) -> Result<(), ModelError> {
+        check_input(input, self.state.slider_force)?;
+        self.state.input = input;
+        self.state.input_time = self.state.time;
+        Ok(())
+    }
+
+    /// Set the external slider force along +x, N, from the current time on.
+    pub fn set_slider_force(&mut self, force: f64) -> Result<(), ModelError> {
+        check_input(self.state.input, force)?;
+        self.state.slider_force = force;
+        Ok(())
+    }
+
+    /// Current time, s.
+    pub fn time(&self) -> f64 {
+        self.state.time
+    }
+
+    /// Integrate from the current time to `time() + h` in internal steps no larger than the
+    /// scene's solver step, landing exactly on `time() + h`. On failure the state from before
+    /// the call is kept and the error says when and why.
+    pub fn advance(&mut self, h: f64) -> Result<StepStats, ModelError> {
+        if !(h.is_finite() && h > 0.0) {
+            return Err(ModelError::InvalidParameter {
+                name: "communication step h",
+                value: h,
+                allowed: "a finite value > 0".into(),
+            });
+        }
+        self.mechanism.advance(&mut self.state, h)?;
+        Ok(self.state.stats)
+    }
+
+    /// Outputs at the current time (physics.md, "Output definitions").
+    pub fn outputs(&self) -> Outputs {
+        self.state.outputs
+    }
+
+    /// Cumulative integrator counters.
+    pub fn stats(&self) -> StepStats {
+        self.state.stats
+    }
+
+    /// Warnings raised since the last call (e.g. deflection beyond the small-deformation range).
+    pub fn take_warnings(&mut self) -> Vec<String> {
+        std::mem::take(&mut self.state.warnings)
+    }
+
+    /// The model (for tools that need energies, momenta, the rod itself).
+    pub fn mechanism(&self) -> &Mechanism {
+        &self.mechanism
+    }
+
+    /// The current state (read only).
+    pub fn state(&self) -> &MechanismState {
+        &self.state
+    }
+
+    /// Save the state.
+    pub fn snapshot(&self) -> Snapshot {
+        Snapshot {
+            state: self.state.clone(),
+        }
+    }
+
+    /// Restore a state saved from this simulation.
+    pub fn restore(&mut self, snapshot: &Snapshot) {
+        self.state.clone_from(&snapshot.state);
+    }
+
+    /// Serialize the state: magic, version, model fingerprint, then the numbers (little endian).
+    pub fn snapshot_to_bytes(&self) -> Vec<u8> {
+        let mut out = Vec::new();
+        out.extend_from_slice(SNAPSHOT_MAGIC);
+        out.extend_from_slice(&SNAPSHOT_VERSION.to_le_bytes());
+        out.extend_from_slice(&self.mechanism.fingerprint().to_le_bytes());
+        self.state.write_bytes(&mut out);
+        out
+    }
+
+    /// Restore a state from bytes written by [`Simulation::snapshot_to_bytes`] of the same
+    /// model. Foreign, truncated or other-model bytes are rejected and the state is unchanged.
+    pub fn restore_from_bytes(&mut self, bytes: &[u8]) -> Result<(), ModelError> {
+        let bad = |m: &str| ModelError::State {
+            message: format!("serialized state rejected: {m}"),
+        };
+        if bytes.len() < 20 || &bytes[..8] != SNAPSHOT_MAGIC {
+            return Err(bad("it does not start with this FMU's header (foreign or truncated bytes)"));
+        }
+        let version = u32::from_le_bytes(bytes[8..12].try_into().unwrap());
+        if version != SNAPSHOT_VERSION {
+            return Err(bad(&format!(
+                "version {version}, this FMU reads version {SNAPSHOT_VERSION}"
+            )));
+        }
+        let fingerprint = u64::from_le_bytes(bytes[12..20].try_into().unwrap());
+        if fingerprint != self.mechanism.fingerprint() {
+            return Err(bad(
+                "it was saved by a model with other parameters or another scene",
+            ));
+        }
+        let mut state = self.state.clone();
+        state
+            .read_bytes(&bytes[20..])
+            .map_err(|m| bad(&m))?;
+        self.state = state;
+        Ok(())
+    }
+}
+
+fn check_input(input: CrankInput, slider_force: f64) -> Result<(), ModelError> {
+    let checks: [(&'static str, f64); 4] = [
+        ("crank.angle", input.angle),
+        ("crank.speed", input.speed),
+        ("crank.speed derivative (crank acceleration)", input.acceleration),
+        ("slider.force", slider_force),
+    ];
+    for (name, value) in checks {
+        if !value.is_finite() {
+            return Err(ModelError::InvalidParameter {
+                name,
+                value,
+                allowed: "a finite value".into(),
+            });
+        }
+    }
+    Ok(())
+}
