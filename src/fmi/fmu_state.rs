@@ -1,0 +1,297 @@
+//! Saved FMU states (`fmi2GetFMUstate`) and their byte form (`fmi2SerializeFMUstate`).
+//!
+//! A saved state holds everything the instance needs to continue bit for bit: the state
+//! machine's state, the instance's scene (parameters), the inputs and their law, the
+//! experiment, and the core's [`Snapshot`]. The byte form, little endian:
+//!
+//! ```text
+//! magic "FLXRFMI2", format version u32, GUID (u32 length + UTF-8),
+//! machine state u8, last step status u8, started u8,
+//! start time f64, stop time defined u8, stop time f64,
+//! inputs: angle, speed, slider force, acceleration f64, flags u8,
+//!         law angle, law speed, law acceleration, law time f64,
+//! scene (u32 length + TOML), simulation present u8 (+ u64 length + core bytes)
+//! ```
+//!
+//! The core's bytes carry their own magic, version and model fingerprint.
+
+use super::instance::{Experiment, Inputs};
+use super::state_machine::MachineState;
+use super::status::Status;
+use crate::scene::Scene;
+use crate::simulation::{CrankInput, Snapshot};
+
+const MAGIC: &[u8; 8] = b"FLXRFMI2";
+const VERSION: u32 = 1;
+
+/// A saved state of an instance.
+#[derive(Clone, Debug)]
+pub(crate) struct FmuState {
+    pub machine: MachineState,
+    pub scene: Scene,
+    pub inputs: Inputs,
+    pub experiment: Experiment,
+    pub started: bool,
+    pub last_step: Status,
+    pub simulation: Option<Snapshot>,
+}
+
+/// A parsed byte form: the state without its simulation, and the core's bytes of it.
+pub(crate) struct Parsed<'a> {
+    pub state: FmuState,
+    pub simulation_bytes: Option<&'a [u8]>,
+}
+
+fn put_f64(out: &mut Vec<u8>, x: f64) {
+    out.extend_from_slice(&x.to_le_bytes());
+}
+
+fn put_bytes_u32(out: &mut Vec<u8>, bytes: &[u8]) {
+    out.extend_from_slice(&(bytes.len() as u32).to_le_bytes());
+    out.extend_from_slice(bytes);
+}
+
+/// Write `state`; `simulation_bytes` are the core's bytes of `state.simulation`.
+pub(crate) fn serialize(guid: &str, state: &FmuState, simulation_bytes: Option<&[u8]>) -> Vec<u8> {
+    let mut out = Vec::new();
+    out.extend_from_slice(MAGIC);
+    out.extend_from_slice(&VERSION.to_le_bytes());
+    put_bytes_u32(&mut out, guid.as_bytes());
+    out.push(state.machine.code());
+    out.push(state.last_step.code() as u8);
+    out.push(u8::from(state.started));
+    put_f64(&mut out, state.experiment.start_time);
+    out.push(u8::from(state.experiment.stop_time.is_some()));
+    put_f64(&mut out, state.experiment.stop_time.unwrap_or(0.0));
+    let i = &state.inputs;
+    for x in [i.angle, i.speed, i.slider_force, i.acceleration] {
+        put_f64(&mut out, x);
+    }
+    out.push(
+        u8::from(i.acceleration_set)
+            | u8::from(i.crank_changed) << 1
+            | u8::from(i.force_changed) << 2,
+    );
+    for x in [i.law.angle, i.law.speed, i.law.acceleration, i.law_time] {
+        put_f64(&mut out, x);
+    }
+    put_bytes_u32(&mut out, state.scene.to_toml().as_bytes());
+    match simulation_bytes {
+        None => out.push(0),
+        Some(b) => {
+            out.push(1);
+            out.extend_from_slice(&(b.len() as u64).to_le_bytes());
+            out.extend_from_slice(b);
+        }
+    }
+    out
+}
+
+struct Reader<'a> {
+    bytes: &'a [u8],
+    at: usize,
+}
+
+impl<'a> Reader<'a> {
+    fn take(&mut self, n: usize, what: &str) -> Result<&'a [u8], String> {
+        let left = self.bytes.len() - self.at;
+        if n > left {
+            return Err(format!(
+                "truncated: {what} needs {n} bytes at offset {}, only {left} left",
+                self.at
+            ));
+        }
+        let b = &self.bytes[self.at..self.at + n];
+        self.at += n;
+        Ok(b)
+    }
+
+    fn u8(&mut self, what: &str) -> Result<u8, String> {
+        Ok(self.take(1, what)?[0])
+    }
+
+    fn flag(&mut self, what: &str) -> Result<bool, String> {
+        match self.u8(what)? {
+            0 => Ok(false),
+            1 => Ok(true),
+            b => Err(format!("{what} is {b}, allowed 0 or 1")),
+        }
+    }
+
+    fn u32(&mut self, what: &str) -> Result<u32, String> {
+        let b = self.take(4, what)?;
+        Ok(u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+    }
+
+    fn u64(&mut self, what: &str) -> Result<u64, String> {
+        let b = self.take(8, what)?;
+        let mut a = [0u8; 8];
+        a.copy_from_slice(b);
+        Ok(u64::from_le_bytes(a))
+    }
+
+    fn f64(&mut self, what: &str) -> Result<f64, String> {
+        Ok(f64::from_bits(self.u64(what)?))
+    }
+
+    fn str_u32(&mut self, what: &str) -> Result<&'a str, String> {
+        let n = self.u32(what)? as usize;
+        let b = self.take(n, what)?;
+        std::str::from_utf8(b).map_err(|_| format!("{what} is not UTF-8"))
+    }
+}
+
+/// Read bytes written by [`serialize`] for the FMU with this GUID.
+pub(crate) fn deserialize<'a>(guid: &str, bytes: &'a [u8]) -> Result<Parsed<'a>, String> {
+    let mut r = Reader { bytes, at: 0 };
+    if r.take(8, "the header").ok() != Some(&MAGIC[..]) {
+        return Err(format!(
+            "the {} bytes do not start with this FMU's header \"FLXRFMI2\" (foreign or truncated bytes)",
+            bytes.len()
+        ));
+    }
+    let version = r.u32("the format version")?;
+    if version != VERSION {
+        return Err(format!(
+            "format version {version}, this FMU reads version {VERSION}"
+        ));
+    }
+    let written_by = r.str_u32("the GUID")?;
+    if written_by != guid {
+        return Err(format!(
+            "it was written by the FMU with GUID {written_by}, this FMU has GUID {guid}"
+        ));
+    }
+    let machine_code = r.u8("the machine state")?;
+    let machine = MachineState::from_code(machine_code)
+        .ok_or_else(|| format!("machine state code {machine_code} is unknown"))?;
+    let status_code = r.u8("the last step status")?;
+    let last_step = Status::from_code(i32::from(status_code))
+        .ok_or_else(|| format!("status code {status_code} is unknown"))?;
+    let started = r.flag("the started flag")?;
+    let start_time = r.f64("the start time")?;
+    let stop_defined = r.flag("the stop time flag")?;
+    let stop = r.f64("the stop time")?;
+    let angle = r.f64("crank.angle")?;
+    let speed = r.f64("crank.speed")?;
+    let slider_force = r.f64("slider.force")?;
+    let acceleration = r.f64("the crank acceleration")?;
+    let flags = r.u8("the input flags")?;
+    if flags > 7 {
+        return Err(format!("input flags {flags} are invalid, allowed 0..=7"));
+    }
+    let law = CrankInput {
+        angle: r.f64("the law's angle")?,
+        speed: r.f64("the law's speed")?,
+        acceleration: r.f64("the law's acceleration")?,
+    };
+    let law_time = r.f64("the law's time")?;
+    let scene_text = r.str_u32("the scene")?;
+    let scene =
+        Scene::from_toml_str(scene_text, "the serialized state").map_err(|e| e.to_string())?;
+    let simulation_bytes = if r.flag("the simulation flag")? {
+        let n = r.u64("the simulation length")?;
+        let n = usize::try_from(n).map_err(|_| format!("simulation length {n} is too large"))?;
+        Some(r.take(n, "the simulation")?)
+    } else {
+        None
+    };
+    if r.at != bytes.len() {
+        return Err(format!(
+            "{} unexpected bytes after the end of the state at offset {}",
+            bytes.len() - r.at,
+            r.at
+        ));
+    }
+    let inputs = Inputs {
+        angle,
+        speed,
+        slider_force,
+        acceleration,
+        acceleration_set: flags & 1 != 0,
+        crank_changed: flags & 2 != 0,
+        force_changed: flags & 4 != 0,
+        law,
+        law_time,
+    };
+    Ok(Parsed {
+        state: FmuState {
+            machine,
+            scene,
+            inputs,
+            experiment: Experiment {
+                start_time,
+                stop_time: stop_defined.then_some(stop),
+            },
+            started,
+            last_step,
+            simulation: None,
+        },
+        simulation_bytes,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample() -> FmuState {
+        let inputs = Inputs {
+            angle: 1.25,
+            speed: 150.0,
+            slider_force: -3.5,
+            acceleration: 10.0,
+            acceleration_set: true,
+            crank_changed: false,
+            force_changed: true,
+            law: CrankInput {
+                angle: 1.0,
+                speed: 149.0,
+                acceleration: 2.0,
+            },
+            law_time: 0.01,
+        };
+        FmuState {
+            machine: MachineState::StepComplete,
+            scene: Scene::benchmark(),
+            inputs,
+            experiment: Experiment {
+                start_time: 0.0,
+                stop_time: Some(0.5),
+            },
+            started: true,
+            last_step: Status::Ok,
+            simulation: None,
+        }
+    }
+
+    #[test]
+    fn round_trip_without_simulation() {
+        let s = sample();
+        let bytes = serialize("{g}", &s, Some(&[1, 2, 3]));
+        let p = deserialize("{g}", &bytes).unwrap();
+        assert_eq!(p.state.inputs, s.inputs);
+        assert_eq!(p.state.scene, s.scene);
+        assert_eq!(p.state.experiment, s.experiment);
+        assert_eq!(p.state.machine, s.machine);
+        assert_eq!(p.simulation_bytes, Some(&[1u8, 2, 3][..]));
+    }
+
+    #[test]
+    fn foreign_truncated_and_other_fmu_rejected() {
+        let bytes = serialize("{g}", &sample(), None);
+        assert!(deserialize("{g}", b"hello world")
+            .unwrap_err()
+            .contains("foreign"));
+        for cut in [3, 20, bytes.len() - 1] {
+            let e = deserialize("{g}", &bytes[..cut]).err().expect("truncated");
+            assert!(e.contains("truncated") || e.contains("foreign"), "{e}");
+        }
+        assert!(deserialize("{h}", &bytes).unwrap_err().contains("GUID"));
+        let mut longer = bytes.clone();
+        longer.push(0);
+        assert!(deserialize("{g}", &longer)
+            .unwrap_err()
+            .contains("unexpected"));
+    }
+}

@@ -1,0 +1,1009 @@
+//! One FMU instance: the whole FMI 2.0 Co-Simulation behaviour in safe Rust.
+//!
+//! `ffi.rs` turns each C call into one call of [`Instance::run`] with the matching method;
+//! `run` checks the call sequence against the state machine, catches panics, logs failures
+//! through the importer's logger and folds everything into an [`Status`].
+//!
+//! Inputs between communication points follow the contract's law
+//! `theta(t_k + s) = theta_k + omega_k s + alpha_k s^2 / 2`, `omega(t_k + s) = omega_k + alpha_k s`:
+//! when the importer sets `crank.angle`, `crank.speed` or the crank acceleration (order-1
+//! derivative of `crank.speed`) at `t_k`, a new law starts at `t_k` with `alpha_k` = the
+//! derivative set at `t_k`, or 0. When it sets none of them, the current law continues, and
+//! `fmi2GetReal` of the inputs reports the law's values at the current time.
+
+use std::collections::HashMap;
+use std::panic::AssertUnwindSafe;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use super::description::ModelDescription;
+use super::fmu_state::{self, FmuState};
+use super::guard;
+use super::logging::Logger;
+use super::resource;
+use super::state_machine::{self, Call, MachineState};
+use super::status::{FmiError, FmiResult, Status, StatusKind};
+use super::variables::{
+    Access, Causality, Family, InputSlot, Value, ValueReference, Variable, VariableTable,
+};
+use crate::error::ModelError;
+use crate::scene::Scene;
+use crate::simulation::{CrankInput, Simulation};
+
+/// `fmi2Type` value of Co-Simulation.
+const FMI2_CO_SIMULATION: i32 = 1;
+
+/// Relative tolerance on `currentCommunicationPoint` and `stopTime`.
+const TIME_TOLERANCE: f64 = 1e-9;
+
+/// Handles of FMU states are unique across all instances of the process, so a state of
+/// another instance is recognized as foreign.
+static NEXT_STATE_HANDLE: AtomicUsize = AtomicUsize::new(1);
+
+/// Arguments of `fmi2Instantiate`, already converted from C.
+pub struct InstantiateArgs<'a> {
+    pub instance_name: &'a str,
+    pub fmu_type: i32,
+    pub guid: &'a str,
+    pub resource_location: Option<&'a str>,
+    pub logging_on: bool,
+}
+
+/// The inputs as the instance keeps them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Inputs {
+    /// Current values (set by the importer, or the law evaluated at the current time).
+    pub angle: f64,
+    pub speed: f64,
+    pub slider_force: f64,
+    /// Order-1 derivative of `crank.speed` set at this communication point.
+    pub acceleration: f64,
+    pub acceleration_set: bool,
+    /// A crank value or derivative was set since the last step: a new law starts.
+    pub crank_changed: bool,
+    /// `slider.force` was set since the last step.
+    pub force_changed: bool,
+    /// The law in use and the time it started.
+    pub law: CrankInput,
+    pub law_time: f64,
+}
+
+impl Inputs {
+    fn from_start_values(table: &VariableTable) -> Inputs {
+        let start = |slot: InputSlot| {
+            table
+                .variables()
+                .iter()
+                .find_map(|v| match (v.access, v.start) {
+                    (Access::Input(s), Some(Value::Real(x))) if s == slot => Some(x),
+                    _ => None,
+                })
+                .unwrap_or(0.0)
+        };
+        let (angle, speed) = (start(InputSlot::CrankAngle), start(InputSlot::CrankSpeed));
+        Inputs {
+            angle,
+            speed,
+            slider_force: start(InputSlot::SliderForce),
+            acceleration: 0.0,
+            acceleration_set: false,
+            crank_changed: false,
+            force_changed: false,
+            law: CrankInput {
+                angle,
+                speed,
+                acceleration: 0.0,
+            },
+            law_time: 0.0,
+        }
+    }
+
+    fn value(&self, slot: InputSlot) -> f64 {
+        match slot {
+            InputSlot::CrankAngle => self.angle,
+            InputSlot::CrankSpeed => self.speed,
+            InputSlot::SliderForce => self.slider_force,
+        }
+    }
+
+    fn set(&mut self, slot: InputSlot, x: f64) {
+        match slot {
+            InputSlot::CrankAngle => self.angle = x,
+            InputSlot::CrankSpeed => self.speed = x,
+            InputSlot::SliderForce => self.slider_force = x,
+        }
+        match slot {
+            InputSlot::CrankAngle | InputSlot::CrankSpeed => self.crank_changed = true,
+            InputSlot::SliderForce => self.force_changed = true,
+        }
+    }
+
+    /// The crank input at the current communication point.
+    fn crank_input(&self) -> CrankInput {
+        CrankInput {
+            angle: self.angle,
+            speed: self.speed,
+            acceleration: if self.acceleration_set {
+                self.acceleration
+            } else {
+                0.0
+            },
+        }
+    }
+
+    /// Start a new law at `time` from the current values; clear the change flags.
+    fn start_law(&mut self, time: f64) {
+        self.law = self.crank_input();
+        self.law_time = time;
+        self.clear_point();
+    }
+
+    /// After a step to `time`: the current values are the law's values there.
+    fn follow_law(&mut self, time: f64) {
+        let s = time - self.law_time;
+        let law = self.law;
+        self.angle = law.angle + law.speed * s + 0.5 * law.acceleration * s * s;
+        self.speed = law.speed + law.acceleration * s;
+        self.clear_point();
+    }
+
+    fn clear_point(&mut self) {
+        self.acceleration = 0.0;
+        self.acceleration_set = false;
+        self.crank_changed = false;
+        self.force_changed = false;
+    }
+}
+
+/// `fmi2SetupExperiment` values.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Experiment {
+    pub start_time: f64,
+    pub stop_time: Option<f64>,
+}
+
+/// One FMU instance.
+pub struct Instance {
+    guid: String,
+    table: VariableTable,
+    /// The scene the FMU was exported for: the start values, restored by `fmi2Reset`.
+    exported: Scene,
+    /// The instance's own copy, with the parameters the importer set.
+    scene: Scene,
+    state: MachineState,
+    logger: Logger,
+    inputs: Inputs,
+    experiment: Experiment,
+    /// Built from `scene` (invariant: `Some` only if built from the current `scene`).
+    simulation: Option<Simulation>,
+    /// In initialization mode: the simulation was started with the current inputs.
+    started: bool,
+    /// Status of the last `fmi2DoStep`.
+    last_step: Status,
+    /// Why the simulation is missing after a failed initialization (for messages).
+    failure: Option<String>,
+    fmu_states: HashMap<usize, FmuState>,
+    /// Last serialization: (handle, bytes), so size and content are computed once.
+    serialized: Option<(usize, Vec<u8>)>,
+}
+
+fn model_error(e: ModelError) -> String {
+    e.to_string()
+}
+
+impl Instance {
+    /// `fmi2Instantiate`: load the scene from the resources, check the GUID. Failures are
+    /// logged and give `None`.
+    pub fn instantiate(args: InstantiateArgs<'_>, logger: Logger) -> Option<Instance> {
+        let result = guard::catch(AssertUnwindSafe(|| load(&args, &logger)));
+        let failure = match result {
+            Ok(Ok(model)) => {
+                return Some(Instance::from_description(
+                    model.scene,
+                    model.description,
+                    logger,
+                ))
+            }
+            Ok(Err(message)) => message,
+            Err(panic) => {
+                format!("internal error (a panic was caught at the FMI boundary): {panic}")
+            }
+        };
+        logger.status(
+            Status::Error,
+            &format!("fmi2Instantiate of \"{}\": {failure}", args.instance_name),
+        );
+        None
+    }
+
+    /// An instance of `scene` with its description (for tools and tests; no GUID check).
+    pub fn from_description(
+        scene: Scene,
+        description: ModelDescription,
+        logger: Logger,
+    ) -> Instance {
+        let inputs = Inputs::from_start_values(&description.table);
+        let experiment = Experiment {
+            start_time: scene.experiment.start_time,
+            stop_time: None,
+        };
+        Instance {
+            guid: description.guid,
+            table: description.table,
+            exported: scene.clone(),
+            scene,
+            state: MachineState::Instantiated,
+            logger,
+            inputs,
+            experiment,
+            simulation: None,
+            started: false,
+            last_step: Status::Ok,
+            failure: None,
+            fmu_states: HashMap::new(),
+            serialized: None,
+        }
+    }
+
+    /// Replace the logger (the C layer installs the importer's callback).
+    pub fn set_logger(&mut self, logger: Logger) {
+        self.logger = logger;
+    }
+
+    /// The instance's state in the FMI state machine.
+    pub fn machine_state(&self) -> MachineState {
+        self.state
+    }
+
+    /// The GUID of the FMU this instance belongs to.
+    pub fn guid(&self) -> &str {
+        &self.guid
+    }
+
+    /// Run one FMI call: check the call sequence, run `f` with panics caught, log a failure
+    /// and return the status for the importer.
+    pub fn run(
+        &mut self,
+        call: Call,
+        f: impl FnOnce(&mut Instance) -> FmiResult<Status>,
+    ) -> Status {
+        let result = guard::catch(AssertUnwindSafe(|| {
+            state_machine::check(call, self.state)?;
+            f(self)
+        }));
+        match result {
+            Ok(Ok(status)) => status,
+            Ok(Err(e)) => {
+                if e.instance_failed {
+                    self.state = MachineState::Error;
+                }
+                self.logger
+                    .status(e.status, &format!("{}: {}", call.name(), e.message));
+                e.status
+            }
+            Err(panic) => {
+                self.state = MachineState::Error;
+                self.logger.status(
+                    Status::Error,
+                    &format!(
+                        "{}: internal error (a panic was caught at the FMI boundary): {panic}; the instance is in the Error state: call fmi2Reset or fmi2FreeInstance",
+                        call.name()
+                    ),
+                );
+                Status::Error
+            }
+        }
+    }
+
+    // ---------------------------------------------------------------- logging and setup
+
+    /// `fmi2SetDebugLogging`.
+    pub fn set_debug_logging(&mut self, on: bool, categories: &[&str]) -> FmiResult<Status> {
+        self.logger.set_debug_logging(on, categories)?;
+        Ok(Status::Ok)
+    }
+
+    /// `fmi2SetupExperiment`. The tolerance is not used: the solver settings come from the scene.
+    pub fn setup_experiment(
+        &mut self,
+        tolerance: Option<f64>,
+        start_time: f64,
+        stop_time: Option<f64>,
+    ) -> FmiResult<Status> {
+        if !start_time.is_finite() {
+            return Err(FmiError::rejected(format!(
+                "startTime = {start_time} is out of range: allowed a finite value"
+            )));
+        }
+        if let Some(stop) = stop_time {
+            if !(stop.is_finite() && stop >= start_time) {
+                return Err(FmiError::rejected(format!(
+                    "stopTime = {stop} is out of range: allowed a finite value >= startTime = {start_time}"
+                )));
+            }
+        }
+        if let Some(tol) = tolerance {
+            self.logger.event(&format!(
+                "fmi2SetupExperiment: tolerance = {tol} is not used; the integrator follows the scene's [solver] settings (step = {} s, newton_tolerance = {})",
+                self.scene.solver.step, self.scene.solver.newton_tolerance
+            ));
+        }
+        self.experiment = Experiment {
+            start_time,
+            stop_time,
+        };
+        Ok(Status::Ok)
+    }
+
+    /// `fmi2EnterInitializationMode`.
+    pub fn enter_initialization_mode(&mut self) -> FmiResult<Status> {
+        self.state = MachineState::InitializationMode;
+        self.started = false;
+        Ok(Status::Ok)
+    }
+
+    /// `fmi2ExitInitializationMode`: build the model from the instance's scene (if not yet
+    /// built for a read in initialization mode) and start it consistently with the inputs.
+    pub fn exit_initialization_mode(&mut self) -> FmiResult<Status> {
+        if let Err(e) = self.ensure_started() {
+            self.failure = Some(e.message.clone());
+            return Err(FmiError::failed(e.message));
+        }
+        let t0 = self.experiment.start_time;
+        self.inputs.start_law(t0);
+        self.state = MachineState::StepComplete;
+        self.last_step = Status::Ok;
+        if self.logger.events_on() {
+            let f = self.simulation.as_ref().map(Simulation::frequencies_hz);
+            self.logger.event(&format!(
+                "initialized at t = {t0} s with crank.angle = {} rad, crank.speed = {} rad/s; lowest natural frequency {:?} Hz",
+                self.inputs.angle,
+                self.inputs.speed,
+                f.and_then(|f| f.first())
+            ));
+        }
+        Ok(self.take_warnings())
+    }
+
+    /// `fmi2Terminate`.
+    pub fn terminate(&mut self) -> FmiResult<Status> {
+        self.state = MachineState::Terminated;
+        Ok(Status::Ok)
+    }
+
+    /// `fmi2Reset`: back to `Instantiated` with the start values of the exported scene.
+    /// Saved FMU states stay valid.
+    pub fn reset(&mut self) -> FmiResult<Status> {
+        self.scene = self.exported.clone();
+        self.inputs = Inputs::from_start_values(&self.table);
+        self.experiment = Experiment {
+            start_time: self.scene.experiment.start_time,
+            stop_time: None,
+        };
+        self.simulation = None;
+        self.started = false;
+        self.last_step = Status::Ok;
+        self.failure = None;
+        self.state = MachineState::Instantiated;
+        Ok(Status::Ok)
+    }
+
+    /// Build the simulation for the current scene if needed and start it with the current
+    /// inputs at the start time.
+    fn ensure_started(&mut self) -> FmiResult<()> {
+        if self.simulation.is_none() {
+            check_geometry(&self.scene)?;
+            let simulation =
+                Simulation::new(&self.scene).map_err(|e| FmiError::rejected(model_error(e)))?;
+            let available = simulation.frequencies_hz().len();
+            let declared = self.table.frequency_count();
+            if available < declared {
+                return Err(FmiError::rejected(format!(
+                    "rod.elements = {} with these rod.model and rod.reference leaves {available} natural frequencies, but this FMU declares rod.frequency[1..{declared}]: allowed parameters that leave at least {declared} (e.g. more elements), or export the scene with [outputs] frequencies <= {available}",
+                    self.scene.rod.elements
+                )));
+            }
+            self.simulation = Some(simulation);
+            self.started = false;
+        }
+        if !self.started {
+            let input = self.inputs.crank_input();
+            let force = self.inputs.slider_force;
+            let t0 = self.experiment.start_time;
+            if let Some(simulation) = self.simulation.as_mut() {
+                simulation
+                    .start(t0, input, force)
+                    .map_err(|e| FmiError::rejected(model_error(e)))?;
+            }
+            self.started = true;
+        }
+        Ok(())
+    }
+
+    // ---------------------------------------------------------------- get and set
+
+    fn variable(&self, vr: ValueReference, family: Family) -> FmiResult<&Variable> {
+        let v = self.table.get(vr).ok_or_else(|| {
+            FmiError::rejected(format!(
+                "unknown value reference {vr}: no {} variable of this FMU has it (see modelDescription.xml)",
+                family.name()
+            ))
+        })?;
+        let actual = v.value_type.family();
+        if actual != family {
+            return Err(FmiError::rejected(format!(
+                "value reference {vr} ({}) is a {} variable, not {}: use fmi2Get{}/fmi2Set{}",
+                v.name,
+                actual.name(),
+                family.name(),
+                actual.name(),
+                actual.name()
+            )));
+        }
+        Ok(v)
+    }
+
+    fn settable(&self, vr: ValueReference, family: Family) -> FmiResult<&Variable> {
+        let v = self.variable(vr, family)?;
+        match v.causality {
+            Causality::Input => Ok(v),
+            Causality::Parameter => match self.state {
+                MachineState::Instantiated | MachineState::InitializationMode => Ok(v),
+                state => Err(FmiError::rejected(format!(
+                    "{} (value reference {vr}) is a fixed parameter: it can be set only before fmi2ExitInitializationMode, and the instance is in state {}",
+                    v.name,
+                    state.name()
+                ))),
+            },
+            Causality::Output | Causality::CalculatedParameter => {
+                Err(FmiError::rejected(format!(
+                    "{} (value reference {vr}) has causality {}: only inputs and parameters can be set",
+                    v.name,
+                    v.causality.as_str()
+                )))
+            }
+        }
+    }
+
+    /// A parameter or input changed during initialization: the start must be redone.
+    fn invalidate(&mut self, parameter_changed: bool) {
+        if parameter_changed {
+            self.simulation = None;
+        }
+        self.started = false;
+    }
+
+    /// Make the simulation that provides outputs and frequencies available (built on
+    /// demand in initialization mode).
+    fn prepare_values(&mut self) -> FmiResult<()> {
+        if self.state == MachineState::InitializationMode {
+            self.ensure_started()?;
+        }
+        match &self.simulation {
+            Some(_) => Ok(()),
+            None => Err(FmiError::rejected(format!(
+                "outputs and calculated parameters are not available: {}",
+                self.failure
+                    .as_deref()
+                    .unwrap_or("the model was not initialized")
+            ))),
+        }
+    }
+
+    /// `fmi2GetReal`.
+    pub fn get_real(&mut self, vrs: &[ValueReference], values: &mut [f64]) -> FmiResult<Status> {
+        let mut needs_simulation = false;
+        for &vr in vrs {
+            let v = self.variable(vr, Family::Real)?;
+            needs_simulation |= matches!(v.access, Access::Output(_) | Access::Frequency(_));
+        }
+        if needs_simulation {
+            self.prepare_values()?;
+        }
+        let (outputs, frequencies) = match &self.simulation {
+            Some(s) if needs_simulation => (s.outputs(), s.frequencies_hz()),
+            _ => (Default::default(), &[][..]),
+        };
+        for (&vr, out) in vrs.iter().zip(values.iter_mut()) {
+            let v = self.table.get(vr).expect("checked above");
+            *out = match v.access {
+                Access::Input(slot) => self.inputs.value(slot),
+                Access::Output(get) => get(&outputs),
+                Access::RealParameter { get, .. } => get(&self.scene),
+                Access::Frequency(i) => *frequencies.get(i).ok_or_else(|| {
+                    FmiError::rejected(format!("{} does not exist for these parameters", v.name))
+                })?,
+                Access::IntegerParameter { .. } => unreachable!("family checked"),
+            };
+        }
+        Ok(Status::Ok)
+    }
+
+    /// `fmi2GetInteger` (Integer and Enumeration variables).
+    pub fn get_integer(&mut self, vrs: &[ValueReference], values: &mut [i32]) -> FmiResult<Status> {
+        for (&vr, out) in vrs.iter().zip(values.iter_mut()) {
+            let v = self.variable(vr, Family::Integer)?;
+            *out = match v.access {
+                Access::IntegerParameter { get, .. } => get(&self.scene),
+                _ => unreachable!("only Integer parameters are Integer variables"),
+            };
+        }
+        Ok(Status::Ok)
+    }
+
+    /// `fmi2SetReal`: all values are checked first; on error nothing is set.
+    pub fn set_real(&mut self, vrs: &[ValueReference], values: &[f64]) -> FmiResult<Status> {
+        for (&vr, &x) in vrs.iter().zip(values) {
+            let v = self.settable(vr, Family::Real)?;
+            if !x.is_finite() {
+                return Err(FmiError::rejected(format!(
+                    "{} = {x} (value reference {vr}) is out of range: allowed a finite value; nothing was set",
+                    v.name
+                )));
+            }
+        }
+        let mut parameter_changed = false;
+        for (&vr, &x) in vrs.iter().zip(values) {
+            let access = self.table.get(vr).expect("checked above").access;
+            match access {
+                Access::Input(slot) => self.inputs.set(slot, x),
+                Access::RealParameter { set, .. } => {
+                    set(&mut self.scene, x);
+                    parameter_changed = true;
+                }
+                _ => unreachable!("settable Real variables are inputs or Real parameters"),
+            }
+        }
+        if self.state != MachineState::StepComplete {
+            self.invalidate(parameter_changed);
+        }
+        Ok(Status::Ok)
+    }
+
+    /// `fmi2SetInteger`: all values are checked first; on error nothing is set.
+    pub fn set_integer(&mut self, vrs: &[ValueReference], values: &[i32]) -> FmiResult<Status> {
+        let mut scene = self.scene.clone();
+        for (&vr, &n) in vrs.iter().zip(values) {
+            let v = self.settable(vr, Family::Integer)?;
+            if let Access::IntegerParameter { set, .. } = v.access {
+                set(&mut scene, n).map_err(|allowed| {
+                    FmiError::rejected(format!(
+                        "{} = {n} (value reference {vr}) is out of range: allowed {allowed}; nothing was set",
+                        v.name
+                    ))
+                })?;
+            }
+        }
+        if !vrs.is_empty() {
+            self.scene = scene;
+            self.invalidate(true);
+        }
+        Ok(Status::Ok)
+    }
+
+    /// `fmi2GetBoolean`, `fmi2SetBoolean`, `fmi2GetString`, `fmi2SetString`: this FMU has no
+    /// such variables, so any value reference is unknown.
+    pub fn no_variables_of(&self, family: Family, vrs: &[ValueReference]) -> FmiResult<Status> {
+        match vrs.first() {
+            None => Ok(Status::Ok),
+            Some(&vr) => self.variable(vr, family).map(|_| Status::Ok),
+        }
+    }
+
+    /// `fmi2SetRealInputDerivatives`. Order 1 of `crank.speed` is the crank acceleration
+    /// alpha_k. Order 1 of `crank.angle` is accepted and not used (the angle follows from the
+    /// speed); a value different from `crank.speed` gives a warning. A zero order-1 derivative
+    /// of `slider.force` is accepted (the force is held over a step). Anything else is an error.
+    pub fn set_real_input_derivatives(
+        &mut self,
+        vrs: &[ValueReference],
+        orders: &[i32],
+        values: &[f64],
+    ) -> FmiResult<Status> {
+        for ((&vr, &order), &x) in vrs.iter().zip(orders).zip(values) {
+            let v = self.variable(vr, Family::Real)?;
+            let Access::Input(slot) = v.access else {
+                return Err(FmiError::rejected(format!(
+                    "{} (value reference {vr}) is not an input: input derivatives can be set only for crank.speed (and crank.angle)",
+                    v.name
+                )));
+            };
+            if order != 1 {
+                return Err(FmiError::rejected(format!(
+                    "derivative order {order} of {} is not supported: allowed order 1 (inputs are extrapolated with at most a constant crank acceleration)",
+                    v.name
+                )));
+            }
+            if !x.is_finite() {
+                return Err(FmiError::rejected(format!(
+                    "derivative of {} = {x} is out of range: allowed a finite value; nothing was set",
+                    v.name
+                )));
+            }
+            if slot == InputSlot::SliderForce && x != 0.0 {
+                return Err(FmiError::rejected(format!(
+                    "derivative of slider.force = {x} is not supported: slider.force is held constant over a step; allowed 0"
+                )));
+            }
+        }
+        let mut status = Status::Ok;
+        for ((&vr, _), &x) in vrs.iter().zip(orders).zip(values) {
+            let Some(Access::Input(slot)) = self.table.get(vr).map(|v| v.access) else {
+                continue;
+            };
+            match slot {
+                InputSlot::CrankSpeed => {
+                    self.inputs.acceleration = x;
+                    self.inputs.acceleration_set = true;
+                    self.inputs.crank_changed = true;
+                }
+                InputSlot::CrankAngle => {
+                    let speed = self.inputs.speed;
+                    if (x - speed).abs() > 1e-9 * speed.abs().max(1.0) {
+                        self.logger.status(
+                            Status::Warning,
+                            &format!(
+                                "fmi2SetRealInputDerivatives: derivative of crank.angle = {x} rad/s differs from crank.speed = {speed} rad/s; it is not used (the angle follows from crank.speed)"
+                            ),
+                        );
+                        status = Status::Warning;
+                    }
+                }
+                InputSlot::SliderForce => {}
+            }
+        }
+        if self.state != MachineState::StepComplete {
+            self.invalidate(false);
+        }
+        Ok(status)
+    }
+
+    /// `fmi2GetRealOutputDerivatives`: not provided (`maxOutputDerivativeOrder="0"`).
+    pub fn get_real_output_derivatives(&self) -> FmiResult<Status> {
+        Err(FmiError::rejected(
+            "output derivatives are not provided (maxOutputDerivativeOrder = 0)",
+        ))
+    }
+
+    /// `fmi2GetDirectionalDerivative`: not provided (`providesDirectionalDerivative="false"`).
+    pub fn get_directional_derivative(&self) -> FmiResult<Status> {
+        Err(FmiError::rejected(
+            "directional derivatives are not provided (providesDirectionalDerivative = false)",
+        ))
+    }
+
+    // ---------------------------------------------------------------- stepping
+
+    /// `fmi2DoStep`: integrate from the FMU time `t` to `t + h`.
+    pub fn do_step(&mut self, t: f64, h: f64) -> FmiResult<Status> {
+        let Some(simulation) = self.simulation.as_mut() else {
+            return Err(FmiError::failed("no simulation (internal error)"));
+        };
+        let now = simulation.time();
+        let tolerance = TIME_TOLERANCE * now.abs().max(1.0);
+        if !(t.is_finite() && (t - now).abs() <= tolerance) {
+            return Err(FmiError::rejected(format!(
+                "currentCommunicationPoint = {t} s does not match the FMU time {now} s: allowed {now} +- {tolerance:e} s"
+            )));
+        }
+        if !(h.is_finite() && h > 0.0) {
+            return Err(FmiError::rejected(format!(
+                "communicationStepSize = {h} s is out of range: allowed a finite value > 0"
+            )));
+        }
+        if let Some(stop) = self.experiment.stop_time {
+            if now + h > stop + TIME_TOLERANCE * stop.abs().max(1.0) {
+                return Err(FmiError::rejected(format!(
+                    "the step from t = {now} s with h = {h} s would end at {} s, after stopTime = {stop} s of fmi2SetupExperiment: allowed h <= {}",
+                    now + h,
+                    stop - now
+                )));
+            }
+        }
+        if self.inputs.crank_changed {
+            simulation
+                .set_input(self.inputs.crank_input())
+                .map_err(|e| FmiError::rejected(model_error(e)))?;
+            self.inputs.start_law(now);
+        }
+        if self.inputs.force_changed {
+            simulation
+                .set_slider_force(self.inputs.slider_force)
+                .map_err(|e| FmiError::rejected(model_error(e)))?;
+            self.inputs.force_changed = false;
+        }
+        match simulation.advance(h) {
+            Ok(_) => {
+                let time = simulation.time();
+                self.inputs.follow_law(time);
+                self.last_step = Status::Ok;
+                Ok(self.take_warnings())
+            }
+            Err(e @ ModelError::StepFailed { .. }) => {
+                self.state = MachineState::StepFailed;
+                self.last_step = Status::Discard;
+                Err(FmiError::discard(format!(
+                    "{e}. Restore a state saved before the step (fmi2SetFMUstate) and retry with a smaller communication step, or terminate"
+                )))
+            }
+            Err(e) => Err(FmiError::failed(model_error(e))),
+        }
+    }
+
+    /// Pass the simulation's warnings to the logger; `Warning` if there were any.
+    fn take_warnings(&mut self) -> Status {
+        let Some(simulation) = self.simulation.as_mut() else {
+            return Status::Ok;
+        };
+        let warnings = simulation.take_warnings();
+        for w in &warnings {
+            self.logger.status(Status::Warning, w);
+        }
+        if warnings.is_empty() {
+            Status::Ok
+        } else {
+            Status::Warning
+        }
+    }
+
+    /// `fmi2GetStatus`.
+    pub fn get_status(&self, kind: StatusKind) -> FmiResult<Status> {
+        match kind {
+            StatusKind::DoStepStatus => Ok(self.last_step),
+            _ => Err(self.undefined_status(kind, "fmi2GetStatus", "fmi2DoStepStatus")),
+        }
+    }
+
+    /// `fmi2GetRealStatus`: `fmi2LastSuccessfulTime` is the FMU time (after a discarded step,
+    /// the time before it).
+    pub fn get_real_status(&self, kind: StatusKind) -> FmiResult<f64> {
+        match (kind, &self.simulation) {
+            (StatusKind::LastSuccessfulTime, Some(s)) => Ok(s.time()),
+            _ => Err(self.undefined_status(kind, "fmi2GetRealStatus", "fmi2LastSuccessfulTime")),
+        }
+    }
+
+    /// `fmi2GetIntegerStatus`: FMI 2.0 defines no integer status.
+    pub fn get_integer_status(&self, kind: StatusKind) -> FmiResult<i32> {
+        Err(self.undefined_status(kind, "fmi2GetIntegerStatus", "none"))
+    }
+
+    /// `fmi2GetBooleanStatus`: `fmi2Terminated` is false (the FMU never asks to stop).
+    pub fn get_boolean_status(&self, kind: StatusKind) -> FmiResult<bool> {
+        match kind {
+            StatusKind::Terminated => Ok(false),
+            _ => Err(self.undefined_status(kind, "fmi2GetBooleanStatus", "fmi2Terminated")),
+        }
+    }
+
+    /// `fmi2GetStringStatus`: only `fmi2PendingStatus` exists, and no step is ever pending.
+    pub fn get_string_status(&self, kind: StatusKind) -> FmiResult<Status> {
+        Err(self.undefined_status(
+            kind,
+            "fmi2GetStringStatus",
+            "fmi2PendingStatus, only while fmi2DoStep is pending, which never happens here",
+        ))
+    }
+
+    fn undefined_status(&self, kind: StatusKind, function: &str, allowed: &str) -> FmiError {
+        FmiError::rejected(format!(
+            "{function} has no value for {}: allowed {allowed}",
+            kind.name()
+        ))
+    }
+
+    // ---------------------------------------------------------------- FMU states
+
+    fn capture(&self) -> FmuState {
+        FmuState {
+            machine: self.state,
+            scene: self.scene.clone(),
+            inputs: self.inputs,
+            experiment: self.experiment,
+            started: self.started,
+            last_step: self.last_step,
+            simulation: self.simulation.as_ref().map(Simulation::snapshot),
+        }
+    }
+
+    fn saved(&self, handle: usize) -> FmiResult<&FmuState> {
+        self.fmu_states.get(&handle).ok_or_else(|| {
+            FmiError::rejected(format!(
+                "FMU state {handle:#x} is not a state of this instance (never created here, or already freed)"
+            ))
+        })
+    }
+
+    /// `fmi2GetFMUstate`: a new handle, or `existing` overwritten.
+    pub fn get_fmu_state(&mut self, existing: Option<usize>) -> FmiResult<usize> {
+        if let Some(h) = existing {
+            self.saved(h)?;
+        }
+        let state = self.capture();
+        let handle = existing.unwrap_or_else(|| NEXT_STATE_HANDLE.fetch_add(1, Ordering::Relaxed));
+        self.fmu_states.insert(handle, state);
+        self.serialized = None;
+        Ok(handle)
+    }
+
+    /// `fmi2SetFMUstate`: everything, including the state machine's state, as when saved.
+    pub fn set_fmu_state(&mut self, handle: usize) -> FmiResult<Status> {
+        self.saved(handle)?;
+        let saved = &self.fmu_states[&handle];
+        match &saved.simulation {
+            None => self.simulation = None,
+            Some(snapshot) => {
+                let reuse = self.simulation.is_some() && self.scene == saved.scene;
+                if !reuse {
+                    let rebuilt = Simulation::new(&saved.scene)
+                        .map_err(|e| FmiError::rejected(model_error(e)))?;
+                    self.simulation = Some(rebuilt);
+                }
+                if let Some(simulation) = self.simulation.as_mut() {
+                    simulation.restore(snapshot);
+                }
+            }
+        }
+        self.scene.clone_from(&saved.scene);
+        self.inputs = saved.inputs;
+        self.experiment = saved.experiment;
+        self.started = saved.started;
+        self.last_step = saved.last_step;
+        self.state = saved.machine;
+        self.failure = None;
+        Ok(Status::Ok)
+    }
+
+    /// `fmi2FreeFMUstate`.
+    pub fn free_fmu_state(&mut self, handle: usize) -> FmiResult<Status> {
+        self.saved(handle)?;
+        self.fmu_states.remove(&handle);
+        if matches!(self.serialized, Some((h, _)) if h == handle) {
+            self.serialized = None;
+        }
+        Ok(Status::Ok)
+    }
+
+    /// Bytes of a saved state (computed once per handle).
+    fn serialized(&mut self, handle: usize) -> FmiResult<&[u8]> {
+        let cached = matches!(&self.serialized, Some((h, _)) if *h == handle);
+        if !cached {
+            self.saved(handle)?;
+            let saved = &self.fmu_states[&handle];
+            // The core serializes the current state of a simulation: bring the saved
+            // snapshot in, write it, and put the current state back.
+            let simulation_bytes = match &saved.simulation {
+                None => None,
+                Some(snapshot) => Some(with_simulation_of(
+                    self.simulation.as_mut(),
+                    &self.scene,
+                    &saved.scene,
+                    |s| {
+                        s.restore(snapshot);
+                        Ok(s.snapshot_to_bytes())
+                    },
+                )?),
+            };
+            let bytes = fmu_state::serialize(&self.guid, saved, simulation_bytes.as_deref());
+            self.serialized = Some((handle, bytes));
+        }
+        Ok(self
+            .serialized
+            .as_ref()
+            .map(|(_, b)| b.as_slice())
+            .unwrap_or(&[]))
+    }
+
+    /// `fmi2SerializedFMUstateSize`.
+    pub fn serialized_size(&mut self, handle: usize) -> FmiResult<usize> {
+        Ok(self.serialized(handle)?.len())
+    }
+
+    /// `fmi2SerializeFMUstate`: `out` must have exactly the size reported.
+    pub fn serialize_fmu_state(&mut self, handle: usize, out: &mut [u8]) -> FmiResult<Status> {
+        let bytes = self.serialized(handle)?;
+        if out.len() != bytes.len() {
+            return Err(FmiError::rejected(format!(
+                "size = {} bytes is wrong: allowed {} (from fmi2SerializedFMUstateSize)",
+                out.len(),
+                bytes.len()
+            )));
+        }
+        out.copy_from_slice(bytes);
+        Ok(Status::Ok)
+    }
+
+    /// `fmi2DeSerializeFMUstate`: a new handle, or `existing` overwritten. Foreign, truncated
+    /// or other-model bytes are rejected and nothing changes.
+    pub fn deserialize_fmu_state(
+        &mut self,
+        bytes: &[u8],
+        existing: Option<usize>,
+    ) -> FmiResult<usize> {
+        if let Some(h) = existing {
+            self.saved(h)?;
+        }
+        let parsed = fmu_state::deserialize(&self.guid, bytes)
+            .map_err(|m| FmiError::rejected(format!("serialized state rejected: {m}")))?;
+        let simulation = match parsed.simulation_bytes {
+            None => None,
+            Some(b) => Some(with_simulation_of(
+                self.simulation.as_mut(),
+                &self.scene,
+                &parsed.state.scene,
+                |s| {
+                    s.restore_from_bytes(b)?;
+                    Ok(s.snapshot())
+                },
+            )?),
+        };
+        let state = FmuState {
+            simulation,
+            ..parsed.state
+        };
+        let handle = existing.unwrap_or_else(|| NEXT_STATE_HANDLE.fetch_add(1, Ordering::Relaxed));
+        self.fmu_states.insert(handle, state);
+        if matches!(self.serialized, Some((h, _)) if h == handle) {
+            self.serialized = None;
+        }
+        Ok(handle)
+    }
+}
+
+/// Check the arguments of `fmi2Instantiate` and load the scene its resources name.
+fn load(args: &InstantiateArgs<'_>, logger: &Logger) -> Result<resource::LoadedModel, String> {
+    if args.fmu_type != FMI2_CO_SIMULATION {
+        return Err(format!(
+            "fmuType = {} is not supported: allowed {FMI2_CO_SIMULATION} (fmi2CoSimulation); this FMU implements only Co-Simulation",
+            args.fmu_type
+        ));
+    }
+    let loaded = resource::load_model(args.resource_location, args.guid)?;
+    logger.event(&format!(
+        "instance \"{}\" of {} uses {}",
+        args.instance_name, loaded.description.guid, loaded.origin
+    ));
+    Ok(loaded)
+}
+
+/// Run `f` on a simulation of `scene` whose state `f` may replace: the instance's own one if
+/// it was built from the same scene (its state is put back bit for bit afterwards), else a
+/// scratch one.
+fn with_simulation_of<T>(
+    own: Option<&mut Simulation>,
+    own_scene: &Scene,
+    scene: &Scene,
+    f: impl FnOnce(&mut Simulation) -> Result<T, ModelError>,
+) -> FmiResult<T> {
+    let result = match own {
+        Some(simulation) if own_scene == scene => {
+            let current = simulation.snapshot();
+            let result = f(simulation);
+            simulation.restore(&current);
+            result
+        }
+        _ => Simulation::new(scene).and_then(|mut scratch| f(&mut scratch)),
+    };
+    result.map_err(|e| FmiError::rejected(model_error(e)))
+}
+
+/// The slider-crank turns a full revolution only with r < L; the core checks the rest.
+fn check_geometry(scene: &Scene) -> FmiResult<()> {
+    let (r, l) = (scene.crank.length, scene.rod.length);
+    if r.is_finite() && l.is_finite() && r >= l {
+        return Err(FmiError::rejected(format!(
+            "crank.length = {r} m must be smaller than rod.length = {l} m: allowed 0 < crank.length < rod.length (otherwise the crank cannot turn a full revolution)"
+        )));
+    }
+    Ok(())
+}
+
+/// Message of a caught panic payload.
+pub(crate) fn panic_text(payload: &(dyn std::any::Any + Send)) -> String {
+    if let Some(s) = payload.downcast_ref::<&str>() {
+        (*s).to_string()
+    } else if let Some(s) = payload.downcast_ref::<String>() {
+        s.clone()
+    } else {
+        "unknown panic payload".to_string()
+    }
+}

@@ -1,0 +1,147 @@
+//! Finding the scene an FMU was exported for: `resources/scene.toml` under the
+//! `fmuResourceLocation` URI, checked against the GUID the importer passes.
+
+use std::path::PathBuf;
+
+use super::description::ModelDescription;
+use crate::scene::Scene;
+
+/// File name of the scene inside `resources/`.
+pub const SCENE_FILE: &str = "scene.toml";
+
+/// The scene, its description and where it came from.
+pub struct LoadedModel {
+    pub scene: Scene,
+    pub description: ModelDescription,
+    /// "resources/scene.toml at <path>" or "the compiled-in default scene".
+    pub origin: String,
+}
+
+/// Turn a `file:` URI (as FMI 2.0 requires for `fmuResourceLocation`) into a path:
+/// `file:///a/b`, `file://localhost/a/b`, `file:/a/b`, percent-decoded (`%20` = space).
+/// A plain absolute path is accepted too, as some importers pass one.
+pub fn path_from_uri(uri: &str) -> Result<PathBuf, String> {
+    let rest = if let Some(rest) = uri.strip_prefix("file://") {
+        let rest = rest.strip_prefix("localhost").unwrap_or(rest);
+        if !rest.starts_with('/') {
+            return Err(format!(
+                "resource location \"{uri}\" names a remote host; allowed: file:///absolute/path"
+            ));
+        }
+        rest
+    } else if let Some(rest) = uri.strip_prefix("file:") {
+        rest
+    } else if uri.starts_with('/') {
+        uri
+    } else {
+        return Err(format!(
+            "resource location \"{uri}\" is not a file: URI; allowed: file:///absolute/path"
+        ));
+    };
+    percent_decode(rest)
+        .map(PathBuf::from)
+        .map_err(|e| format!("resource location \"{uri}\": {e}"))
+}
+
+fn percent_decode(text: &str) -> Result<String, String> {
+    let bytes = text.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        if bytes[i] == b'%' {
+            let hex = bytes
+                .get(i + 1..i + 3)
+                .and_then(|h| std::str::from_utf8(h).ok())
+                .and_then(|h| u8::from_str_radix(h, 16).ok())
+                .ok_or_else(|| format!("bad percent escape at byte {i}"))?;
+            out.push(hex);
+            i += 3;
+        } else {
+            out.push(bytes[i]);
+            i += 1;
+        }
+    }
+    String::from_utf8(out).map_err(|_| "the decoded path is not UTF-8".to_string())
+}
+
+/// Load the scene for an instance: `resources/scene.toml` if the location is usable, else
+/// the compiled-in default scene, in both cases only if its GUID is `guid`.
+pub fn load_model(resource_location: Option<&str>, guid: &str) -> Result<LoadedModel, String> {
+    let from_resources = match resource_location {
+        None => Err("no resource location was given (fmuResourceLocation is NULL)".to_string()),
+        Some(uri) => load_from_resources(uri),
+    };
+    match from_resources {
+        Ok(model) => check_guid(model, guid),
+        Err(reason) => {
+            let scene = Scene::benchmark();
+            let description = ModelDescription::for_scene(&scene)
+                .map_err(|e| format!("{reason}; the compiled-in default scene fails: {e}"))?;
+            if description.guid == guid {
+                Ok(LoadedModel {
+                    scene,
+                    description,
+                    origin: format!("the compiled-in default scene ({reason})"),
+                })
+            } else {
+                Err(format!(
+                    "{reason}; the compiled-in default scene has GUID {} but the importer expects {guid}",
+                    description.guid
+                ))
+            }
+        }
+    }
+}
+
+fn load_from_resources(uri: &str) -> Result<LoadedModel, String> {
+    let path = path_from_uri(uri)?.join(SCENE_FILE);
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let origin = path.display().to_string();
+    let scene = Scene::from_toml_str(&text, &origin).map_err(|e| e.to_string())?;
+    let description = ModelDescription::for_scene(&scene)
+        .map_err(|e| format!("the scene {origin} cannot be built: {e}"))?;
+    Ok(LoadedModel {
+        scene,
+        description,
+        origin,
+    })
+}
+
+fn check_guid(model: LoadedModel, guid: &str) -> Result<LoadedModel, String> {
+    if model.description.guid == guid {
+        Ok(model)
+    } else {
+        Err(format!(
+            "GUID mismatch: the importer passed {guid}, but {} describes an FMU with GUID {} \
+             (modelDescription.xml and resources/ come from different exports)",
+            model.origin, model.description.guid
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn file_uris() {
+        assert_eq!(
+            path_from_uri("file:///tmp/a%20b/resources").unwrap(),
+            PathBuf::from("/tmp/a b/resources")
+        );
+        assert_eq!(
+            path_from_uri("file://localhost/x/y").unwrap(),
+            PathBuf::from("/x/y")
+        );
+        assert_eq!(path_from_uri("file:/x").unwrap(), PathBuf::from("/x"));
+        assert_eq!(
+            path_from_uri("/plain/path").unwrap(),
+            PathBuf::from("/plain/path")
+        );
+        assert!(path_from_uri("http://example.com/r").is_err());
+        assert!(path_from_uri("file://host/x").is_err());
+        assert!(path_from_uri("file:///bad%2").is_err());
+        assert!(path_from_uri("file:///bad%zz").is_err());
+    }
+}
