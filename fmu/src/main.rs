@@ -1,0 +1,146 @@
+//! `fmu`: export a scene as an FMI 2.0 Co-Simulation FMU, and run its default experiment.
+//!
+//! ```text
+//! cargo run --release -p fmu [-- [SCENE.toml] [--out DIR] [--simulate] [--csv FILE]
+//!                                [--accel A] [--steps H1,H2,...] [--no-package]]
+//! ```
+//!
+//! - Packaging (default): builds the release library (`cargo build --release --lib -p flexrod`)
+//!   and writes `<target>/fmu/<modelIdentifier>.fmu` (or `DIR/<modelIdentifier>.fmu`).
+//! - `--simulate`: runs the scene's default experiment in-process with `flexrod::Simulation`,
+//!   driving the crank exactly as an FMU importer would (inputs set at every communication
+//!   point), and prints a summary. `--csv FILE` writes the outputs at the communication
+//!   points; `--accel A` drives the crank with a constant acceleration A (rad/s^2) supplied as
+//!   the input derivative; `--steps` cycles through the given communication steps instead of
+//!   the scene's fixed step. These are the reference results of the Python tests.
+
+mod docs;
+mod package;
+mod simulate;
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use flexrod::fmi::ModelDescription;
+use flexrod::Scene;
+
+/// Command-line arguments.
+struct Args {
+    scene: PathBuf,
+    out: Option<PathBuf>,
+    package: bool,
+    simulate: bool,
+    csv: Option<PathBuf>,
+    accel: f64,
+    steps: Option<Vec<f64>>,
+}
+
+const USAGE: &str = "usage: fmu [SCENE.toml] [--out DIR] [--simulate] [--csv FILE] [--accel A] [--steps H1,H2,...] [--no-package]";
+
+fn parse_args() -> Result<Args, String> {
+    let workspace = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let mut args = Args {
+        scene: workspace.join("scenes/benchmark.toml"),
+        out: None,
+        package: true,
+        simulate: false,
+        csv: None,
+        accel: 0.0,
+        steps: None,
+    };
+    let mut it = std::env::args().skip(1);
+    let value = |it: &mut dyn Iterator<Item = String>, flag: &str| {
+        it.next()
+            .ok_or_else(|| format!("{flag} needs a value\n{USAGE}"))
+    };
+    let number = |text: &str, flag: &str| {
+        text.trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|x| x.is_finite())
+            .ok_or_else(|| format!("{flag}: \"{text}\" is not a finite number"))
+    };
+    while let Some(arg) = it.next() {
+        match arg.as_str() {
+            "--out" => args.out = Some(PathBuf::from(value(&mut it, "--out")?)),
+            "--simulate" => args.simulate = true,
+            "--no-package" => args.package = false,
+            "--csv" => {
+                args.csv = Some(PathBuf::from(value(&mut it, "--csv")?));
+                args.simulate = true;
+            }
+            "--accel" => args.accel = number(&value(&mut it, "--accel")?, "--accel")?,
+            "--steps" => {
+                let list = value(&mut it, "--steps")?;
+                let steps = list
+                    .split(',')
+                    .map(|h| number(h, "--steps"))
+                    .collect::<Result<Vec<_>, _>>()?;
+                if steps.is_empty() || steps.iter().any(|&h| h <= 0.0) {
+                    return Err(format!("--steps: \"{list}\" must be positive steps"));
+                }
+                args.steps = Some(steps);
+            }
+            "-h" | "--help" => return Err(USAGE.to_string()),
+            flag if flag.starts_with('-') => return Err(format!("unknown option {flag}\n{USAGE}")),
+            path => args.scene = PathBuf::from(path),
+        }
+    }
+    Ok(args)
+}
+
+fn run() -> Result<(), String> {
+    let args = parse_args()?;
+
+    let scene_text = std::fs::read_to_string(&args.scene)
+        .map_err(|e| format!("cannot read the scene {}: {e}", args.scene.display()))?;
+    let scene = Scene::from_toml_str(&scene_text, &args.scene.display().to_string())
+        .map_err(|e| e.to_string())?;
+    let description = ModelDescription::for_scene(&scene).map_err(|e| {
+        format!(
+            "the scene {} does not give a valid model: {e}",
+            args.scene.display()
+        )
+    })?;
+
+    let mut fmu_path = None;
+    if args.package {
+        let identifier = flexrod::fmi::description::model_identifier(&scene);
+        package::check_identifier(identifier)?;
+        let target_dir = package::target_dir()?;
+        let library = package::build_library(&target_dir)?;
+        let out_dir = args.out.clone().unwrap_or_else(|| target_dir.join("fmu"));
+        let fmu = package::write_fmu(&out_dir, &scene, &scene_text, &description, &library)?;
+        println!(
+            "wrote {} (GUID {}, {} variables)",
+            fmu.display(),
+            description.guid,
+            description.table.variables().len()
+        );
+        fmu_path = Some(fmu);
+    }
+
+    if args.simulate {
+        let options = simulate::Options {
+            accel: args.accel,
+            steps: args.steps.clone(),
+        };
+        let run = simulate::run(&scene, &options)?;
+        if let Some(csv) = &args.csv {
+            simulate::write_csv(csv, &description.table, &run)?;
+            println!("wrote {}", csv.display());
+        }
+        simulate::print_summary(&scene, &run, fmu_path.as_deref());
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    match run() {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("fmu: error: {message}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,123 @@
+//! Build the library and write the `.fmu` archive.
+
+use std::fs::File;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use flexrod::fmi::description::model_identifier;
+use flexrod::fmi::resource::SCENE_FILE;
+use flexrod::fmi::ModelDescription;
+use flexrod::Scene;
+use zip::write::SimpleFileOptions;
+use zip::{CompressionMethod, DateTime, ZipWriter};
+
+/// The modelIdentifier names the binary and must be a C identifier (FMI 2.0, 2.2.1).
+pub fn check_identifier(identifier: &str) -> Result<(), String> {
+    let mut chars = identifier.chars();
+    let first_ok = chars
+        .next()
+        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_');
+    if first_ok && chars.all(|c| c.is_ascii_alphanumeric() || c == '_') {
+        Ok(())
+    } else {
+        Err(format!(
+            "the scene's name \"{identifier}\" is the FMU's modelIdentifier and must be a C identifier ([A-Za-z_][A-Za-z0-9_]*)"
+        ))
+    }
+}
+
+/// The cargo target directory this binary was built in (`<target>/<profile>/fmu`), so
+/// `CARGO_TARGET_DIR` and `build.target-dir` are honoured.
+pub fn target_dir() -> Result<PathBuf, String> {
+    let exe = std::env::current_exe()
+        .map_err(|e| format!("cannot locate the running executable: {e}"))?;
+    exe.parent()
+        .and_then(Path::parent)
+        .map(Path::to_path_buf)
+        .ok_or_else(|| format!("cannot derive the target directory from {}", exe.display()))
+}
+
+/// `cargo build --release --lib -p flexrod`; returns the path of the shared library.
+pub fn build_library(target_dir: &Path) -> Result<PathBuf, String> {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_string());
+    let workspace = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    println!("building the FMU binary: {cargo} build --release --lib -p flexrod");
+    let status = Command::new(&cargo)
+        .args([
+            "build",
+            "--release",
+            "--lib",
+            "-p",
+            "flexrod",
+            "--target-dir",
+        ])
+        .arg(target_dir)
+        .current_dir(&workspace)
+        .status()
+        .map_err(|e| format!("cannot run {cargo}: {e}"))?;
+    if !status.success() {
+        return Err(format!("cargo build of the FMU library failed ({status})"));
+    }
+    let library = target_dir.join("release").join("libflexrod.so");
+    if !library.is_file() {
+        return Err(format!(
+            "the build succeeded but {} does not exist",
+            library.display()
+        ));
+    }
+    Ok(library)
+}
+
+/// Write `<out_dir>/<modelIdentifier>.fmu`.
+pub fn write_fmu(
+    out_dir: &Path,
+    scene: &Scene,
+    scene_text: &str,
+    description: &ModelDescription,
+    library: &Path,
+) -> Result<PathBuf, String> {
+    let identifier = model_identifier(scene);
+    let binary = std::fs::read(library)
+        .map_err(|e| format!("cannot read the library {}: {e}", library.display()))?;
+    std::fs::create_dir_all(out_dir)
+        .map_err(|e| format!("cannot create {}: {e}", out_dir.display()))?;
+    let path = out_dir.join(format!("{identifier}.fmu"));
+    let file = File::create(&path).map_err(|e| format!("cannot create {}: {e}", path.display()))?;
+
+    let documentation = crate::docs::index_html(scene, description);
+    let entries: [(String, &[u8], u32); 4] = [
+        (
+            "modelDescription.xml".into(),
+            description.xml.as_bytes(),
+            0o644,
+        ),
+        (format!("binaries/linux64/{identifier}.so"), &binary, 0o755),
+        (
+            format!("resources/{SCENE_FILE}"),
+            scene_text.as_bytes(),
+            0o644,
+        ),
+        (
+            "documentation/index.html".into(),
+            documentation.as_bytes(),
+            0o644,
+        ),
+    ];
+
+    let mut zip = ZipWriter::new(file);
+    for (name, bytes, mode) in entries {
+        // Fixed timestamps: the same inputs give the same archive.
+        let options = SimpleFileOptions::default()
+            .compression_method(CompressionMethod::Deflated)
+            .last_modified_time(DateTime::default())
+            .unix_permissions(mode);
+        zip.start_file(name.as_str(), options)
+            .map_err(|e| format!("cannot add {name} to {}: {e}", path.display()))?;
+        zip.write_all(bytes)
+            .map_err(|e| format!("cannot write {name} into {}: {e}", path.display()))?;
+    }
+    zip.finish()
+        .map_err(|e| format!("cannot finish {}: {e}", path.display()))?;
+    Ok(path)
+}

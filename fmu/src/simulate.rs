@@ -1,0 +1,167 @@
+//! The scene's default experiment, run in-process with `flexrod::Simulation`, driving the
+//! crank as an FMU importer does: at every communication point t_k the crank input
+//! (theta_k, omega_k, alpha) is set, then the simulation advances to t_{k+1}.
+//!
+//! The communication points follow FMPy's `simulate_fmu` (and the Python tests): fixed
+//! steps at `start + (k+1) dt`, the last one shortened to end at the stop time; with
+//! `--steps`, t_{k+1} = t_k + h_(k mod n). Crank law (s = t - start):
+//! `theta = theta_0 + omega_0 s + 0.5 alpha s s`, `omega = omega_0 + alpha s`.
+
+use std::fmt::Write as _;
+use std::path::Path;
+use std::time::Instant;
+
+use flexrod::fmi::VariableTable;
+use flexrod::{CrankInput, Outputs, Scene, Simulation, StepStats};
+
+/// How the experiment is driven.
+pub struct Options {
+    /// Constant crank acceleration, rad/s^2 (supplied as the input derivative).
+    pub accel: f64,
+    /// Communication steps to cycle through (default: the scene's fixed step).
+    pub steps: Option<Vec<f64>>,
+}
+
+/// The results at the communication points.
+pub struct Run {
+    pub times: Vec<f64>,
+    pub outputs: Vec<Outputs>,
+    pub stats: StepStats,
+    pub wall_seconds: f64,
+    pub frequencies_hz: Vec<f64>,
+}
+
+fn isclose(a: f64, b: f64) -> bool {
+    // Python's math.isclose with its defaults, as FMPy uses it.
+    a == b || (a - b).abs() <= 1e-9 * a.abs().max(b.abs())
+}
+
+/// Run the default experiment of `scene`.
+pub fn run(scene: &Scene, options: &Options) -> Result<Run, String> {
+    let e = &scene.experiment;
+    let (start, stop, dt) = (e.start_time, e.stop_time, e.step_size);
+    let (theta0, omega0, alpha) = (e.crank_speed * start, e.crank_speed, options.accel);
+    let input_at = |t: f64| {
+        let s = t - start;
+        CrankInput {
+            angle: theta0 + omega0 * s + 0.5 * alpha * s * s,
+            speed: omega0 + alpha * s,
+            acceleration: alpha,
+        }
+    };
+
+    let clock = Instant::now();
+    let mut simulation = Simulation::new(scene).map_err(|e| e.to_string())?;
+    simulation
+        .start(start, input_at(start), 0.0)
+        .map_err(|e| format!("start at t = {start} s: {e}"))?;
+    let mut times = vec![start];
+    let mut outputs = vec![simulation.outputs()];
+
+    let mut time = start;
+    let mut n: usize = 0;
+    while !(time > stop || isclose(time, stop)) {
+        let mut next = match &options.steps {
+            None => start + (n + 1) as f64 * dt,
+            Some(steps) => time + steps[n % steps.len()],
+        };
+        if next > stop && !isclose(next, stop) {
+            next = stop;
+        }
+        let h = next - time;
+        simulation
+            .set_input(input_at(time))
+            .map_err(|e| format!("input at t = {time} s: {e}"))?;
+        simulation
+            .advance(h)
+            .map_err(|e| format!("step {n} at t = {time} s: {e}"))?;
+        time = next;
+        n += 1;
+        times.push(time);
+        outputs.push(simulation.outputs());
+    }
+    Ok(Run {
+        times,
+        outputs,
+        stats: simulation.stats(),
+        wall_seconds: clock.elapsed().as_secs_f64(),
+        frequencies_hz: simulation.frequencies_hz().to_vec(),
+    })
+}
+
+/// CSV with `time` and the FMU's outputs (names from the variable table), full precision.
+pub fn write_csv(path: &Path, table: &VariableTable, run: &Run) -> Result<(), String> {
+    let columns: Vec<(&str, fn(&Outputs) -> f64)> = table.outputs().collect();
+    let mut text = String::from("time");
+    for (name, _) in &columns {
+        text.push(',');
+        text.push_str(name);
+    }
+    text.push('\n');
+    for (t, o) in run.times.iter().zip(&run.outputs) {
+        let _ = write!(text, "{t:e}");
+        for (_, get) in &columns {
+            let _ = write!(text, ",{:e}", get(o));
+        }
+        text.push('\n');
+    }
+    std::fs::write(path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))
+}
+
+/// A few lines a user reads first.
+pub fn print_summary(scene: &Scene, run: &Run, fmu: Option<&Path>) {
+    let peak = |f: &dyn Fn(&Outputs) -> f64| {
+        run.outputs
+            .iter()
+            .map(f)
+            .fold(0.0_f64, |m, x| m.max(x.abs()))
+    };
+    let norm = |v: [f64; 2]| v[0].hypot(v[1]);
+    let e = &scene.experiment;
+    println!(
+        "{}: t = {} .. {} s, {} communication steps, crank speed {} rad/s",
+        scene.name,
+        e.start_time,
+        e.stop_time,
+        run.times.len() - 1,
+        e.crank_speed
+    );
+    let f: Vec<String> = run
+        .frequencies_hz
+        .iter()
+        .take(3)
+        .map(|f| format!("{f:.2}"))
+        .collect();
+    println!("  lowest natural frequencies: {} Hz", f.join(", "));
+    println!(
+        "  peak |v_mid / L|        = {:.4e}",
+        peak(&|o| o.deflection_rel)
+    );
+    println!(
+        "  peak |v_mid|            = {:.4e} m",
+        peak(&|o| o.deflection)
+    );
+    println!(
+        "  peak |pin B force|      = {:.4} N",
+        peak(&|o| norm(o.pin_b_force))
+    );
+    println!(
+        "  peak |pin C force|      = {:.4} N",
+        peak(&|o| norm(o.pin_c_force))
+    );
+    println!(
+        "  peak |crank torque|     = {:.4} N m",
+        peak(&|o| o.crank_torque)
+    );
+    println!(
+        "  integrator: {} steps, {} Newton iterations ({:.2} per step), {} halvings",
+        run.stats.steps,
+        run.stats.newton_iterations,
+        run.stats.newton_iterations as f64 / (run.stats.steps.max(1)) as f64,
+        run.stats.halvings
+    );
+    println!("  wall time: {:.3} s", run.wall_seconds);
+    if let Some(fmu) = fmu {
+        println!("  FMU: {}", fmu.display());
+    }
+}

@@ -1,0 +1,138 @@
+"""The FMU against the core's own simulation (flexrod::Simulation driven without FMI)."""
+
+import math
+import shutil
+
+import numpy as np
+import pytest
+from fmpy import extract, read_model_description, simulate_fmu
+
+from helpers import OUTPUTS, Slave, assert_close, run_loop, schedule
+
+STOP = 4 * math.pi / 150
+DT = 1e-4
+
+
+def constant_speed_input(stop=STOP):
+    t = np.array([0.0, stop])
+    return np.array(
+        list(zip(t, 150.0 * t, [150.0, 150.0])),
+        dtype=[("time", float), ("crank.angle", float), ("crank.speed", float)],
+    )
+
+
+def compare(result, expected, what):
+    assert_close(result["time"], expected["time"], 1e-12, what + ": time")
+    for name in OUTPUTS:
+        assert_close(result[name], expected[name], 1e-9, f"{what}: {name}")
+
+
+def test_simulate_fmu_matches_the_core(fmu_path, ref):
+    result = simulate_fmu(
+        str(fmu_path), input=constant_speed_input(), output=OUTPUTS, output_interval=DT
+    )
+    expected = ref()
+    assert len(result) == len(expected["time"]) == 839
+    compare(result, expected, "simulate_fmu")
+    # The rod does deform: the comparison is not between zeros.
+    assert np.max(np.abs(expected["rod.deflection_rel"])) > 1e-5
+
+
+def test_without_inputs_the_default_law_continues(fmu_path, ref):
+    result = simulate_fmu(str(fmu_path), output=OUTPUTS, output_interval=DT)
+    compare(result, ref(), "no inputs")
+
+
+def test_simulate_fmu_with_input_derivatives(fmu_path, ref):
+    result = simulate_fmu(
+        str(fmu_path), input=constant_speed_input(), output=OUTPUTS,
+        output_interval=DT, set_input_derivatives=True,
+    )
+    compare(result, ref(), "set_input_derivatives")
+
+
+def test_crank_acceleration_from_input_derivatives(unzipdir, ref):
+    accel = 3000.0
+    slave = Slave(unzipdir)
+    slave.init(accel=accel)
+    out = run_loop(slave, schedule(0.0, STOP, DT), accel=accel)
+    slave.free()
+    expected = ref(accel=accel)
+    for i, name in enumerate(OUTPUTS):
+        assert_close(out[:, i], expected[name], 1e-9, name)
+    # Without the derivative the input is piecewise linear: different results.
+    assert not np.allclose(out[:, 2], ref()["pinB.force_x"], rtol=1e-6)
+
+
+def test_variable_communication_steps(unzipdir, ref):
+    steps = [1e-4, 2.5e-4, 5e-5, 3e-4, 1.7e-4]
+    slave = Slave(unzipdir)
+    slave.init()
+    times = schedule(0.0, STOP, steps=steps)
+    out = run_loop(slave, times)
+    slave.free()
+    expected = ref(steps=steps)
+    assert_close(times, expected["time"], 1e-12, "time")
+    for i, name in enumerate(OUTPUTS):
+        assert_close(out[:, i], expected[name], 1e-9, name)
+
+
+def test_reset_then_the_same_run_is_identical(unzipdir):
+    slave = Slave(unzipdir)
+    times = schedule(0.0, 0.01, DT)
+    slave.init(params={"rod.damping_ratio": 0.02})
+    first = run_loop(slave, times)
+    slave.fmu.terminate()
+    slave.fmu.reset()
+    slave.init(params={"rod.damping_ratio": 0.02})
+    second = run_loop(slave, times)
+    slave.free()
+    assert np.array_equal(first, second)
+
+
+def test_reset_restores_start_values(unzipdir):
+    slave = Slave(unzipdir)
+    slave.init(params={"rod.length": 0.35})
+    assert slave.get("rod.length") == [0.35]
+    slave.fmu.reset()
+    slave.fmu.setupExperiment(startTime=0.0)
+    slave.fmu.enterInitializationMode()
+    assert slave.get("rod.length", "crank.speed") == [0.3048, 150.0]
+    slave.free()
+
+
+def test_resource_location_with_a_space(fmu_path, spaced_dir, ref):
+    unzipped = spaced_dir / "fmu"
+    extract(str(fmu_path), str(unzipped))
+    result = simulate_fmu(str(unzipped), input=constant_speed_input(), output=OUTPUTS, output_interval=DT)
+    compare(result, ref(), "spaced path")
+
+
+def test_parameters_and_frequencies(unzipdir):
+    slave = Slave(unzipdir)
+    slave.fmu.setupExperiment(startTime=0.0)
+    slave.fmu.enterInitializationMode()
+    names = [f"rod.frequency[{k}]" for k in range(1, 7)]
+    f = slave.get(*names)
+    assert all(x > 0 for x in f) and f == sorted(f)
+    # In initialization mode a parameter change is seen by the calculated parameters.
+    slave.set(rod__youngs_modulus=2 * 2.068e11)
+    f2 = slave.get(*names)
+    assert f2[0] == pytest.approx(f[0] * math.sqrt(2), rel=1e-6)
+    slave.set(rod__youngs_modulus=2.068e11)
+    slave.fmu.exitInitializationMode()
+    assert slave.get(*names) == f
+    # Undeformed at the start, slider at r + L for theta = 0.
+    assert slave.get("rod.deflection", "slider.position") == pytest.approx([0.0, 0.1524 + 0.3048], abs=1e-12)
+    slave.free()
+
+
+def test_segments_model(segments_fmu, tmp_path):
+    from fmpy.validation import validate_fmu
+
+    assert validate_fmu(str(segments_fmu)) == []
+    md = read_model_description(str(segments_fmu))
+    model = next(v for v in md.modelVariables if v.name == "rod.model")
+    assert model.start == "2"
+    result = simulate_fmu(str(segments_fmu), input=constant_speed_input(), output=OUTPUTS, output_interval=DT)
+    assert np.all(np.isfinite(result["rod.deflection"]))

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# The whole test suite: Rust unit and integration tests, then the packaged FMU through FMPy.
+# Creates .venv (fmpy, pytest, numpy from PyPI) on first use.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+if [ ! -x .venv/bin/python ]; then
+    python3 -m venv .venv
+fi
+if ! .venv/bin/python -c "import fmpy, pytest, numpy" 2>/dev/null; then
+    .venv/bin/python -m pip install --quiet --upgrade pip
+    .venv/bin/python -m pip install --quiet fmpy pytest numpy
+fi
+
+cargo test --release --workspace
+cargo run --release -p fmu
+.venv/bin/python -m pytest tests/python -q
