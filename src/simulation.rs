@@ -182,7 +182,7 @@ impl Simulation {
         let mut state = self.state.clone();
         state
             .read_bytes(&bytes[20..])
-            .map_err(|m| bad(&m))?;
+            .map_err(|m: String| bad(&m))?;
         self.state = state;
         Ok(())
     }

@@ -1,0 +1,6 @@
+//! The floating frame of reference rod: rigid frame `(R, phi)` plus modal coordinates `p`
+//! (seed 000, sections 4-5; physics.md, "Rod model 1").
+
+pub mod rod;
+
+pub use rod::FfrRod;

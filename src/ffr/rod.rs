@@ -1,0 +1,355 @@
+//! The FFR rod body.
+//!
+//! Coordinates `q = [R_x, R_y, phi, p_1..p_n]`: frame origin R (global, m), frame angle phi
+//! (rad, counter-clockwise), modal amplitudes p (unit modal mass). A material point at
+//! undeformed body-frame position `xbar` is at `r = R + A(phi) (xbar + S_hat p)`.
+//!
+//! Mass matrix (seed 000, eq. 5.7-5.10; physics.md; re-derived from
+//! `T = 1/2 int rho r'.r'` with `r' = R' + phi' A I~ ubar + A S_hat p'`):
+//! `M_RR = m I`, `M_Rphi = A I~ (I1 + I2 p)`, `M_Rp = A I2`,
+//! `M_phiphi = I3 + 2 I4 p + p^T M_ff p`, `M_phip = -(I5 + p^T S~) + I_rot`, `M_pp = M_ff`.
+//! Quadratic velocity vector (from the velocity-product part of
+//! `r'' = R'' + A(phi'' I~ ubar + S_hat p'' - phi'^2 ubar + 2 phi' I~ S_hat p')`):
+//! `Qv_R = A (phi'^2 (I1 + I2 p) - 2 phi' I~ I2 p')`, `Qv_phi = -2 phi' (I4 + p^T M_ff) p'`,
+//! `Qv_p = phi'^2 (I4^T + M_ff p) - 2 phi' S~ p'`.
+//! Elastic and damping forces `-K p - D p'`, `K = diag(w_i^2)`, `D = diag(2 zeta w_i)`.
+//!
+//! Axial stiffening (physics.md, "What linear modes miss"): the axial force of the rigid
+//! motion, `N(s) = e.F_C - rho A int_s^L a_x ds'`, with `a_x(s) = e.R'' - phi'^2 (x_b + s)` the
+//! axial acceleration of the rigid frame motion and `F_C` the slider's force on the rod,
+//! is the quadratic `N = n0 + n1 s + n2 s^2`. Its geometric stiffness on the chord-relative
+//! bending slopes, `K_G = n0 G_0 + n1 G_1 + n2 G_2`, adds `-K_G p` to `Q_p`. It holds with or
+//! without the axial modes, so a handful of bending modes carries the stiffening (no locking).
+
+use faer::MatMut;
+use nalgebra::{DMatrix, Vector2};
+
+use crate::mechanism::rod_body::{RodBody, RodPoint};
+use crate::modal::{ComponentModes, ShapeIntegrals};
+
+/// Rotation matrix entries (cos, sin).
+#[inline]
+fn rot(phi: f64) -> (f64, f64) {
+    (phi.cos(), phi.sin())
+}
+
+/// `A v`.
+#[inline]
+fn rotate(c: f64, s: f64, v: Vector2<f64>) -> Vector2<f64> {
+    Vector2::new(c * v.x - s * v.y, s * v.x + c * v.y)
+}
+
+/// `I~ v` (rotation by +90 degrees).
+#[inline]
+fn tilde(v: Vector2<f64>) -> Vector2<f64> {
+    Vector2::new(-v.y, v.x)
+}
+
+/// The FFR rod with its preprocessed modes.
+pub struct FfrRod {
+    pub modes: ComponentModes,
+    pub integrals: ShapeIntegrals,
+    /// Modal stiffness w_i^2 and damping 2 zeta w_i.
+    stiffness: Vec<f64>,
+    damping: Vec<f64>,
+    axial_stiffening: bool,
+    length: f64,
+    rho_a: f64,
+    mass: f64,
+    n: usize,
+}
+
+impl FfrRod {
+    pub fn new(modes: ComponentModes, damping_ratio: f64, axial_stiffening: bool) -> FfrRod {
+        let integrals = ShapeIntegrals::new(&modes);
+        let stiffness = modes.omega2.clone();
+        let damping = modes
+            .omega2
+            .iter()
+            .map(|w2| 2.0 * damping_ratio * w2.sqrt())
+            .collect();
+        let section = modes.mesh.section;
+        FfrRod {
+            n: modes.n_modes(),
+            integrals,
+            stiffness,
+            damping,
+            axial_stiffening,
+            length: section.length,
+            rho_a: section.mass_per_length(),
+            mass: section.mass(),
+            modes,
+        }
+    }
+
+    /// Number of modal coordinates.
+    pub fn n_modes(&self) -> usize {
+        self.n
+    }
+
+    fn point_data(&self, p: RodPoint) -> (f64, &DMatrix<f64>) {
+        let ig = &self.integrals;
+        match p {
+            RodPoint::B => (ig.x_b, &ig.s_b),
+            RodPoint::C => (ig.x_c, &ig.s_c),
+            RodPoint::Mid => (ig.x_mid, &ig.s_mid),
+        }
+    }
+
+    /// Body-frame position of a material point, `ubar = xbar + S_hat p`.
+    fn ubar(&self, p: RodPoint, q: &[f64]) -> Vector2<f64> {
+        let (x, s) = self.point_data(p);
+        let mut u = Vector2::new(x, 0.0);
+        for j in 0..self.n {
+            u.x += s[(0, j)] * q[3 + j];
+            u.y += s[(1, j)] * q[3 + j];
+        }
+        u
+    }
+
+    /// Body-frame `S_hat p'` at a point.
+    fn shape_rate(&self, p: RodPoint, v: &[f64]) -> Vector2<f64> {
+        let (_, s) = self.point_data(p);
+        let mut u = Vector2::zeros();
+        for j in 0..self.n {
+            u.x += s[(0, j)] * v[3 + j];
+            u.y += s[(1, j)] * v[3 + j];
+        }
+        u
+    }
+
+    /// `I1 + I2 p` (body frame).
+    fn first_moment(&self, q: &[f64]) -> Vector2<f64> {
+        let ig = &self.integrals;
+        let mut c = ig.i1;
+        for j in 0..self.n {
+            c.x += ig.i2[(0, j)] * q[3 + j];
+            c.y += ig.i2[(1, j)] * q[3 + j];
+        }
+        c
+    }
+
+    /// Coefficients (n0, n1, n2) of the axial force N(s) = n0 + n1 s + n2 s^2, N.
+    pub fn axial_force_coefficients(&self, q: &[f64], v: &[f64], a: &[f64], end_force_c: Vector2<f64>) -> [f64; 3] {
+        let (c, s) = rot(q[2]);
+        let e = Vector2::new(c, s);
+        let w = v[2] * v[2];
+        let a0 = e.dot(&Vector2::new(a[0], a[1])) - w * self.integrals.x_b;
+        let l = self.length;
+        let n0 = e.dot(&end_force_c) - self.rho_a * (l * a0 - 0.5 * w * l * l);
+        [n0, self.rho_a * a0, -0.5 * self.rho_a * w]
+    }
+}
+
+impl RodBody for FfrRod {
+    fn n_coordinates(&self) -> usize {
+        3 + self.n
+    }
+
+    fn coordinate_scale(&self, i: usize) -> f64 {
+        match i {
+            0 | 1 => self.length,
+            2 => 1.0,
+            // Unit modal mass: a displacement d is a modal amplitude of about d sqrt(m).
+            _ => self.length * self.mass.sqrt(),
+        }
+    }
+
+    fn place_undeformed(&self, b: Vector2<f64>, c: Vector2<f64>, vb: Vector2<f64>, omega: f64, q: &mut [f64], v: &mut [f64]) {
+        let d = c - b;
+        let phi = d.y.atan2(d.x);
+        let (cs, sn) = rot(phi);
+        // R = B - A xbar_B.
+        let xb = Vector2::new(self.integrals.x_b, 0.0);
+        let r = b - rotate(cs, sn, xb);
+        // R' = v_B - omega A I~ xbar_B.
+        let rv = vb - omega * rotate(cs, sn, tilde(xb));
+        q.iter_mut().for_each(|x| *x = 0.0);
+        v.iter_mut().for_each(|x| *x = 0.0);
+        q[0] = r.x;
+        q[1] = r.y;
+        q[2] = phi;
+        v[0] = rv.x;
+        v[1] = rv.y;
+        v[2] = omega;
+    }
+
+    fn mass(&self, q: &[f64], mut m: MatMut<'_, f64>) {
+        let n = self.n;
+        let ig = &self.integrals;
+        let (c, s) = rot(q[2]);
+        let p = &q[3..3 + n];
+        m[(0, 0)] = self.mass;
+        m[(1, 1)] = self.mass;
+        m[(0, 1)] = 0.0;
+        m[(1, 0)] = 0.0;
+        let arm = rotate(c, s, tilde(self.first_moment(q)));
+        m[(0, 2)] = arm.x;
+        m[(1, 2)] = arm.y;
+        m[(2, 0)] = arm.x;
+        m[(2, 1)] = arm.y;
+        let mut m_phiphi = ig.i3;
+        for i in 0..n {
+            m_phiphi += 2.0 * ig.i4[i] * p[i];
+            for j in 0..n {
+                m_phiphi += p[i] * ig.m_ff[(i, j)] * p[j];
+            }
+        }
+        m[(2, 2)] = m_phiphi;
+        for j in 0..n {
+            let col = rotate(c, s, Vector2::new(ig.i2[(0, j)], ig.i2[(1, j)]));
+            m[(0, 3 + j)] = col.x;
+            m[(1, 3 + j)] = col.y;
+            m[(3 + j, 0)] = col.x;
+            m[(3 + j, 1)] = col.y;
+            let mut pst = 0.0;
+            for i in 0..n {
+                pst += p[i] * ig.s_tilde[(i, j)];
+            }
+            let mpp = -(ig.i5[j] + pst) + ig.i_rot[j];
+            m[(2, 3 + j)] = mpp;
+            m[(3 + j, 2)] = mpp;
+            for i in 0..n {
+                m[(3 + i, 3 + j)] = ig.m_ff[(i, j)];
+            }
+        }
+    }
+
+    fn forces(&self, q: &[f64], v: &[f64], a: &[f64], end_force_c: Vector2<f64>, f: &mut [f64]) {
+        let n = self.n;
+        let ig = &self.integrals;
+        let (c, s) = rot(q[2]);
+        let p = &q[3..3 + n];
+        let pd = &v[3..3 + n];
+        let w = v[2];
+        // Qv_R = A (w^2 (I1 + I2 p) - 2 w I~ I2 p').
+        let mut i2pd = Vector2::zeros();
+        for j in 0..n {
+            i2pd.x += ig.i2[(0, j)] * pd[j];
+            i2pd.y += ig.i2[(1, j)] * pd[j];
+        }
+        let qr = rotate(c, s, self.first_moment(q) * (w * w) - tilde(i2pd) * (2.0 * w));
+        f[0] = qr.x;
+        f[1] = qr.y;
+        // Qv_phi = -2 w (I4 + p^T M_ff) p'.
+        let mut qphi = 0.0;
+        for j in 0..n {
+            let mut row = ig.i4[j];
+            for i in 0..n {
+                row += p[i] * ig.m_ff[(i, j)];
+            }
+            qphi -= 2.0 * w * row * pd[j];
+        }
+        f[2] = qphi;
+        let kg = if self.axial_stiffening && n > 0 {
+            Some(self.axial_force_coefficients(q, v, a, end_force_c))
+        } else {
+            None
+        };
+        for i in 0..n {
+            // Qv_p = w^2 (I4 + M_ff p) - 2 w S~ p'.
+            let mut fi = w * w * ig.i4[i];
+            for j in 0..n {
+                fi += w * w * ig.m_ff[(i, j)] * p[j] - 2.0 * w * ig.s_tilde[(i, j)] * pd[j];
+            }
+            fi -= self.stiffness[i] * p[i] + self.damping[i] * pd[i];
+            if let Some([n0, n1, n2]) = kg {
+                for j in 0..n {
+                    fi -= (n0 * ig.g[0][(i, j)] + n1 * ig.g[1][(i, j)] + n2 * ig.g[2][(i, j)]) * p[j];
+                }
+            }
+            f[3 + i] = fi;
+        }
+    }
+
+    fn add_tangent(&self, _q: &[f64], v: &[f64], c_k: f64, c_d: f64, mut out: MatMut<'_, f64>) {
+        let n = self.n;
+        let w = v[2];
+        let ig = &self.integrals;
+        for i in 0..n {
+            out[(3 + i, 3 + i)] += c_k * self.stiffness[i] + c_d * self.damping[i];
+            for j in 0..n {
+                // -d(Qv_p)/dp = -w^2 M_ff (centrifugal softening); -d(Qv_p)/dp' = 2 w S~ (gyroscopic).
+                out[(3 + i, 3 + j)] += -c_k * w * w * ig.m_ff[(i, j)] + c_d * 2.0 * w * ig.s_tilde[(i, j)];
+            }
+        }
+    }
+
+    fn point(&self, p: RodPoint, q: &[f64]) -> Vector2<f64> {
+        let (c, s) = rot(q[2]);
+        Vector2::new(q[0], q[1]) + rotate(c, s, self.ubar(p, q))
+    }
+
+    fn point_jacobian(&self, p: RodPoint, q: &[f64], mut out: MatMut<'_, f64>) {
+        let (c, s) = rot(q[2]);
+        out[(0, 0)] = 1.0;
+        out[(0, 1)] = 0.0;
+        out[(1, 0)] = 0.0;
+        out[(1, 1)] = 1.0;
+        let d = rotate(c, s, tilde(self.ubar(p, q)));
+        out[(0, 2)] = d.x;
+        out[(1, 2)] = d.y;
+        let (_, sh) = self.point_data(p);
+        for j in 0..self.n {
+            let col = rotate(c, s, Vector2::new(sh[(0, j)], sh[(1, j)]));
+            out[(0, 3 + j)] = col.x;
+            out[(1, 3 + j)] = col.y;
+        }
+    }
+
+    fn point_bias_acceleration(&self, p: RodPoint, q: &[f64], v: &[f64]) -> Vector2<f64> {
+        // -phi'^2 A ubar + 2 phi' A I~ S_hat p'.
+        let (c, s) = rot(q[2]);
+        let w = v[2];
+        rotate(c, s, self.ubar(p, q) * (-w * w) + tilde(self.shape_rate(p, v)) * (2.0 * w))
+    }
+
+    fn add_point_force_tangent(&self, p: RodPoint, q: &[f64], f: Vector2<f64>, coef: f64, mut out: MatMut<'_, f64>) {
+        // J^T f = [f; (A I~ ubar).f; (A S_hat)^T f].
+        // d/dphi (A I~ ubar).f = -(A ubar).f; d/dp (A I~ ubar).f = (A I~ S_hat)^T f = d/dphi (A S_hat)^T f.
+        let (c, s) = rot(q[2]);
+        let u = rotate(c, s, self.ubar(p, q));
+        out[(2, 2)] += coef * (-u.dot(&f));
+        let (_, sh) = self.point_data(p);
+        for j in 0..self.n {
+            let col = rotate(c, s, tilde(Vector2::new(sh[(0, j)], sh[(1, j)])));
+            let v = coef * col.dot(&f);
+            out[(2, 3 + j)] += v;
+            out[(3 + j, 2)] += v;
+        }
+    }
+
+    fn kinetic_energy(&self, q: &[f64], v: &[f64]) -> f64 {
+        let nq = 3 + self.n;
+        let mut m = faer::Mat::<f64>::zeros(nq, nq);
+        self.mass(q, m.as_mut());
+        let mut t = 0.0;
+        for i in 0..nq {
+            for j in 0..nq {
+                t += v[i] * m[(i, j)] * v[j];
+            }
+        }
+        0.5 * t
+    }
+
+    fn strain_energy(&self, q: &[f64]) -> f64 {
+        (0..self.n).map(|i| 0.5 * self.stiffness[i] * q[3 + i] * q[3 + i]).sum()
+    }
+
+    fn linear_momentum(&self, q: &[f64], v: &[f64]) -> Vector2<f64> {
+        let (c, s) = rot(q[2]);
+        let mut p = Vector2::new(v[0], v[1]) * self.mass + rotate(c, s, tilde(self.first_moment(q))) * v[2];
+        for j in 0..self.n {
+            p += rotate(c, s, Vector2::new(self.integrals.i2[(0, j)], self.integrals.i2[(1, j)])) * v[3 + j];
+        }
+        p
+    }
+
+    fn frequencies_hz(&self) -> &[f64] {
+        &self.modes.all_frequencies_hz
+    }
+
+    fn length(&self) -> f64 {
+        self.length
+    }
+}

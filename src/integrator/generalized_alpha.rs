@@ -1,0 +1,269 @@
+//! Generalized-alpha for index-3 DAEs (Arnold and Bruls 2007, section 3 and eq. 10-12).
+//!
+//! Parameters from the spectral radius at infinity `rho_inf` in [0, 1] (Chung and Hulbert
+//! 1993, eq. 25; Arnold and Bruls eq. 24):
+//! `alpha_m = (2 rho - 1) / (rho + 1)`, `alpha_f = rho / (rho + 1)`,
+//! `gamma = 1/2 + alpha_f - alpha_m`, `beta = (gamma + 1/2)^2 / 4`.
+//! One step from `t_n` to `t_{n+1} = t_n + h`:
+//! `q_{n+1} = q_n + h q'_n + h^2 (1/2 - beta) a_n + h^2 beta a_{n+1}`,
+//! `q'_{n+1} = q'_n + h (1 - gamma) a_n + h gamma a_{n+1}`,
+//! `(1 - alpha_m) a_{n+1} + alpha_m a_n = (1 - alpha_f) q''_{n+1} + alpha_f q''_n`,
+//! with `M q''_{n+1} + Phi_q^T lambda_{n+1} = Q` and `Phi(q_{n+1}, t_{n+1}) = 0` solved by
+//! Newton in the unknowns `(q_{n+1}, lambda_{n+1})`. The iteration matrix is scaled after
+//! Bottasso, Dopico and Trainelli (2008): the equilibrium rows by `beta h^2` and the
+//! multipliers by `1 / (beta h^2)`, so that every block is O(1) as h -> 0:
+//! `[M (1 - alpha_m)/(1 - alpha_f) + gamma h C_t + beta h^2 K_t, Phi_q^T; Phi_q, 0]`.
+//! The matrix is factored at the first iteration and again only when the contraction is poor
+//! (modified Newton).
+
+use faer::Mat;
+
+use super::dense_lu::DenseLu;
+use super::system::DaeSystem;
+
+/// Positions, velocities, accelerations, the acceleration-like variable `a`, and multipliers.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct DaeState {
+    pub t: f64,
+    pub q: Vec<f64>,
+    pub v: Vec<f64>,
+    /// q'' (true accelerations).
+    pub qdd: Vec<f64>,
+    /// The algorithmic acceleration `a`.
+    pub acc: Vec<f64>,
+    pub lambda: Vec<f64>,
+}
+
+/// Why a step failed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum StepFailure {
+    /// Newton did not converge in the allowed iterations.
+    NewtonDiverged { iterations: usize, last_correction: f64 },
+    /// The iteration matrix is singular (a lost constraint, a degenerate configuration).
+    SingularMatrix,
+    /// A value became NaN or infinite.
+    NonFinite,
+}
+
+impl std::fmt::Display for StepFailure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            StepFailure::NewtonDiverged {
+                iterations,
+                last_correction,
+            } => write!(
+                f,
+                "Newton did not converge in {iterations} iterations (last scaled correction {last_correction:e})"
+            ),
+            StepFailure::SingularMatrix => {
+                write!(f, "the Newton matrix is singular (degenerate configuration)")
+            }
+            StepFailure::NonFinite => write!(f, "the solution became NaN or infinite"),
+        }
+    }
+}
+
+/// Method coefficients.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AlphaCoefficients {
+    pub alpha_m: f64,
+    pub alpha_f: f64,
+    pub gamma: f64,
+    pub beta: f64,
+}
+
+impl AlphaCoefficients {
+    /// From the spectral radius at infinity, clamped to [0, 1].
+    pub fn from_rho_inf(rho: f64) -> Self {
+        let rho = rho.clamp(0.0, 1.0);
+        let alpha_m = (2.0 * rho - 1.0) / (rho + 1.0);
+        let alpha_f = rho / (rho + 1.0);
+        let gamma = 0.5 + alpha_f - alpha_m;
+        let beta = 0.25 * (gamma + 0.5).powi(2);
+        AlphaCoefficients {
+            alpha_m,
+            alpha_f,
+            gamma,
+            beta,
+        }
+    }
+}
+
+/// The integrator and its workspace (sized once for one system).
+pub struct GeneralizedAlpha {
+    pub coefficients: AlphaCoefficients,
+    pub tolerance: f64,
+    pub max_iterations: usize,
+    n: usize,
+    m: usize,
+    lu: DenseLu,
+    mass: Mat<f64>,
+    jac: Mat<f64>,
+    force: Vec<f64>,
+    phi: Vec<f64>,
+    rhs: Vec<f64>,
+    trial: DaeState,
+}
+
+impl GeneralizedAlpha {
+    pub fn new(system: &dyn DaeSystem, rho_inf: f64, tolerance: f64, max_iterations: usize) -> Self {
+        let n = system.n_coordinates();
+        let m = system.n_constraints();
+        GeneralizedAlpha {
+            coefficients: AlphaCoefficients::from_rho_inf(rho_inf),
+            tolerance,
+            max_iterations,
+            n,
+            m,
+            lu: DenseLu::new(n + m),
+            mass: Mat::zeros(n, n),
+            jac: Mat::zeros(m, n),
+            force: vec![0.0; n],
+            phi: vec![0.0; m],
+            rhs: vec![0.0; n + m],
+            trial: DaeState {
+                t: 0.0,
+                q: vec![0.0; n],
+                v: vec![0.0; n],
+                qdd: vec![0.0; n],
+                acc: vec![0.0; n],
+                lambda: vec![0.0; m],
+            },
+        }
+    }
+
+    /// Advance `state` by `h`. On success returns the Newton iterations used and overwrites
+    /// `state`; on failure `state` is untouched.
+    pub fn step(&mut self, system: &dyn DaeSystem, state: &mut DaeState, h: f64) -> Result<usize, StepFailure> {
+        let (n, m) = (self.n, self.m);
+        let AlphaCoefficients {
+            alpha_m,
+            alpha_f,
+            gamma,
+            beta,
+        } = self.coefficients;
+        let t1 = state.t + h;
+        let s = beta * h * h;
+        let beta_p = (1.0 - alpha_m) / (beta * h * h * (1.0 - alpha_f));
+        let gamma_p = gamma / (beta * h);
+        let mass_factor = (1.0 - alpha_m) / (1.0 - alpha_f);
+
+        // Predictor: q''_{n+1} = q''_n, lambda_{n+1} = lambda_n.
+        let tr = &mut self.trial;
+        tr.t = t1;
+        for i in 0..n {
+            let qdd = state.qdd[i];
+            let acc = (alpha_f * state.qdd[i] - alpha_m * state.acc[i] + (1.0 - alpha_f) * qdd) / (1.0 - alpha_m);
+            tr.qdd[i] = qdd;
+            tr.acc[i] = acc;
+            tr.q[i] = state.q[i] + h * state.v[i] + h * h * ((0.5 - beta) * state.acc[i] + beta * acc);
+            tr.v[i] = state.v[i] + h * ((1.0 - gamma) * state.acc[i] + gamma * acc);
+        }
+        tr.lambda.copy_from_slice(&state.lambda);
+
+        let mut factored = false;
+        let mut previous = f64::INFINITY;
+        for iteration in 0..self.max_iterations {
+            let tr = &mut self.trial;
+            system.mass(&tr.q, self.mass.as_mut());
+            system.forces(t1, &tr.q, &tr.v, &tr.qdd, &tr.lambda, &mut self.force);
+            system.constraint_jacobian(&tr.q, self.jac.as_mut());
+            system.constraints(t1, &tr.q, &mut self.phi);
+            for i in 0..n {
+                let mut r = -self.force[i];
+                for j in 0..n {
+                    r += self.mass[(i, j)] * tr.qdd[j];
+                }
+                for k in 0..m {
+                    r += self.jac[(k, i)] * tr.lambda[k];
+                }
+                self.rhs[i] = -s * r;
+            }
+            for k in 0..m {
+                self.rhs[n + k] = -self.phi[k];
+            }
+            if !factored {
+                let a = &mut self.lu.matrix;
+                for i in 0..n {
+                    for j in 0..n {
+                        a[(i, j)] = mass_factor * self.mass[(i, j)];
+                    }
+                }
+                system.add_tangent(&tr.q, &tr.v, &tr.lambda, s, gamma * h, a.as_mut().submatrix_mut(0, 0, n, n));
+                for k in 0..m {
+                    for j in 0..n {
+                        a[(n + k, j)] = self.jac[(k, j)];
+                        a[(j, n + k)] = self.jac[(k, j)];
+                    }
+                    for l in 0..m {
+                        a[(n + k, n + l)] = 0.0;
+                    }
+                }
+                if !self.lu.factor() {
+                    return Err(StepFailure::SingularMatrix);
+                }
+                factored = true;
+            }
+            self.lu.solve(&mut self.rhs);
+            let mut err: f64 = 0.0;
+            for i in 0..n {
+                let dq = self.rhs[i];
+                tr.q[i] += dq;
+                tr.v[i] += gamma_p * dq;
+                tr.qdd[i] += beta_p * dq;
+                err = err.max((dq / system.coordinate_scale(i)).abs());
+            }
+            for k in 0..m {
+                tr.lambda[k] += self.rhs[n + k] / s;
+            }
+            if !err.is_finite() {
+                return Err(StepFailure::NonFinite);
+            }
+            if err <= self.tolerance {
+                for i in 0..n {
+                    tr.acc[i] = (alpha_f * state.qdd[i] - alpha_m * state.acc[i] + (1.0 - alpha_f) * tr.qdd[i]) / (1.0 - alpha_m);
+                }
+                if tr.lambda.iter().any(|x| !x.is_finite()) {
+                    return Err(StepFailure::NonFinite);
+                }
+                state.t = t1;
+                state.q.copy_from_slice(&tr.q);
+                state.v.copy_from_slice(&tr.v);
+                state.qdd.copy_from_slice(&tr.qdd);
+                state.acc.copy_from_slice(&tr.acc);
+                state.lambda.copy_from_slice(&tr.lambda);
+                return Ok(iteration + 1);
+            }
+            // Refactor when the contraction is poor.
+            if err > 0.25 * previous {
+                factored = false;
+            }
+            previous = err;
+            if iteration + 1 == self.max_iterations {
+                return Err(StepFailure::NewtonDiverged {
+                    iterations: self.max_iterations,
+                    last_correction: err,
+                });
+            }
+        }
+        Err(StepFailure::NewtonDiverged {
+            iterations: self.max_iterations,
+            last_correction: previous,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn coefficients_match_arnold_bruls() {
+        let c = AlphaCoefficients::from_rho_inf(1.0);
+        assert!((c.alpha_m - 0.5).abs() < 1e-15 && (c.alpha_f - 0.5).abs() < 1e-15);
+        assert!((c.gamma - 0.5).abs() < 1e-15 && (c.beta - 0.25).abs() < 1e-15);
+        let c = AlphaCoefficients::from_rho_inf(0.0);
+        assert!((c.alpha_m + 1.0).abs() < 1e-15 && c.alpha_f.abs() < 1e-15);
+        assert!((c.gamma - 1.5).abs() < 1e-15 && (c.beta - 1.0).abs() < 1e-15);
+    }
+}

@@ -1,0 +1,32 @@
+//! What the integrator needs from a constrained mechanical system (after Project Chrono's
+//! `ChIntegrable`): mass, forces, constraints and their Jacobian, and an approximate tangent.
+//!
+//! The system is `M(q) q'' + Phi_q(q)^T lambda = Q(t, q, q', q'', lambda)`, `Phi(q, t) = 0`,
+//! with `n` coordinates and `m` constraints. All outputs are written into caller-owned buffers
+//! (no allocation).
+
+use faer::MatMut;
+
+pub trait DaeSystem {
+    /// Number of coordinates n.
+    fn n_coordinates(&self) -> usize;
+    /// Number of constraints m.
+    fn n_constraints(&self) -> usize;
+    /// Scale of each coordinate for the Newton convergence test (a typical magnitude).
+    fn coordinate_scale(&self, i: usize) -> f64;
+    /// `M(q)` into `m` (n x n, fully written).
+    fn mass(&self, q: &[f64], m: MatMut<'_, f64>);
+    /// Applied and inertial-velocity forces `Q(t, q, q', q'', lambda)` into `f` (n).
+    fn forces(&self, t: f64, q: &[f64], v: &[f64], a: &[f64], lambda: &[f64], f: &mut [f64]);
+    /// Constraint residual `Phi(q, t)` into `phi` (m).
+    fn constraints(&self, t: f64, q: &[f64], phi: &mut [f64]);
+    /// Constraint Jacobian `Phi_q` into `jac` (m x n, fully written).
+    fn constraint_jacobian(&self, q: &[f64], jac: MatMut<'_, f64>);
+    /// `Phi_t` into `out` (m): the velocity constraint is `Phi_q q' + Phi_t = 0`.
+    fn constraint_rate(&self, t: f64, q: &[f64], out: &mut [f64]);
+    /// `gamma` into `out` (m): the acceleration constraint is `Phi_q q'' = gamma`.
+    fn constraint_acceleration_rhs(&self, t: f64, q: &[f64], v: &[f64], out: &mut [f64]);
+    /// Add `c_k (K_t + d(Phi_q^T lambda)/dq) + c_d C_t` to `out` (n x n), with `K_t = -dQ/dq`
+    /// and `C_t = -dQ/dq'` (approximations are fine: they only steer Newton).
+    fn add_tangent(&self, q: &[f64], v: &[f64], lambda: &[f64], c_k: f64, c_d: f64, out: MatMut<'_, f64>);
+}

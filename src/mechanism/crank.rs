@@ -1,0 +1,67 @@
+//! The prescribed crank (fmu-contract.md, "Behaviour"):
+//! `theta(t) = theta_k + omega_k s + alpha_k s^2 / 2`, `s = t - t_k`; pin B at
+//! `r (cos theta, sin theta)`.
+
+use nalgebra::Vector2;
+
+use crate::simulation::CrankInput;
+
+/// Crank motion from the input at the communication point `t_k`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CrankLaw {
+    /// Crank length r, m.
+    pub length: f64,
+    pub t_k: f64,
+    pub input: CrankInput,
+}
+
+impl CrankLaw {
+    /// Angle, speed and acceleration at time t.
+    pub fn kinematics(&self, t: f64) -> (f64, f64, f64) {
+        let s = t - self.t_k;
+        let CrankInput {
+            angle,
+            speed,
+            acceleration,
+        } = self.input;
+        (
+            angle + speed * s + 0.5 * acceleration * s * s,
+            speed + acceleration * s,
+            acceleration,
+        )
+    }
+
+    /// Position, velocity and acceleration of the crank pin B (global, m, m/s, m/s^2).
+    pub fn pin(&self, t: f64) -> (Vector2<f64>, Vector2<f64>, Vector2<f64>) {
+        let (th, w, al) = self.kinematics(t);
+        let (c, s) = (th.cos(), th.sin());
+        let r = self.length;
+        let pos = Vector2::new(r * c, r * s);
+        let tangent = Vector2::new(-r * s, r * c);
+        (pos, tangent * w, tangent * al - pos * (w * w))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pin_kinematics_are_derivatives() {
+        let law = CrankLaw {
+            length: 0.15,
+            t_k: 0.1,
+            input: CrankInput {
+                angle: 0.3,
+                speed: 120.0,
+                acceleration: 900.0,
+            },
+        };
+        let (t, h) = (0.1013, 1e-6);
+        let (p1, _, _) = law.pin(t - h);
+        let (p2, v, a) = law.pin(t);
+        let (p3, _, _) = law.pin(t + h);
+        assert!(((p3 - p1) / (2.0 * h) - v).norm() < 1e-5 * v.norm());
+        assert!(((p3 - 2.0 * p2 + p1) / (h * h) - a).norm() < 1e-3 * a.norm());
+    }
+}

@@ -1,0 +1,121 @@
+//! The slider-crank as an index-3 DAE for the integrator.
+//!
+//! Coordinates `q = [q_rod..., x_s]` (x_s: slider position, m). Constraints (4):
+//! pin B `r_B(q) - r_crank(t) = 0` (2), pin C `r_C(q) - (x_s, 0) = 0` (2).
+//! Multipliers `lambda = [B_x, B_y, C_x, C_y]`: with `M q'' + Phi_q^T lambda = Q`, the force
+//! of the rod on the crank pin is `lambda_B` and on the slider `lambda_C` (global, N).
+
+use faer::reborrow::ReborrowMut;
+use faer::MatMut;
+use nalgebra::Vector2;
+
+use super::crank::CrankLaw;
+use super::rod_body::{RodBody, RodPoint};
+use crate::integrator::DaeSystem;
+
+/// One evaluation context: the rod, the crank law in force, the slider.
+pub struct SliderCrankDae<'a> {
+    pub rod: &'a dyn RodBody,
+    pub crank: CrankLaw,
+    /// Slider mass m_s, kg (0 allowed).
+    pub slider_mass: f64,
+    /// External force on the slider along +x, N.
+    pub slider_force: f64,
+}
+
+impl SliderCrankDae<'_> {
+    fn nr(&self) -> usize {
+        self.rod.n_coordinates()
+    }
+}
+
+impl DaeSystem for SliderCrankDae<'_> {
+    fn n_coordinates(&self) -> usize {
+        self.nr() + 1
+    }
+
+    fn n_constraints(&self) -> usize {
+        4
+    }
+
+    fn coordinate_scale(&self, i: usize) -> f64 {
+        if i < self.nr() {
+            self.rod.coordinate_scale(i)
+        } else {
+            self.rod.length()
+        }
+    }
+
+    fn mass(&self, q: &[f64], mut m: MatMut<'_, f64>) {
+        let nr = self.nr();
+        m.fill(0.0);
+        self.rod.mass(q, m.rb_mut().submatrix_mut(0, 0, nr, nr));
+        m[(nr, nr)] = self.slider_mass;
+    }
+
+    fn forces(&self, _t: f64, q: &[f64], v: &[f64], a: &[f64], lambda: &[f64], f: &mut [f64]) {
+        let nr = self.nr();
+        let slider_on_rod = -Vector2::new(lambda[2], lambda[3]);
+        self.rod.forces(q, v, a, slider_on_rod, &mut f[..nr]);
+        f[nr] = self.slider_force;
+    }
+
+    fn constraints(&self, t: f64, q: &[f64], phi: &mut [f64]) {
+        let nr = self.nr();
+        let (pin, _, _) = self.crank.pin(t);
+        let b = self.rod.point(RodPoint::B, q) - pin;
+        let c = self.rod.point(RodPoint::C, q) - Vector2::new(q[nr], 0.0);
+        phi[0] = b.x;
+        phi[1] = b.y;
+        phi[2] = c.x;
+        phi[3] = c.y;
+    }
+
+    fn constraint_jacobian(&self, q: &[f64], mut jac: MatMut<'_, f64>) {
+        let nr = self.nr();
+        jac.fill(0.0);
+        self.rod
+            .point_jacobian(RodPoint::B, q, jac.rb_mut().submatrix_mut(0, 0, 2, nr));
+        self.rod
+            .point_jacobian(RodPoint::C, q, jac.rb_mut().submatrix_mut(2, 0, 2, nr));
+        jac[(2, nr)] = -1.0;
+    }
+
+    fn constraint_rate(&self, t: f64, _q: &[f64], out: &mut [f64]) {
+        let (_, vel, _) = self.crank.pin(t);
+        out[0] = -vel.x;
+        out[1] = -vel.y;
+        out[2] = 0.0;
+        out[3] = 0.0;
+    }
+
+    fn constraint_acceleration_rhs(&self, t: f64, q: &[f64], v: &[f64], out: &mut [f64]) {
+        let (_, _, acc) = self.crank.pin(t);
+        let b = acc - self.rod.point_bias_acceleration(RodPoint::B, q, v);
+        let c = -self.rod.point_bias_acceleration(RodPoint::C, q, v);
+        out[0] = b.x;
+        out[1] = b.y;
+        out[2] = c.x;
+        out[3] = c.y;
+    }
+
+    fn add_tangent(&self, q: &[f64], v: &[f64], lambda: &[f64], c_k: f64, c_d: f64, mut out: MatMut<'_, f64>) {
+        let nr = self.nr();
+        let mut rod_block = out.rb_mut().submatrix_mut(0, 0, nr, nr);
+        self.rod.add_tangent(q, v, c_k, c_d, rod_block.rb_mut());
+        self.rod.add_point_force_tangent(
+            RodPoint::B,
+            q,
+            Vector2::new(lambda[0], lambda[1]),
+            c_k,
+            rod_block.rb_mut(),
+        );
+        self.rod.add_point_force_tangent(
+            RodPoint::C,
+            q,
+            Vector2::new(lambda[2], lambda[3]),
+            c_k,
+            rod_block,
+        );
+    }
+}

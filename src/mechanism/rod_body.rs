@@ -1,0 +1,56 @@
+//! What the slider-crank needs from a flexible rod model (FFR or finite segments).
+//!
+//! The rod has its own generalized coordinates `q_r` (n of them). Frames: everything here is
+//! in the global frame unless a name says otherwise. Three material points matter: the B end,
+//! the C end and the material midpoint.
+
+use faer::MatMut;
+use nalgebra::Vector2;
+
+/// A material point of the rod.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RodPoint {
+    /// The end pinned to the crank.
+    B,
+    /// The end pinned to the slider.
+    C,
+    /// The material midpoint (arc length L/2).
+    Mid,
+}
+
+/// Interface of a planar flexible rod body.
+pub trait RodBody: Send {
+    /// Number of generalized coordinates of the rod.
+    fn n_coordinates(&self) -> usize;
+    /// Typical magnitude of coordinate `i` (for convergence tests), in its own unit.
+    fn coordinate_scale(&self, i: usize) -> f64;
+    /// Undeformed rod with its B end at `b` and C end at `c` (|c - b| = L), moving rigidly with
+    /// B velocity `vb` and angular velocity `omega` (rad/s). Writes `q` and `v` (n each).
+    fn place_undeformed(&self, b: Vector2<f64>, c: Vector2<f64>, vb: Vector2<f64>, omega: f64, q: &mut [f64], v: &mut [f64]);
+    /// Mass matrix (n x n) into `m`.
+    fn mass(&self, q: &[f64], m: MatMut<'_, f64>);
+    /// Generalized forces: quadratic velocity terms, elastic and damping forces, and the
+    /// axial-force (geometric) stiffening given the current accelerations `a` and the force
+    /// `end_force_c` that the slider exerts on the rod at C (global, N).
+    fn forces(&self, q: &[f64], v: &[f64], a: &[f64], end_force_c: Vector2<f64>, f: &mut [f64]);
+    /// Add `c_k K_t + c_d C_t` (approximate `-dQ/dq`, `-dQ/dq'`) into `out` (n x n).
+    fn add_tangent(&self, q: &[f64], v: &[f64], c_k: f64, c_d: f64, out: MatMut<'_, f64>);
+    /// Global position of a material point.
+    fn point(&self, p: RodPoint, q: &[f64]) -> Vector2<f64>;
+    /// Jacobian `d r_p / d q` (2 x n) into `out`.
+    fn point_jacobian(&self, p: RodPoint, q: &[f64], out: MatMut<'_, f64>);
+    /// `(d/dt J_p) q'`: the velocity-product part of the point's acceleration.
+    fn point_bias_acceleration(&self, p: RodPoint, q: &[f64], v: &[f64]) -> Vector2<f64>;
+    /// Add `c d(J_p^T f)/dq` (n x n) into `out`, for a constant global force `f` at point p.
+    fn add_point_force_tangent(&self, p: RodPoint, q: &[f64], f: Vector2<f64>, c: f64, out: MatMut<'_, f64>);
+    /// Kinetic energy, J.
+    fn kinetic_energy(&self, q: &[f64], v: &[f64]) -> f64;
+    /// Strain energy (elastic potential), J.
+    fn strain_energy(&self, q: &[f64]) -> f64;
+    /// Linear momentum of the rod, kg m/s.
+    fn linear_momentum(&self, q: &[f64], v: &[f64]) -> Vector2<f64>;
+    /// Natural frequencies under the rod's reference or end conditions, Hz, ascending.
+    fn frequencies_hz(&self) -> &[f64];
+    /// Rod length L, m.
+    fn length(&self) -> f64;
+}

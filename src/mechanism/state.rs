@@ -1,0 +1,127 @@
+//! The mechanism's state: everything a snapshot must hold to replay bit for bit.
+
+use super::outputs::Outputs;
+use crate::integrator::generalized_alpha::DaeState;
+use crate::simulation::{CrankInput, StepStats};
+
+/// Dynamic state of the slider-crank plus its inputs and cached outputs.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct MechanismState {
+    /// Current time, s (equals `dae.t`).
+    pub time: f64,
+    /// Integrator state: coordinates `[rod..., x_slider]`, multipliers `[B_x, B_y, C_x, C_y]`.
+    pub dae: DaeState,
+    /// Crank input and the time it was set at.
+    pub input: CrankInput,
+    pub input_time: f64,
+    /// External slider force, N.
+    pub slider_force: f64,
+    /// Outputs at `time`.
+    pub outputs: Outputs,
+    pub stats: StepStats,
+    /// Warnings not yet collected (not serialized).
+    pub warnings: Vec<String>,
+    /// The large-deflection warning was already given.
+    pub large_deflection_warned: bool,
+}
+
+impl MechanismState {
+    /// Append the state as little-endian numbers.
+    pub fn write_bytes(&self, out: &mut Vec<u8>) {
+        let mut put = |x: f64| out.extend_from_slice(&x.to_le_bytes());
+        put(self.time);
+        put(self.input_time);
+        put(self.input.angle);
+        put(self.input.speed);
+        put(self.input.acceleration);
+        put(self.slider_force);
+        let o = &self.outputs;
+        for x in [
+            o.deflection,
+            o.deflection_rel,
+            o.pin_b_force[0],
+            o.pin_b_force[1],
+            o.pin_c_force[0],
+            o.pin_c_force[1],
+            o.crank_torque,
+            o.slider_position,
+            o.slider_velocity,
+        ] {
+            put(x);
+        }
+        put(self.dae.t);
+        for v in [&self.dae.q, &self.dae.v, &self.dae.qdd, &self.dae.acc, &self.dae.lambda] {
+            for &x in v.iter() {
+                put(x);
+            }
+        }
+        for c in [self.stats.steps, self.stats.newton_iterations, self.stats.halvings] {
+            out.extend_from_slice(&c.to_le_bytes());
+        }
+        out.push(self.large_deflection_warned as u8);
+    }
+
+    /// Read what [`Self::write_bytes`] wrote, into a state of the same dimensions.
+    pub fn read_bytes(&mut self, bytes: &[u8]) -> Result<(), String> {
+        let n = self.dae.q.len();
+        let m = self.dae.lambda.len();
+        let expected = 8 * (16 + 4 * n + m) + 8 * 3 + 1;
+        if bytes.len() != expected {
+            return Err(format!(
+                "{} bytes of state, this model needs {expected} (truncated or from another model)",
+                bytes.len()
+            ));
+        }
+        let mut at = 0usize;
+        let mut get = || {
+            let x = f64::from_le_bytes(bytes[at..at + 8].try_into().unwrap());
+            at += 8;
+            x
+        };
+        self.time = get();
+        self.input_time = get();
+        self.input.angle = get();
+        self.input.speed = get();
+        self.input.acceleration = get();
+        self.slider_force = get();
+        let o = &mut self.outputs;
+        o.deflection = get();
+        o.deflection_rel = get();
+        o.pin_b_force = [get(), get()];
+        o.pin_c_force = [get(), get()];
+        o.crank_torque = get();
+        o.slider_position = get();
+        o.slider_velocity = get();
+        self.dae.t = get();
+        for v in [
+            &mut self.dae.q,
+            &mut self.dae.v,
+            &mut self.dae.qdd,
+            &mut self.dae.acc,
+        ] {
+            for x in v.iter_mut() {
+                *x = get();
+            }
+        }
+        for x in self.dae.lambda.iter_mut() {
+            *x = get();
+        }
+        let mut at = expected - 25;
+        let mut count = || {
+            let c = u64::from_le_bytes(bytes[at..at + 8].try_into().unwrap());
+            at += 8;
+            c
+        };
+        self.stats.steps = count();
+        self.stats.newton_iterations = count();
+        self.stats.halvings = count();
+        self.large_deflection_warned = bytes[expected - 1] != 0;
+        let finite = self.time.is_finite()
+            && self.dae.q.iter().chain(&self.dae.v).chain(&self.dae.lambda).all(|x| x.is_finite());
+        if !finite {
+            return Err("it holds non-finite numbers".into());
+        }
+        self.warnings.clear();
+        Ok(())
+    }
+}

@@ -1,0 +1,100 @@
+//! The rod's component modes: mesh + reference conditions + eigenproblem + selection.
+//!
+//! Deformation field in the body frame: `u_f(x) = S(x) B_r Phi p = S_hat(x) p`
+//! (seed 000, eq. 4.1-4.6).
+
+use faer::Mat;
+
+use super::eigen::generalized_symmetric_eigen;
+use super::reference::ReferenceConditions;
+use super::selection::ModeSelection;
+use crate::beam::{RodMesh, RodProperties};
+use crate::error::ModelError;
+use crate::scene::MassKind;
+
+/// Retained modes of the rod and the spectrum they come from.
+#[derive(Clone, Debug)]
+pub struct ComponentModes {
+    pub mesh: RodMesh,
+    pub reference: ReferenceConditions,
+    pub mass_kind: MassKind,
+    /// Every natural frequency of the reduced rod, Hz, ascending (retained or not).
+    pub all_frequencies_hz: Vec<f64>,
+    /// Indices of the retained modes into `all_frequencies_hz`.
+    pub retained: Vec<usize>,
+    /// Squared circular frequencies of the retained modes, (rad/s)^2.
+    pub omega2: Vec<f64>,
+    /// Retained mode shapes in full nodal coordinates, `B_r Phi` (n_full x n_modes),
+    /// normalized to unit modal mass.
+    pub shapes: Mat<f64>,
+}
+
+impl ComponentModes {
+    /// Preprocess: assemble, apply reference conditions, solve `K_rr a = w^2 M_rr a`
+    /// (seed 000, eq. 4.4), keep the selected modes.
+    pub fn new(
+        section: RodProperties,
+        n_elements: usize,
+        reference: ReferenceConditions,
+        mass_kind: MassKind,
+        selection: &ModeSelection,
+    ) -> Result<ComponentModes, ModelError> {
+        section.validate()?;
+        let x_b = reference.frame_x_b(section.length, n_elements.max(1));
+        let mesh = RodMesh::new(section, n_elements, x_b)?;
+        if let ReferenceConditions::BodyFixed { node } = reference {
+            if node > n_elements {
+                return Err(ModelError::InvalidParameter {
+                    name: "body-fixed node",
+                    value: node as f64,
+                    allowed: format!("0..={n_elements}"),
+                });
+            }
+        }
+        let (k, m) = mesh.assemble(mass_kind);
+        let basis = reference.basis(&mesh, &k, &m)?;
+        let b = &basis.b_r;
+        let k_rr = b.transpose() * &k * b;
+        let m_rr = b.transpose() * &m * b;
+        let eig = generalized_symmetric_eigen(&k_rr, &m_rr)?;
+        if let Some(&lowest) = eig.values.first() {
+            let top = eig.values.last().copied().unwrap_or(1.0).abs();
+            if lowest < -1e-9 * top {
+                return Err(ModelError::ReferenceConditions {
+                    message: format!("the reduced stiffness is indefinite (eigenvalue {lowest:e})"),
+                });
+            }
+        }
+        let all_frequencies_hz: Vec<f64> = eig
+            .values
+            .iter()
+            .map(|&l| l.max(0.0).sqrt() / (2.0 * std::f64::consts::PI))
+            .collect();
+        let retained = selection.select(&all_frequencies_hz)?;
+        let phi = Mat::from_fn(eig.vectors.nrows(), retained.len(), |i, j| {
+            eig.vectors[(i, retained[j])]
+        });
+        let shapes = b * &phi;
+        let omega2 = retained.iter().map(|&i| eig.values[i].max(0.0)).collect();
+        Ok(ComponentModes {
+            mesh,
+            reference,
+            mass_kind,
+            all_frequencies_hz,
+            retained,
+            omega2,
+            shapes,
+        })
+    }
+
+    /// Number of retained modes.
+    pub fn n_modes(&self) -> usize {
+        self.retained.len()
+    }
+
+    /// The rows of `B_r Phi` for element `e` (6 x n_modes).
+    pub fn element_shapes(&self, e: usize) -> nalgebra::DMatrix<f64> {
+        let dofs = self.mesh.element_dofs(e);
+        nalgebra::DMatrix::from_fn(6, self.n_modes(), |i, j| self.shapes[(dofs[i], j)])
+    }
+}

@@ -1,0 +1,15 @@
+//! Component modes of the rod (seed 000, sections 3 and 4): reference conditions
+//! `q_f = B_r q_r` (eq. 3.9), the eigenproblem `K_rr a = w^2 M_rr a` (eq. 4.4), mode
+//! selection, and the inertia shape integrals of the retained modes (the "preprocessor" of
+//! seed 000, Fig. 4).
+
+pub mod component_modes;
+pub mod eigen;
+pub mod reference;
+pub mod selection;
+pub mod shape_integrals;
+
+pub use component_modes::ComponentModes;
+pub use reference::ReferenceConditions;
+pub use selection::ModeSelection;
+pub use shape_integrals::ShapeIntegrals;

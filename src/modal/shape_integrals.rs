@@ -1,0 +1,188 @@
+//! Inertia shape integrals of the retained modes, computed once (the "preprocessor" of
+//! seed 000, Fig. 4; Shabana, *Dynamics of Multibody Systems*, 4th ed., section 5.5).
+//!
+//! With `xbar(s) = (x_b + s, 0)` the undeformed position of the material point at arc length
+//! `s` from B in the body frame, `S_hat(s)` (2 x n) the modal shape matrix and
+//! `I~ = [[0, -1], [1, 0]]`:
+//! `m = int rho`, `I1 = int rho xbar`, `I2 = int rho S_hat`, `I3 = int rho xbar.xbar`,
+//! `I4 = int rho xbar^T S_hat`, `I5 = int rho xbar^T I~ S_hat`, `M_ff = int rho S_hat^T S_hat`,
+//! `S~ = int rho S_hat^T I~ S_hat` (skew), all over the rod (`int rho f = int_0^L rho A f ds`).
+//!
+//! Consistent mass: exact 4-point Gauss quadrature per element (integrands of degree <= 6).
+//! Lumped mass: point masses at the nodes plus nodal rotary inertia `J_i`; the rotary inertia
+//! adds `sum J_i` to `I3` and the row `I_rot = sum J_i Theta_i` (Theta_i = slope row of node i)
+//! to the rotation-deformation coupling (it is zero for the consistent Euler-Bernoulli mass).
+//!
+//! For the axial stiffening the chord-relative slope `D(s) = v'(s) - (v(L) - v(0)) / L`
+//! (1 x n) gives `G_k = int_0^L s^k D^T D ds`, k = 0, 1, 2: the geometric stiffness of an axial
+//! force `N(s) = n0 + n1 s + n2 s^2` is `K_G = n0 G_0 + n1 G_1 + n2 G_2` (Cook, Malkus,
+//! Plesha and Witt, *Concepts and Applications of FEA*, 4th ed., eq. 18.3-4).
+
+use nalgebra::{DMatrix, DVector, Vector2};
+
+use super::component_modes::ComponentModes;
+use crate::beam::quadrature::GAUSS4;
+use crate::scene::MassKind;
+
+/// The shape integrals of one rod with its retained modes.
+#[derive(Clone, Debug)]
+pub struct ShapeIntegrals {
+    /// Rod mass m, kg.
+    pub mass: f64,
+    /// I1 = int rho xbar (2), kg m.
+    pub i1: Vector2<f64>,
+    /// I2 = int rho S_hat (2 x n).
+    pub i2: DMatrix<f64>,
+    /// I3 = int rho xbar.xbar (+ nodal rotary inertia), kg m^2.
+    pub i3: f64,
+    /// I4 = int rho xbar^T S_hat (n).
+    pub i4: DVector<f64>,
+    /// I5 = int rho xbar^T I~ S_hat (n).
+    pub i5: DVector<f64>,
+    /// Rotary coupling row sum J_i Theta_i (n); zero for consistent mass.
+    pub i_rot: DVector<f64>,
+    /// M_ff = int rho S_hat^T S_hat (n x n); the identity for mass-normalized modes.
+    pub m_ff: DMatrix<f64>,
+    /// S~ = int rho S_hat^T I~ S_hat (n x n, skew).
+    pub s_tilde: DMatrix<f64>,
+    /// Geometric stiffness moments G_0, G_1, G_2 (n x n each), chord-relative slopes.
+    pub g: [DMatrix<f64>; 3],
+    /// S_hat at the B end (s = 0), the C end (s = L) and the midpoint (s = L / 2).
+    pub s_b: DMatrix<f64>,
+    pub s_c: DMatrix<f64>,
+    pub s_mid: DMatrix<f64>,
+    /// Undeformed body-frame x of B, C and the midpoint.
+    pub x_b: f64,
+    pub x_c: f64,
+    pub x_mid: f64,
+}
+
+impl ShapeIntegrals {
+    /// Compute every integral for `modes`.
+    pub fn new(modes: &ComponentModes) -> ShapeIntegrals {
+        let mesh = &modes.mesh;
+        let n = modes.n_modes();
+        let el = mesh.element();
+        let l = el.length;
+        let rho_a = mesh.section.mass_per_length();
+        let length = mesh.section.length;
+
+        let mut i1 = Vector2::zeros();
+        let mut i2 = DMatrix::zeros(2, n);
+        let mut i3 = 0.0;
+        let mut i4 = DVector::zeros(n);
+        let mut i5 = DVector::zeros(n);
+        let mut i_rot = DVector::zeros(n);
+        let mut s_tilde = DMatrix::zeros(n, n);
+        let mut g = [DMatrix::zeros(n, n), DMatrix::zeros(n, n), DMatrix::zeros(n, n)];
+        let mut rotary_total = 0.0;
+
+        // The chord rotation row (v(L) - v(0)) / L.
+        let s_b = point_shape(modes, 0.0);
+        let s_c = point_shape(modes, length);
+        let s_mid = point_shape(modes, 0.5 * length);
+        let chord = (s_c.row(1) - s_b.row(1)) / length;
+
+        // Accumulate one mass point: mass `w`, body-frame x, modal shape rows (axial a, transverse b).
+        let mut add_point = |w: f64, x: f64, a: &DMatrix<f64>, b: &DMatrix<f64>| {
+            i1[0] += w * x;
+            i3 += w * x * x;
+            for j in 0..n {
+                i2[(0, j)] += w * a[(0, j)];
+                i2[(1, j)] += w * b[(0, j)];
+                i4[j] += w * x * a[(0, j)];
+                i5[j] -= w * x * b[(0, j)];
+            }
+            // S^T I~ S = -a^T b + b^T a.
+            for i in 0..n {
+                for j in 0..n {
+                    s_tilde[(i, j)] += w * (b[(0, i)] * a[(0, j)] - a[(0, i)] * b[(0, j)]);
+                }
+            }
+        };
+
+        for e in 0..mesh.n_elements {
+            let t = modes.element_shapes(e);
+            let s0 = e as f64 * l;
+            match modes.mass_kind {
+                MassKind::Consistent => {
+                    for (xi, w) in GAUSS4 {
+                        let sh = el.shape(xi) * &t;
+                        let a = sh.rows(0, 1).into_owned();
+                        let b = sh.rows(1, 1).into_owned();
+                        add_point(w * l * rho_a, mesh.x_b + s0 + xi * l, &a, &b);
+                    }
+                }
+                MassKind::Lumped => {
+                    let half = 0.5 * rho_a * l;
+                    let j_rot = rho_a * l * l * l / 78.0;
+                    for (node_xi, node_row) in [(0.0, 0usize), (1.0, 3usize)] {
+                        let a = t.rows(node_row, 1).into_owned();
+                        let b = t.rows(node_row + 1, 1).into_owned();
+                        add_point(half, mesh.x_b + s0 + node_xi * l, &a, &b);
+                        for j in 0..n {
+                            i_rot[j] += j_rot * t[(node_row + 2, j)];
+                        }
+                        rotary_total += j_rot;
+                    }
+                }
+            }
+            // Geometric stiffness moments, always by exact quadrature of the slopes.
+            for (xi, w) in GAUSS4 {
+                let s = s0 + xi * l;
+                let d = el.slope(xi) * &t - &chord;
+                let dtd = d.transpose() * &d;
+                for (k, gk) in g.iter_mut().enumerate() {
+                    *gk += &dtd * (w * l * s.powi(k as i32));
+                }
+            }
+        }
+
+        i3 += rotary_total;
+        let m_ff = match modes.mass_kind {
+            MassKind::Consistent => {
+                let mut m_ff = DMatrix::zeros(n, n);
+                for e in 0..mesh.n_elements {
+                    let t = modes.element_shapes(e);
+                    for (xi, w) in GAUSS4 {
+                        let sh = el.shape(xi) * &t;
+                        m_ff += sh.transpose() * &sh * (w * l * rho_a);
+                    }
+                }
+                m_ff
+            }
+            MassKind::Lumped => {
+                let (_, m) = mesh.assemble(MassKind::Lumped);
+                let psi = &modes.shapes;
+                let mm = psi.transpose() * &m * psi;
+                DMatrix::from_fn(n, n, |i, j| mm[(i, j)])
+            }
+        };
+
+        ShapeIntegrals {
+            mass: rho_a * length,
+            i1,
+            i2,
+            i3,
+            i4,
+            i5,
+            i_rot,
+            m_ff,
+            s_tilde,
+            g,
+            s_b,
+            s_c,
+            s_mid,
+            x_b: mesh.x_b,
+            x_c: mesh.x_b + length,
+            x_mid: mesh.x_b + 0.5 * length,
+        }
+    }
+}
+
+/// `S_hat(s)` (2 x n) at arc length `s` from B.
+pub fn point_shape(modes: &ComponentModes, s: f64) -> DMatrix<f64> {
+    let (e, xi) = modes.mesh.locate(s);
+    let sh = modes.mesh.element().shape(xi) * modes.element_shapes(e);
+    DMatrix::from_fn(2, sh.ncols(), |i, j| sh[(i, j)])
+}
