@@ -281,17 +281,17 @@ mod tests {
     fn foreign_truncated_and_other_fmu_rejected() {
         let bytes = serialize("{g}", &sample(), None);
         assert!(deserialize("{g}", b"hello world")
-            .unwrap_err()
+            .err().unwrap()
             .contains("foreign"));
         for cut in [3, 20, bytes.len() - 1] {
             let e = deserialize("{g}", &bytes[..cut]).err().expect("truncated");
             assert!(e.contains("truncated") || e.contains("foreign"), "{e}");
         }
-        assert!(deserialize("{h}", &bytes).unwrap_err().contains("GUID"));
+        assert!(deserialize("{h}", &bytes).err().unwrap().contains("GUID"));
         let mut longer = bytes.clone();
         longer.push(0);
         assert!(deserialize("{g}", &longer)
-            .unwrap_err()
+            .err().unwrap()
             .contains("unexpected"));
     }
 }

@@ -117,7 +117,7 @@ def test_model_description_follows_the_contract(fmu_path):
     frequencies = [n for n in v if n.startswith("rod.frequency[")]
     assert frequencies == [f"rod.frequency[{k}]" for k in range(1, 7)]
     assert all(v[n].causality == "calculatedParameter" and v[n].unit == "Hz" for n in frequencies)
-    assert md.defaultExperiment.stepSize == 1e-4
+    assert float(md.defaultExperiment.stepSize) == 1e-4
     assert {c.name for c in md.logCategories} >= {
         "logStatusError", "logStatusWarning", "logEvents", "logAll"}
 
