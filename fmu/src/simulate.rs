@@ -11,6 +11,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
+use flexrod::fmi::variables::OutputGetter;
 use flexrod::fmi::VariableTable;
 use flexrod::{CrankInput, Outputs, Scene, Simulation, StepStats};
 
@@ -91,7 +92,7 @@ pub fn run(scene: &Scene, options: &Options) -> Result<Run, String> {
 
 /// CSV with `time` and the FMU's outputs (names from the variable table), full precision.
 pub fn write_csv(path: &Path, table: &VariableTable, run: &Run) -> Result<(), String> {
-    let columns: Vec<(&str, fn(&Outputs) -> f64)> = table.outputs().collect();
+    let columns: Vec<(&str, OutputGetter)> = table.outputs().collect();
     let mut text = String::from("time");
     for (name, _) in &columns {
         text.push(',');

@@ -281,7 +281,8 @@ mod tests {
     fn foreign_truncated_and_other_fmu_rejected() {
         let bytes = serialize("{g}", &sample(), None);
         assert!(deserialize("{g}", b"hello world")
-            .err().unwrap()
+            .err()
+            .unwrap()
             .contains("foreign"));
         for cut in [3, 20, bytes.len() - 1] {
             let e = deserialize("{g}", &bytes[..cut]).err().expect("truncated");
@@ -291,7 +292,8 @@ mod tests {
         let mut longer = bytes.clone();
         longer.push(0);
         assert!(deserialize("{g}", &longer)
-            .err().unwrap()
+            .err()
+            .unwrap()
             .contains("unexpected"));
     }
 }

@@ -144,7 +144,8 @@ mod tests {
     use std::cell::RefCell;
     use std::rc::Rc;
 
-    struct Capture(Rc<RefCell<Vec<(Status, &'static str, String)>>>);
+    type Seen = Rc<RefCell<Vec<(Status, &'static str, String)>>>;
+    struct Capture(Seen);
     impl LogSink for Capture {
         fn emit(&self, status: Status, category: &'static str, message: &str) {
             self.0

@@ -185,13 +185,16 @@ pub enum InputSlot {
     SliderForce,
 }
 
+/// Reads one output from the simulation's outputs.
+pub type OutputGetter = fn(&Outputs) -> f64;
+
 /// Where a variable's value lives and how to read or write it.
 #[derive(Clone, Copy)]
 pub enum Access {
     /// An input kept by the instance.
     Input(InputSlot),
     /// An output of the simulation.
-    Output(fn(&Outputs) -> f64),
+    Output(OutputGetter),
     /// A Real parameter stored in the instance's scene.
     RealParameter {
         get: fn(&Scene) -> f64,
@@ -319,11 +322,12 @@ fn set_reference(scene: &mut Scene, value: i32) -> Result<(), String> {
     Ok(())
 }
 
-struct Builder {
+struct Builder<'a> {
+    scene: &'a Scene,
     variables: Vec<Variable>,
 }
 
-impl Builder {
+impl Builder<'_> {
     fn input(
         &mut self,
         name: &str,
@@ -352,7 +356,7 @@ impl Builder {
         name: &str,
         vr: ValueReference,
         ty: ValueType,
-        get: fn(&Outputs) -> f64,
+        get: OutputGetter,
         deps: InitialDependencies,
         description: &str,
     ) {
@@ -372,7 +376,6 @@ impl Builder {
 
     fn real_parameter(
         &mut self,
-        scene: &Scene,
         name: &str,
         vr: ValueReference,
         ty: ValueType,
@@ -388,16 +391,14 @@ impl Builder {
             variability: Variability::Fixed,
             initial: Some(Initial::Exact),
             value_type: ty,
-            start: Some(Value::Real(get(scene))),
+            start: Some(Value::Real(get(self.scene))),
             access: Access::RealParameter { get, set },
             initial_dependencies: InitialDependencies::None,
         });
     }
 
-    #[allow(clippy::too_many_arguments)]
     fn integer_parameter(
         &mut self,
-        scene: &Scene,
         name: &str,
         vr: ValueReference,
         ty: ValueType,
@@ -413,7 +414,7 @@ impl Builder {
             variability: Variability::Fixed,
             initial: Some(Initial::Exact),
             value_type: ty,
-            start: Some(Value::Integer(get(scene))),
+            start: Some(Value::Integer(get(self.scene))),
             access: Access::IntegerParameter { get, set },
             initial_dependencies: InitialDependencies::None,
         });
@@ -425,6 +426,7 @@ impl VariableTable {
     pub fn new(scene: &Scene, n_frequencies: usize) -> VariableTable {
         use InitialDependencies as D;
         let mut b = Builder {
+            scene,
             variables: Vec::new(),
         };
         let exp = &scene.experiment;
@@ -534,7 +536,6 @@ impl VariableTable {
 
         // Parameters (fixed: settable until fmi2ExitInitializationMode).
         b.real_parameter(
-            scene,
             "crank.length",
             100,
             real("m"),
@@ -543,7 +544,6 @@ impl VariableTable {
             "Crank length r",
         );
         b.real_parameter(
-            scene,
             "rod.length",
             101,
             real("m"),
@@ -552,7 +552,6 @@ impl VariableTable {
             "Rod length L",
         );
         b.real_parameter(
-            scene,
             "rod.youngs_modulus",
             102,
             real("Pa"),
@@ -561,7 +560,6 @@ impl VariableTable {
             "Young's modulus E",
         );
         b.real_parameter(
-            scene,
             "rod.density",
             103,
             real("kg/m3"),
@@ -570,7 +568,6 @@ impl VariableTable {
             "Density rho",
         );
         b.real_parameter(
-            scene,
             "rod.area",
             104,
             real("m2"),
@@ -579,7 +576,6 @@ impl VariableTable {
             "Cross-section area A",
         );
         b.real_parameter(
-            scene,
             "rod.area_moment",
             105,
             real("m4"),
@@ -588,7 +584,6 @@ impl VariableTable {
             "Second moment of area I",
         );
         b.real_parameter(
-            scene,
             "rod.damping_ratio",
             106,
             DIMENSIONLESS,
@@ -597,7 +592,6 @@ impl VariableTable {
             "Modal damping ratio (0 = undamped)",
         );
         b.real_parameter(
-            scene,
             "slider.mass",
             107,
             real("kg"),
@@ -606,7 +600,6 @@ impl VariableTable {
             "Slider mass m_s (0 allowed)",
         );
         b.integer_parameter(
-            scene,
             "rod.model",
             110,
             ValueType::Enumeration(&ROD_MODEL),
@@ -615,7 +608,6 @@ impl VariableTable {
             "Rod model: ffr or segments",
         );
         b.integer_parameter(
-            scene,
             "rod.elements",
             111,
             ValueType::Integer,
@@ -624,7 +616,6 @@ impl VariableTable {
             "Beam elements (FFR) or rigid segments (segments)",
         );
         b.integer_parameter(
-            scene,
             "rod.reference",
             112,
             ValueType::Enumeration(&ROD_REFERENCE),
@@ -633,7 +624,6 @@ impl VariableTable {
             "Reference conditions (FFR)",
         );
         b.integer_parameter(
-            scene,
             "rod.modes",
             113,
             ValueType::Integer,
@@ -720,7 +710,7 @@ impl VariableTable {
     }
 
     /// The outputs, in table order: (name, getter).
-    pub fn outputs(&self) -> impl Iterator<Item = (&str, fn(&Outputs) -> f64)> + '_ {
+    pub fn outputs(&self) -> impl Iterator<Item = (&str, OutputGetter)> + '_ {
         self.variables.iter().filter_map(|v| match v.access {
             Access::Output(get) => Some((v.name.as_str(), get)),
             _ => None,
