@@ -222,7 +222,6 @@ pub unsafe extern "C" fn fmi2Instantiate(
                 fmu_type: fmuType,
                 guid,
                 resource_location,
-                logging_on: loggingOn != 0,
             },
             (name, guid, location) => {
                 let problem = [name, guid]

@@ -45,7 +45,6 @@ pub struct InstantiateArgs<'a> {
     pub fmu_type: i32,
     pub guid: &'a str,
     pub resource_location: Option<&'a str>,
-    pub logging_on: bool,
 }
 
 /// The inputs as the instance keeps them.
@@ -242,11 +241,6 @@ impl Instance {
             fmu_states: HashMap::new(),
             serialized: None,
         }
-    }
-
-    /// Replace the logger (the C layer installs the importer's callback).
-    pub fn set_logger(&mut self, logger: Logger) {
-        self.logger = logger;
     }
 
     /// The instance's state in the FMI state machine.
