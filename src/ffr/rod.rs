@@ -7,7 +7,7 @@
 //! Mass matrix (seed 000, eq. 5.7-5.10; physics.md; re-derived from
 //! `T = 1/2 int rho r'.r'` with `r' = R' + phi' A I~ ubar + A S_hat p'`):
 //! `M_RR = m I`, `M_Rphi = A I~ (I1 + I2 p)`, `M_Rp = A I2`,
-//! `M_phiphi = I3 + 2 I4 p + p^T M_ff p`, `M_phip = -(I5 + p^T S~) + I_rot`, `M_pp = M_ff`.
+//! `M_phiphi = I3 + 2 I4 p + p^T M_uu p` (M_uu = M_ff without nodal rotary inertia), `M_phip = -(I5 + p^T S~) + I_rot`, `M_pp = M_ff`.
 //! Quadratic velocity vector (from the velocity-product part of
 //! `r'' = R'' + A(phi'' I~ ubar + S_hat p'' - phi'^2 ubar + 2 phi' I~ S_hat p')`):
 //! `Qv_R = A (phi'^2 (I1 + I2 p) - 2 phi' I~ I2 p')`, `Qv_phi = -2 phi' (I4 + p^T M_ff) p'`,
@@ -192,7 +192,7 @@ impl RodBody for FfrRod {
         for i in 0..n {
             m_phiphi += 2.0 * ig.i4[i] * p[i];
             for j in 0..n {
-                m_phiphi += p[i] * ig.m_ff[(i, j)] * p[j];
+                m_phiphi += p[i] * ig.m_uu[(i, j)] * p[j];
             }
         }
         m[(2, 2)] = m_phiphi;
@@ -236,7 +236,7 @@ impl RodBody for FfrRod {
         for j in 0..n {
             let mut row = ig.i4[j];
             for i in 0..n {
-                row += p[i] * ig.m_ff[(i, j)];
+                row += p[i] * ig.m_uu[(i, j)];
             }
             qphi -= 2.0 * w * row * pd[j];
         }
@@ -250,7 +250,7 @@ impl RodBody for FfrRod {
             // Qv_p = w^2 (I4 + M_ff p) - 2 w S~ p'.
             let mut fi = w * w * ig.i4[i];
             for j in 0..n {
-                fi += w * w * ig.m_ff[(i, j)] * p[j] - 2.0 * w * ig.s_tilde[(i, j)] * pd[j];
+                fi += w * w * ig.m_uu[(i, j)] * p[j] - 2.0 * w * ig.s_tilde[(i, j)] * pd[j];
             }
             fi -= self.stiffness[i] * p[i] + self.damping[i] * pd[i];
             if let Some([n0, n1, n2]) = kg {
@@ -270,7 +270,7 @@ impl RodBody for FfrRod {
             out[(3 + i, 3 + i)] += c_k * self.stiffness[i] + c_d * self.damping[i];
             for j in 0..n {
                 // -d(Qv_p)/dp = -w^2 M_ff (centrifugal softening); -d(Qv_p)/dp' = 2 w S~ (gyroscopic).
-                out[(3 + i, 3 + j)] += -c_k * w * w * ig.m_ff[(i, j)] + c_d * 2.0 * w * ig.s_tilde[(i, j)];
+                out[(3 + i, 3 + j)] += -c_k * w * w * ig.m_uu[(i, j)] + c_d * 2.0 * w * ig.s_tilde[(i, j)];
             }
         }
     }

@@ -28,11 +28,11 @@ impl ModeSelection {
                 Ok((0..*n).collect())
             }
             ModeSelection::Cutoff { max_hz } => {
-                if !(max_hz.is_finite() && *max_hz >= 0.0) {
+                if max_hz.is_nan() || *max_hz < 0.0 {
                     return Err(ModelError::InvalidParameter {
                         name: "mode cutoff frequency",
                         value: *max_hz,
-                        allowed: "a finite value >= 0 Hz".into(),
+                        allowed: "a value >= 0 Hz (infinity keeps all)".into(),
                     });
                 }
                 Ok((0..available).filter(|&i| frequencies_hz[i] <= *max_hz).collect())

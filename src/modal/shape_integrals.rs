@@ -41,8 +41,12 @@ pub struct ShapeIntegrals {
     pub i5: DVector<f64>,
     /// Rotary coupling row sum J_i Theta_i (n); zero for consistent mass.
     pub i_rot: DVector<f64>,
-    /// M_ff = int rho S_hat^T S_hat (n x n); the identity for mass-normalized modes.
+    /// M_ff = int rho S_hat^T S_hat (n x n) plus, for lumped mass, the nodal rotary inertia;
+    /// the identity for mass-normalized modes.
     pub m_ff: DMatrix<f64>,
+    /// The translational part of M_ff (no rotary inertia): the quadratic terms of `M_phiphi`,
+    /// `Qv_phi` and `Qv_p` come from `int rho ubar.ubar` and use this one.
+    pub m_uu: DMatrix<f64>,
     /// S~ = int rho S_hat^T I~ S_hat (n x n, skew).
     pub s_tilde: DMatrix<f64>,
     /// Geometric stiffness moments G_0, G_1, G_2 (n x n each), chord-relative slopes.
@@ -76,6 +80,7 @@ impl ShapeIntegrals {
         let mut s_tilde = DMatrix::zeros(n, n);
         let mut g = [DMatrix::zeros(n, n), DMatrix::zeros(n, n), DMatrix::zeros(n, n)];
         let mut rotary_total = 0.0;
+        let mut m_uu = DMatrix::zeros(n, n);
 
         // The chord rotation row (v(L) - v(0)) / L.
         let s_b = point_shape(modes, 0.0);
@@ -93,10 +98,11 @@ impl ShapeIntegrals {
                 i4[j] += w * x * a[(0, j)];
                 i5[j] -= w * x * b[(0, j)];
             }
-            // S^T I~ S = -a^T b + b^T a.
+            // S^T I~ S = -a^T b + b^T a; S^T S = a^T a + b^T b.
             for i in 0..n {
                 for j in 0..n {
                     s_tilde[(i, j)] += w * (b[(0, i)] * a[(0, j)] - a[(0, i)] * b[(0, j)]);
+                    m_uu[(i, j)] += w * (a[(0, i)] * a[(0, j)] + b[(0, i)] * b[(0, j)]);
                 }
             }
         };
@@ -168,6 +174,7 @@ impl ShapeIntegrals {
             i5,
             i_rot,
             m_ff,
+            m_uu,
             s_tilde,
             g,
             s_b,
