@@ -1,0 +1,57 @@
+//! Benchmarks (issue 2, 3): preprocessing of a 64-element rod; two revolutions of the benchmark
+//! slider-crank at 150 rad/s with the settings that meet 0.5 % peak-deflection accuracy.
+//! Run: `cargo bench --bench core`.
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use flexrod::beam::RodProperties;
+use flexrod::ffr::FfrRod;
+use flexrod::modal::{ComponentModes, ModeSelection, ReferenceConditions};
+use flexrod::scene::MassKind;
+use flexrod::{CrankInput, Scene, Simulation};
+use std::hint::black_box;
+
+fn preprocessing(c: &mut Criterion) {
+    c.bench_function("preprocess 64 elements (modes + shape integrals, 8 modes)", |b| {
+        b.iter(|| {
+            let m = ComponentModes::new(
+                RodProperties::seed001_benchmark(),
+                black_box(64),
+                ReferenceConditions::SimplySupported,
+                MassKind::Consistent,
+                &ModeSelection::Count(8),
+            )
+            .unwrap();
+            black_box(FfrRod::new(m, 0.0, true))
+        })
+    });
+}
+
+fn two_revolutions(c: &mut Criterion, name: &str, scene: Scene, comm_step: f64) {
+    let w = 150.0;
+    let stop = 4.0 * std::f64::consts::PI / w;
+    let mut sim = Simulation::new(&scene).unwrap();
+    c.bench_function(name, |b| {
+        b.iter(|| {
+            sim.start(0.0, CrankInput { angle: 0.0, speed: w, acceleration: 0.0 }, 0.0).unwrap();
+            let n = (stop / comm_step).round() as usize;
+            let mut peak: f64 = 0.0;
+            for _ in 0..n {
+                sim.advance(comm_step).unwrap();
+                peak = peak.max(sim.outputs().deflection_rel.abs());
+            }
+            black_box(peak)
+        })
+    });
+}
+
+fn revolutions(c: &mut Criterion) {
+    let mut fast = Scene::benchmark();
+    fast.rod.modes = 2;
+    fast.solver.step = 3e-4;
+    two_revolutions(c, "2 revolutions at 150 rad/s, 8 el, 2 modes, h 3e-4 (peak within 0.4 %)", fast.clone(), 3e-4);
+    two_revolutions(c, "2 revolutions at 150 rad/s, outputs only at the end", fast, 4.0 * std::f64::consts::PI / 150.0);
+    two_revolutions(c, "2 revolutions at 150 rad/s, default scene (8 el, 4 modes, h 1e-4)", Scene::benchmark(), 1e-4);
+}
+
+criterion_group!(benches, preprocessing, revolutions);
+criterion_main!(benches);
