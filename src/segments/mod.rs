@@ -1,15 +1,51 @@
-//! The finite segment rod (seed 002): rigid segments joined by rotational springs.
+//! The finite segment rod (seed 002, `../shared/seeds/002_e6c2c81d944c25fc.txt`; physics.md,
+//! "Rod model 2: finite segments"): `N` rigid segments joined by revolute joints with
+//! rotational springs and dampers, optionally with prismatic joints carrying axial springs.
+//!
+//! - [`rod`]: the body ([`SegmentRod`]): coordinates, mass matrix, quadratic velocity vector,
+//!   joint forces, points, energies (the derivation is in its module documentation);
+//! - [`linear`]: the chain linearized about the straight configuration: pinned-pinned
+//!   bending and axial frequencies, and the free-free axial chain of seed 002's convergence
+//!   table ([`axial_chain_frequencies_hz`]).
+
+pub mod linear;
+pub mod rod;
+
+pub use linear::axial_chain_frequencies_hz;
+pub use rod::SegmentRod;
 
 use crate::beam::RodProperties;
 use crate::error::ModelError;
 use crate::mechanism::RodBody;
 use crate::scene::Scene;
 
-/// Build the segment rod of a scene.
-pub fn build(_scene: &Scene, _props: RodProperties) -> Result<Box<dyn RodBody>, ModelError> {
-    Err(ModelError::InvalidParameter {
-        name: "rod.model",
-        value: 1.0,
-        allowed: "ffr (the segments model is not built yet)".into(),
-    })
+/// Smallest and largest number of segments (`rod.elements`) the segment rod accepts.
+pub const SEGMENT_RANGE: (usize, usize) = (1, 512);
+
+/// Check the number of segments `n` (`rod.elements`) against [`SEGMENT_RANGE`].
+pub fn validate_segments(n: usize) -> Result<(), ModelError> {
+    let (lo, hi) = SEGMENT_RANGE;
+    if (lo..=hi).contains(&n) {
+        Ok(())
+    } else {
+        Err(ModelError::InvalidParameter {
+            name: "rod.elements",
+            value: n as f64,
+            allowed: format!("{lo}..={hi} rigid segments (rod.model = \"segments\")"),
+        })
+    }
+}
+
+/// Build the segment rod of a scene: `rod.elements` segments, `rod.damping_ratio` for the
+/// joint dampers, `rod.axial_springs` for the prismatic joints. `rod.reference`, `rod.modes`,
+/// `rod.mass` and `rod.axial_stiffening` do not apply (the chain is geometrically exact, so
+/// the axial force acts on bending without a separate geometric stiffness).
+pub fn build(scene: &Scene, props: RodProperties) -> Result<Box<dyn RodBody>, ModelError> {
+    let rod = &scene.rod;
+    Ok(Box::new(SegmentRod::new(
+        props,
+        rod.elements,
+        rod.damping_ratio,
+        rod.axial_springs,
+    )?))
 }

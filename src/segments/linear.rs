@@ -1,0 +1,155 @@
+//! The segment chain linearized about the straight, resting configuration
+//! (`theta_k = 0`, `s_j = 0`): `M_0 q'' + K q = 0` with `M_0 = M(q = 0)` of the body itself
+//! ([`SegmentRod`]'s mass matrix) and `K` the joint springs. About this state the bending
+//! (angles) and axial (slides, `x_B`) coordinates decouple (`M_{theta s} ~ sin(theta_j - theta_i)
+//! = 0`, `M_{B theta} ~ n_j` is along y, `M_{B s} ~ e_j` along x).
+//!
+//! End conditions are eliminated with explicit null-space bases `q = T r`, and
+//! `T^T K T a = omega^2 T^T M_0 T a` is solved by
+//! [`generalized_symmetric_eigen`](crate::modal::eigen::generalized_symmetric_eigen):
+//! - pinned-pinned bending (the mechanism's end conditions, both ends pinned): `x_B = y_B = 0`
+//!   and `y_C = l sum_k theta_k = 0`, so `theta_{N-1} = -sum_{k<N-1} theta_k` (N - 1 modes);
+//! - fixed-fixed axial (both pins also hold the ends along the rod): `x_B = 0`,
+//!   `x_C - L = sum_j s_j = 0` (N - 2 modes);
+//! - free-free axial (seed 002's convergence table, "Illustrations/convergence"): `x_B` and all
+//!   `s_j` free; the rigid translation (`omega = 0`) is dropped (N - 1 modes).
+//!
+//! The free-free axial chain is `N` masses `m = rho A l` joined by `N - 1` springs
+//! `k = E A / l`, with the closed form `f_n = (1/pi) sqrt(k/m) sin(n pi / (2N))`, `n = 1..N-1`
+//! (tests/segments.rs checks it to 1e-9).
+
+use faer::Mat;
+
+use super::rod::SegmentRod;
+use crate::beam::RodProperties;
+use crate::error::ModelError;
+use crate::mechanism::RodBody;
+use crate::modal::eigen::generalized_symmetric_eigen;
+
+/// `M_0` and the spring constants of a chain.
+pub(crate) struct LinearizedChain {
+    mass: Mat<f64>,
+    n_seg: usize,
+    axial: bool,
+    k_rot: f64,
+    k_ax: f64,
+}
+
+/// `T^T A T` for a dense `a` (n x n) and `t` (n x r).
+fn project(a: &Mat<f64>, t: &Mat<f64>) -> Mat<f64> {
+    t.transpose() * a * t
+}
+
+/// Natural frequencies in Hz from `K a = omega^2 M a`, ascending; eigenvalues below
+/// `drop_below` (rigid-body modes, in (rad/s)^2) are left out.
+fn frequencies(
+    k: &Mat<f64>,
+    m: &Mat<f64>,
+    drop_below: Option<f64>,
+) -> Result<Vec<f64>, ModelError> {
+    let e = generalized_symmetric_eigen(k, m)?;
+    Ok(e.values
+        .iter()
+        .filter(|&&w2| drop_below.is_none_or(|tol| w2 > tol))
+        .map(|&w2| w2.max(0.0).sqrt() / (2.0 * std::f64::consts::PI))
+        .collect())
+}
+
+impl LinearizedChain {
+    pub(crate) fn new(rod: &SegmentRod) -> LinearizedChain {
+        let n = rod.n_coordinates();
+        let q0 = vec![0.0; n];
+        let mut mass = Mat::zeros(n, n);
+        rod.mass(&q0, mass.as_mut());
+        let (k_rot, k_ax) = rod.spring_constants();
+        LinearizedChain {
+            mass,
+            n_seg: rod.n_segments(),
+            axial: rod.has_axial_springs(),
+            k_rot,
+            k_ax,
+        }
+    }
+
+    /// Pinned-pinned bending frequencies, Hz (N - 1 of them).
+    pub(crate) fn pinned_bending_hz(&self) -> Result<Vec<f64>, ModelError> {
+        let n = self.n_seg;
+        if n < 2 {
+            return Ok(Vec::new());
+        }
+        let r = n - 1;
+        // Angle block of M_0 and the tridiagonal joint stiffness.
+        let m = Mat::from_fn(n, n, |i, j| self.mass[(2 + i, 2 + j)]);
+        let k = Mat::from_fn(n, n, |i, j| {
+            let d = if i == 0 || i == n - 1 { 1.0 } else { 2.0 };
+            if i == j {
+                d * self.k_rot
+            } else if i.abs_diff(j) == 1 {
+                -self.k_rot
+            } else {
+                0.0
+            }
+        });
+        // theta_j = r_j (j < N-1), theta_{N-1} = -sum r_j.
+        let t = Mat::from_fn(n, r, |i, j| {
+            if i == j {
+                1.0
+            } else if i == n - 1 {
+                -1.0
+            } else {
+                0.0
+            }
+        });
+        frequencies(&project(&k, &t), &project(&m, &t), None)
+    }
+
+    /// Fixed-fixed axial frequencies, Hz (N - 2 of them; needs axial springs).
+    pub(crate) fn pinned_axial_hz(&self) -> Result<Vec<f64>, ModelError> {
+        let n = self.n_seg;
+        if !self.axial || n < 3 {
+            return Ok(Vec::new());
+        }
+        let ns = n - 1;
+        let s0 = 2 + n;
+        let m = Mat::from_fn(ns, ns, |i, j| self.mass[(s0 + i, s0 + j)]);
+        let k = Mat::from_fn(ns, ns, |i, j| if i == j { self.k_ax } else { 0.0 });
+        let t = Mat::from_fn(ns, ns - 1, |i, j| {
+            if i == j {
+                1.0
+            } else if i == ns - 1 {
+                -1.0
+            } else {
+                0.0
+            }
+        });
+        frequencies(&project(&k, &t), &project(&m, &t), None)
+    }
+
+    /// Free-free axial frequencies, Hz (N - 1 of them; needs axial springs).
+    pub(crate) fn free_free_axial_hz(&self) -> Result<Vec<f64>, ModelError> {
+        let n = self.n_seg;
+        if !self.axial || n < 2 {
+            return Ok(Vec::new());
+        }
+        // Coordinates [x_B, s_0..s_{N-2}].
+        let idx = |i: usize| if i == 0 { 0 } else { 2 + n + (i - 1) };
+        let m = Mat::from_fn(n, n, |i, j| self.mass[(idx(i), idx(j))]);
+        let k = Mat::from_fn(n, n, |i, j| if i == j && i > 0 { self.k_ax } else { 0.0 });
+        // The rigid mode has omega^2 ~ round-off; the lowest elastic one is
+        // (2 sin(pi/2N))^2 k/m >= (pi/N)^2 k/m (1 - small), far above the tolerance.
+        let k_over_m = self.k_ax / self.mass[(0, 0)] * n as f64;
+        let tol = 1e-6 * (std::f64::consts::PI / n as f64).powi(2) * k_over_m;
+        frequencies(&k, &m, Some(tol))
+    }
+}
+
+/// Axial frequencies of the free-free segment chain of a rod (seed 002, table II), Hz,
+/// ascending: `n_segments` rigid segments with axial springs `E A / l` in prismatic joints,
+/// from the linearized [`SegmentRod`] (its own mass matrix and springs). `N - 1` values.
+pub fn axial_chain_frequencies_hz(
+    props: RodProperties,
+    n_segments: usize,
+) -> Result<Vec<f64>, ModelError> {
+    let rod = SegmentRod::new(props, n_segments, 0.0, true)?;
+    LinearizedChain::new(&rod).free_free_axial_hz()
+}
