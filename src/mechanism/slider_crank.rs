@@ -24,7 +24,7 @@ use crate::scene::{RodModelKind, Scene};
 use crate::simulation::CrankInput;
 
 /// |v_mid| / L above which the small-deformation assumption is flagged.
-pub const LARGE_DEFLECTION_WARNING: f64 = 0.02;
+pub const LARGE_DEFLECTION_WARNING: f64 = 0.05;
 
 /// The slider-crank and its preprocessed rod.
 pub struct Mechanism {
