@@ -170,12 +170,13 @@ def crank_input(t, start=0.0, omega0=150.0, accel=0.0):
     return 0.0 + omega0 * s + 0.5 * accel * s * s, omega0 + accel * s
 
 
-def run_loop(slave, times, accel=0.0, derivatives=True, omega0=150.0, between=None):
-    """Set the crank input at every point (and its derivative), step; outputs per point."""
+def run_loop(slave, times, accel=0.0, derivatives=True, omega0=150.0, between=None, start=0.0):
+    """Set the crank input of the law started at `start` at every point (and its
+    derivative), step; outputs per point (the first row before any step)."""
     out = [slave.outputs()]
     for k in range(len(times) - 1):
         t, h = times[k], times[k + 1] - times[k]
-        angle, speed = crank_input(t, times[0], omega0, accel)
+        angle, speed = crank_input(t, start, omega0, accel)
         slave.set(crank__angle=angle, crank__speed=speed)
         if derivatives and accel:
             slave.fmu.setRealInputDerivatives([slave.vr["crank.speed"]], [1], [accel])
