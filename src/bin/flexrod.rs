@@ -1,13 +1,16 @@
 //! `flexrod`: the command-line tool of the core.
 //!
 //! - `flexrod modes [SCENE] [--csv FILE]`: the rod's frequency table and mode shapes.
-//! - `flexrod simulate [SCENE] [--speed W] [--revolutions N] [--ramp T] [--input CSV] [--out CSV]`:
-//!   simulate the slider-crank and write every output at each communication step.
+//! - `flexrod simulate [SCENE] [--speed W] [--revolutions N] [--ramp T] [--input CSV] [--out CSV] [--plot PREFIX]`:
+//!   simulate the slider-crank, write every output at each communication step, and plot
+//!   v_mid/L and the pin forces against the crank angle (PREFIX_deflection.svg, PREFIX_forces.svg).
 
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
+
+mod svg_plot;
 
 use flexrod::modal::shape_integrals::point_shape;
 use flexrod::modal::{ComponentModes, ModeSelection, ReferenceConditions};
@@ -19,7 +22,7 @@ fn main() -> ExitCode {
     let result = match args.first().map(String::as_str) {
         Some("modes") => modes(&args[1..]),
         Some("simulate") => simulate(&args[1..]),
-        _ => Err("usage: flexrod modes [SCENE.toml] [--csv FILE] | flexrod simulate [SCENE.toml] [--speed RAD_PER_S] [--revolutions N] [--ramp SECONDS] [--input CSV] [--out CSV]".to_string()),
+        _ => Err("usage: flexrod modes [SCENE.toml] [--csv FILE] | flexrod simulate [SCENE.toml] [--speed RAD_PER_S] [--revolutions N] [--ramp SECONDS] [--input CSV] [--out CSV] [--plot PREFIX]".to_string()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -212,6 +215,32 @@ fn simulate(args: &[String]) -> Result<(), String> {
             .unwrap();
         }
         println!("outputs written to {path}");
+    }
+    if let Some(prefix) = flag(&flags, "plot") {
+        use svg_plot::{line_plot, Curve};
+        let pts = |f: &dyn Fn(&flexrod::Outputs) -> f64| rows.iter().map(|(_, i, o)| (i.angle, f(o))).collect::<Vec<_>>();
+        let deflection = line_plot(
+            &format!("{}: midpoint deflection", scene.name),
+            "crank angle (rad)",
+            "v_mid / L",
+            &[Curve { label: "v_mid/L", colour: "#1f77b4", points: pts(&|o| o.deflection_rel) }],
+        );
+        let forces = line_plot(
+            &format!("{}: pin forces (rod on pin)", scene.name),
+            "crank angle (rad)",
+            "force (N)",
+            &[
+                Curve { label: "pin B x", colour: "#1f77b4", points: pts(&|o| o.pin_b_force[0]) },
+                Curve { label: "pin B y", colour: "#ff7f0e", points: pts(&|o| o.pin_b_force[1]) },
+                Curve { label: "pin C x", colour: "#2ca02c", points: pts(&|o| o.pin_c_force[0]) },
+                Curve { label: "pin C y", colour: "#d62728", points: pts(&|o| o.pin_c_force[1]) },
+            ],
+        );
+        for (name, svg) in [("deflection", deflection), ("forces", forces)] {
+            let path = format!("{prefix}_{name}.svg");
+            std::fs::write(&path, svg).map_err(|e| format!("{path}: {e}"))?;
+            println!("plot written to {path}");
+        }
     }
     Ok(())
 }
