@@ -15,7 +15,7 @@
 //!
 //! The core's bytes carry their own magic, version and model fingerprint.
 
-use super::instance::{Experiment, Inputs};
+use super::inputs::{Experiment, Inputs};
 use super::state_machine::MachineState;
 use super::status::Status;
 use crate::scene::Scene;

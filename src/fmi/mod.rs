@@ -13,12 +13,14 @@
 //! the get/set dispatch, `modelDescription.xml` ([`description`]) and its GUID. At
 //! `fmi2Instantiate` the library reads `resources/scene.toml` ([`resource`]), rebuilds the
 //! table and the description, and accepts the importer's GUID only if it matches.
-//! Saved states and their byte form: [`fmu_state`].
+//! The inputs and their law between communication points: [`inputs`]; saved states and
+//! their byte form: `fmu_state`.
 
 pub mod description;
 pub mod ffi;
 mod fmu_state;
 mod guard;
+pub mod inputs;
 pub mod instance;
 pub mod logging;
 pub mod resource;
