@@ -20,6 +20,11 @@
 //! is the quadratic `N = n0 + n1 s + n2 s^2`. Its geometric stiffness on the chord-relative
 //! bending slopes, `K_G = n0 G_0 + n1 G_1 + n2 G_2`, adds `-K_G p` to `Q_p`. It holds with or
 //! without the axial modes, so a handful of bending modes carries the stiffening (no locking).
+//! The elastic motion adds to the axial acceleration (the x component of the bracket in
+//! `r''` above): `a_x += u'' - phi'^2 u - phi'' v - 2 phi' v'` (Coriolis), so
+//! `N(s) += -rho A sum_j [U_j(s) (p''_j - phi'^2 p_j) - V_j(s) (phi'' p_j + 2 phi' p'_j)]` with the
+//! tail integrals `U_j, V_j` of the mode shapes, and `K_G += sum_j (...) H_j` (see
+//! [`ShapeIntegrals::h_u`]). At 150 rad/s the Coriolis part is about 15 % of the axial force.
 
 use faer::MatMut;
 use nalgebra::{DMatrix, Vector2};
@@ -255,7 +260,13 @@ impl RodBody for FfrRod {
             fi -= self.stiffness[i] * p[i] + self.damping[i] * pd[i];
             if let Some([n0, n1, n2]) = kg {
                 for j in 0..n {
-                    fi -= (n0 * ig.g[0][(i, j)] + n1 * ig.g[1][(i, j)] + n2 * ig.g[2][(i, j)]) * p[j];
+                    let mut kij = n0 * ig.g[0][(i, j)] + n1 * ig.g[1][(i, j)] + n2 * ig.g[2][(i, j)];
+                    for k in 0..n {
+                        let cu = a[3 + k] - w * w * p[k];
+                        let cv = a[2] * p[k] + 2.0 * w * pd[k];
+                        kij -= self.rho_a * (cu * ig.h_u[k][(i, j)] - cv * ig.h_v[k][(i, j)]);
+                    }
+                    fi -= kij * p[j];
                 }
             }
             f[3 + i] = fi;
