@@ -11,19 +11,22 @@ use flexrod::{CrankInput, Scene, Simulation};
 use std::hint::black_box;
 
 fn preprocessing(c: &mut Criterion) {
-    c.bench_function("preprocess 64 elements (modes + shape integrals, 8 modes)", |b| {
-        b.iter(|| {
-            let m = ComponentModes::new(
-                RodProperties::seed001_benchmark(),
-                black_box(64),
-                ReferenceConditions::SimplySupported,
-                MassKind::Consistent,
-                &ModeSelection::Count(8),
-            )
-            .unwrap();
-            black_box(FfrRod::new(m, 0.0, true))
-        })
-    });
+    c.bench_function(
+        "preprocess 64 elements (modes + shape integrals, 8 modes)",
+        |b| {
+            b.iter(|| {
+                let m = ComponentModes::new(
+                    RodProperties::seed001_benchmark(),
+                    black_box(64),
+                    ReferenceConditions::SimplySupported,
+                    MassKind::Consistent,
+                    &ModeSelection::Count(8),
+                )
+                .unwrap();
+                black_box(FfrRod::new(m, 0.0, true))
+            })
+        },
+    );
 }
 
 fn two_revolutions(c: &mut Criterion, name: &str, scene: Scene, comm_step: f64) {
@@ -32,7 +35,16 @@ fn two_revolutions(c: &mut Criterion, name: &str, scene: Scene, comm_step: f64) 
     let mut sim = Simulation::new(&scene).unwrap();
     c.bench_function(name, |b| {
         b.iter(|| {
-            sim.start(0.0, CrankInput { angle: 0.0, speed: w, acceleration: 0.0 }, 0.0).unwrap();
+            sim.start(
+                0.0,
+                CrankInput {
+                    angle: 0.0,
+                    speed: w,
+                    acceleration: 0.0,
+                },
+                0.0,
+            )
+            .unwrap();
             let n = (stop / comm_step).round() as usize;
             let mut peak: f64 = 0.0;
             for _ in 0..n {
@@ -48,9 +60,24 @@ fn revolutions(c: &mut Criterion) {
     let mut fast = Scene::benchmark();
     fast.rod.modes = 3;
     fast.solver.step = 3e-4;
-    two_revolutions(c, "2 revolutions at 150 rad/s, 8 el, 3 modes, h 3e-4 (peak within 0.3 %)", fast.clone(), 3e-4);
-    two_revolutions(c, "2 revolutions at 150 rad/s, outputs only at the end", fast, 4.0 * std::f64::consts::PI / 150.0);
-    two_revolutions(c, "2 revolutions at 150 rad/s, default scene (8 el, 4 modes, h 1e-4)", Scene::benchmark(), 1e-4);
+    two_revolutions(
+        c,
+        "2 revolutions at 150 rad/s, 8 el, 3 modes, h 3e-4 (peak within 0.3 %)",
+        fast.clone(),
+        3e-4,
+    );
+    two_revolutions(
+        c,
+        "2 revolutions at 150 rad/s, outputs only at the end",
+        fast,
+        4.0 * std::f64::consts::PI / 150.0,
+    );
+    two_revolutions(
+        c,
+        "2 revolutions at 150 rad/s, default scene (8 el, 4 modes, h 1e-4)",
+        Scene::benchmark(),
+        1e-4,
+    );
 }
 
 criterion_group!(benches, preprocessing, revolutions);

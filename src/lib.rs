@@ -13,6 +13,9 @@
 //!
 //! Physics: `../shared/design/physics.md`; sources: the seeds in `../shared/seeds/`.
 
+// Index loops are the natural notation for the matrix formulas of the papers.
+#![allow(clippy::needless_range_loop)]
+
 pub mod beam;
 pub mod error;
 pub mod ffr;

@@ -165,7 +165,9 @@ impl Simulation {
             message: format!("serialized state rejected: {m}"),
         };
         if bytes.len() < 20 || &bytes[..8] != SNAPSHOT_MAGIC {
-            return Err(bad("it does not start with this FMU's header (foreign or truncated bytes)"));
+            return Err(bad(
+                "it does not start with this FMU's header (foreign or truncated bytes)",
+            ));
         }
         let version = u32::from_le_bytes(bytes[8..12].try_into().unwrap());
         if version != SNAPSHOT_VERSION {
@@ -192,7 +194,10 @@ fn check_input(input: CrankInput, slider_force: f64) -> Result<(), ModelError> {
     let checks: [(&'static str, f64); 4] = [
         ("crank.angle", input.angle),
         ("crank.speed", input.speed),
-        ("crank.speed derivative (crank acceleration)", input.acceleration),
+        (
+            "crank.speed derivative (crank acceleration)",
+            input.acceleration,
+        ),
         ("slider.force", slider_force),
     ];
     for (name, value) in checks {

@@ -8,7 +8,11 @@ use flexrod::{CrankInput, Scene, Simulation};
 const W: f64 = 150.0;
 
 fn reference() -> Vec<(f64, f64)> {
-    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/exudyn_ancf_150rad_s.csv")).unwrap();
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/exudyn_ancf_150rad_s.csv"
+    ))
+    .unwrap();
     text.lines()
         .filter(|l| !l.starts_with('#') && !l.starts_with('t'))
         .map(|l| {
@@ -21,11 +25,25 @@ fn reference() -> Vec<(f64, f64)> {
 /// v_mid/L at t = k * 1e-4 s for two revolutions.
 fn simulate(scene: &Scene, dt: f64) -> Vec<(f64, f64)> {
     let mut sim = Simulation::new(scene).unwrap();
-    sim.start(0.0, CrankInput { angle: 0.0, speed: W, acceleration: 0.0 }, 0.0).unwrap();
+    sim.start(
+        0.0,
+        CrankInput {
+            angle: 0.0,
+            speed: W,
+            acceleration: 0.0,
+        },
+        0.0,
+    )
+    .unwrap();
     let n = (4.0 * std::f64::consts::PI / W / dt).floor() as usize;
     let mut out = vec![(0.0, 0.0)];
     for k in 0..n {
-        sim.set_input(CrankInput { angle: W * k as f64 * dt, speed: W, acceleration: 0.0 }).unwrap();
+        sim.set_input(CrankInput {
+            angle: W * k as f64 * dt,
+            speed: W,
+            acceleration: 0.0,
+        })
+        .unwrap();
         sim.advance(dt).unwrap();
         out.push((sim.time(), sim.outputs().deflection_rel));
     }
@@ -51,18 +69,33 @@ fn compare(rows: &[(f64, f64)], reference: &[(f64, f64)], dt: f64) -> (f64, f64)
 fn stiffened_modes_match_the_geometrically_exact_peak() {
     let reference = reference();
     let cases = [
-        ("default scene (8 el, 4 modes, h 1e-4)", Scene::benchmark(), 1e-4, true),
-        ("benchmark setting (8 el, 3 modes, h 3e-4)", {
-            let mut s = Scene::benchmark();
-            s.rod.modes = 3;
-            s.solver.step = 3e-4;
-            s
-        }, 3e-4, true),
-        ("linear modes (8 el, 4 modes, h 1e-4)", {
-            let mut s = Scene::benchmark();
-            s.rod.axial_stiffening = false;
-            s
-        }, 1e-4, false),
+        (
+            "default scene (8 el, 4 modes, h 1e-4)",
+            Scene::benchmark(),
+            1e-4,
+            true,
+        ),
+        (
+            "benchmark setting (8 el, 3 modes, h 3e-4)",
+            {
+                let mut s = Scene::benchmark();
+                s.rod.modes = 3;
+                s.solver.step = 3e-4;
+                s
+            },
+            3e-4,
+            true,
+        ),
+        (
+            "linear modes (8 el, 4 modes, h 1e-4)",
+            {
+                let mut s = Scene::benchmark();
+                s.rod.axial_stiffening = false;
+                s
+            },
+            1e-4,
+            false,
+        ),
     ];
     for (name, scene, dt, stiffened) in cases {
         let rows = simulate(&scene, dt);
@@ -73,15 +106,26 @@ fn stiffened_modes_match_the_geometrically_exact_peak() {
             let coarse: Vec<(f64, f64)> = reference.iter().step_by(3).cloned().collect();
             let ref_peak = reference.iter().map(|r| r.1.abs()).fold(0.0, f64::max);
             let peak = rows.iter().map(|r| r.1.abs()).fold(0.0, f64::max);
-            let worst = coarse.iter().zip(&rows).map(|(a, b)| (a.1 - b.1).abs()).fold(0.0, f64::max);
+            let worst = coarse
+                .iter()
+                .zip(&rows)
+                .map(|(a, b)| (a.1 - b.1).abs())
+                .fold(0.0, f64::max);
             (peak / ref_peak - 1.0, worst / ref_peak)
         };
-        println!("{name}: peak error {:+.3} %, max pointwise error {:.2} % of the peak", 100.0 * peak_error, 100.0 * pointwise);
+        println!(
+            "{name}: peak error {:+.3} %, max pointwise error {:.2} % of the peak",
+            100.0 * peak_error,
+            100.0 * pointwise
+        );
         if stiffened {
             assert!(peak_error.abs() < 0.005, "{name}: {peak_error}");
             assert!(pointwise < 0.15, "{name}: {pointwise}");
         } else {
-            assert!(peak_error > 0.08 && peak_error < 0.12, "{name}: linear overshoot {peak_error}");
+            assert!(
+                peak_error > 0.08 && peak_error < 0.12,
+                "{name}: linear overshoot {peak_error}"
+            );
         }
     }
 }

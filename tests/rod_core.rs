@@ -17,7 +17,16 @@ fn modes(n: usize, reference: ReferenceConditions, kind: MassKind, count: usize)
 }
 
 fn all_modes(n: usize, reference: ReferenceConditions) -> ComponentModes {
-    ComponentModes::new(bench(), n, reference, MassKind::Consistent, &ModeSelection::Cutoff { max_hz: f64::INFINITY }).unwrap()
+    ComponentModes::new(
+        bench(),
+        n,
+        reference,
+        MassKind::Consistent,
+        &ModeSelection::Cutoff {
+            max_hz: f64::INFINITY,
+        },
+    )
+    .unwrap()
 }
 
 /// A tiny deterministic generator for property tests (xorshift).
@@ -45,16 +54,27 @@ fn invariants_mass_first_and_second_moments() {
         let (l, xb) = (p.length, ig.x_b);
         assert!((ig.mass - p.density * p.area * l).abs() < 1e-15);
         // I1 = m (x_b + L/2), I3 = rho A ((x_b + L)^3 - x_b^3) / 3.
-        assert!((ig.i1[0] - ig.mass * (xb + 0.5 * l)).abs() < 1e-15, "{reference:?}");
+        assert!(
+            (ig.i1[0] - ig.mass * (xb + 0.5 * l)).abs() < 1e-15,
+            "{reference:?}"
+        );
         assert!(ig.i1[1].abs() < 1e-18);
         let i3 = p.mass_per_length() * ((xb + l).powi(3) - xb.powi(3)) / 3.0;
-        assert!((ig.i3 - i3).abs() < 1e-14 * i3, "{reference:?}: {} vs {i3}", ig.i3);
+        assert!(
+            (ig.i3 - i3).abs() < 1e-14 * i3,
+            "{reference:?}: {} vs {i3}",
+            ig.i3
+        );
         // M_ff = I for mass-normalized modes; S~ skew.
         let n = ig.m_ff.nrows();
         for i in 0..n {
             for j in 0..n {
                 let id = if i == j { 1.0 } else { 0.0 };
-                assert!((ig.m_ff[(i, j)] - id).abs() < 1e-10, "M_ff[{i},{j}] = {}", ig.m_ff[(i, j)]);
+                assert!(
+                    (ig.m_ff[(i, j)] - id).abs() < 1e-10,
+                    "M_ff[{i},{j}] = {}",
+                    ig.m_ff[(i, j)]
+                );
                 assert!((ig.s_tilde[(i, j)] + ig.s_tilde[(j, i)]).abs() < 1e-14);
             }
         }
@@ -80,18 +100,26 @@ fn kinetic_energy_of_mass_matrix_equals_direct_quadrature() {
     for (reference, kind) in [
         (ReferenceConditions::SimplySupported, MassKind::Consistent),
         (ReferenceConditions::MeanAxis, MassKind::Consistent),
-        (ReferenceConditions::BodyFixed { node: 2 }, MassKind::Consistent),
+        (
+            ReferenceConditions::BodyFixed { node: 2 },
+            MassKind::Consistent,
+        ),
         (ReferenceConditions::SimplySupported, MassKind::Lumped),
     ] {
         let cm = modes(4, reference.clone(), kind, 6);
         let rod = FfrRod::new(cm.clone(), 0.0, false);
         let n = rod.n_coordinates();
         for _ in 0..20 {
-            let q: Vec<f64> = (0..n).map(|i| if i < 3 { rng.next() } else { 1e-3 * rng.next() }).collect();
+            let q: Vec<f64> = (0..n)
+                .map(|i| if i < 3 { rng.next() } else { 1e-3 * rng.next() })
+                .collect();
             let v: Vec<f64> = (0..n).map(|_| 10.0 * rng.next()).collect();
             let t_ffr = rod.kinetic_energy(&q, &v);
             let t_direct = direct_kinetic_energy(&cm, kind, &q, &v);
-            assert!((t_ffr - t_direct).abs() < 1e-12 * t_direct, "{reference:?} {kind:?}: {t_ffr} vs {t_direct}");
+            assert!(
+                (t_ffr - t_direct).abs() < 1e-12 * t_direct,
+                "{reference:?} {kind:?}: {t_ffr} vs {t_direct}"
+            );
         }
     }
 }
@@ -110,7 +138,10 @@ fn direct_kinetic_energy(cm: &ComponentModes, kind: MassKind, q: &[f64], v: &[f6
     for e in 0..mesh.n_elements {
         let tm = cm.element_shapes(e);
         let points: Vec<(f64, f64)> = match kind {
-            MassKind::Consistent => flexrod::beam::quadrature::GAUSS4.iter().map(|&(xi, w)| (xi, w * l * rho_a)).collect(),
+            MassKind::Consistent => flexrod::beam::quadrature::GAUSS4
+                .iter()
+                .map(|&(xi, w)| (xi, w * l * rho_a))
+                .collect(),
             MassKind::Lumped => vec![(0.0, 0.5 * rho_a * l), (1.0, 0.5 * rho_a * l)],
         };
         for (xi, w) in points {
@@ -142,7 +173,10 @@ fn orders(errors: &[f64]) -> Vec<f64> {
 #[test]
 fn pinned_pinned_bending_converges_at_fourth_order() {
     let p = bench();
-    let exact = |k: f64| k * k * std::f64::consts::PI / (2.0 * p.length.powi(2)) * (p.bending_rigidity() / p.mass_per_length()).sqrt();
+    let exact = |k: f64| {
+        k * k * std::f64::consts::PI / (2.0 * p.length.powi(2))
+            * (p.bending_rigidity() / p.mass_per_length()).sqrt()
+    };
     for mode in 1..=3 {
         let mut errors = Vec::new();
         for n in [4usize, 8, 16, 32] {
@@ -170,8 +204,13 @@ fn fixed_free_axial_converges_at_second_order() {
             errors.push((axial[mode - 1] - exact(mode as f64)).abs() / exact(mode as f64));
         }
         let o = orders(&errors);
-        println!("fixed-free axial mode {mode}: relative errors {errors:?}, observed orders {o:.2?}");
-        assert!(o.iter().all(|&x| (x - 2.0).abs() < 0.1), "mode {mode}: orders {o:?}");
+        println!(
+            "fixed-free axial mode {mode}: relative errors {errors:?}, observed orders {o:.2?}"
+        );
+        assert!(
+            o.iter().all(|&x| (x - 2.0).abs() < 0.1),
+            "mode {mode}: orders {o:?}"
+        );
     }
 }
 
@@ -210,24 +249,72 @@ fn bending_frequencies(m: &ComponentModes) -> Vec<f64> {
 fn bad_input_gives_typed_errors_naming_the_value() {
     let p = bench();
     for (name, props) in [
-        ("rod.youngs_modulus", RodProperties { youngs_modulus: 0.0, ..p }),
+        (
+            "rod.youngs_modulus",
+            RodProperties {
+                youngs_modulus: 0.0,
+                ..p
+            },
+        ),
         ("rod.density", RodProperties { density: -1.0, ..p }),
-        ("rod.area", RodProperties { area: f64::NAN, ..p }),
-        ("rod.area_moment", RodProperties { area_moment: -3.0, ..p }),
+        (
+            "rod.area",
+            RodProperties {
+                area: f64::NAN,
+                ..p
+            },
+        ),
+        (
+            "rod.area_moment",
+            RodProperties {
+                area_moment: -3.0,
+                ..p
+            },
+        ),
         ("rod.length", RodProperties { length: 0.0, ..p }),
     ] {
-        let e = ComponentModes::new(props, 4, ReferenceConditions::SimplySupported, MassKind::Consistent, &ModeSelection::Count(2)).unwrap_err();
+        let e = ComponentModes::new(
+            props,
+            4,
+            ReferenceConditions::SimplySupported,
+            MassKind::Consistent,
+            &ModeSelection::Count(2),
+        )
+        .unwrap_err();
         assert!(matches!(e, ModelError::InvalidParameter { .. }), "{e}");
         let text = e.to_string();
         assert!(text.contains(name) && text.contains("allowed"), "{text}");
     }
-    let e = ComponentModes::new(p, 0, ReferenceConditions::SimplySupported, MassKind::Consistent, &ModeSelection::Count(2)).unwrap_err();
+    let e = ComponentModes::new(
+        p,
+        0,
+        ReferenceConditions::SimplySupported,
+        MassKind::Consistent,
+        &ModeSelection::Count(2),
+    )
+    .unwrap_err();
     assert!(e.to_string().contains("rod.elements"), "{e}");
-    let e = ComponentModes::new(p, 2, ReferenceConditions::SimplySupported, MassKind::Consistent, &ModeSelection::Count(7)).unwrap_err();
-    assert_eq!(e, ModelError::TooManyModes { requested: 7, available: 6 });
+    let e = ComponentModes::new(
+        p,
+        2,
+        ReferenceConditions::SimplySupported,
+        MassKind::Consistent,
+        &ModeSelection::Count(7),
+    )
+    .unwrap_err();
+    assert_eq!(
+        e,
+        ModelError::TooManyModes {
+            requested: 7,
+            available: 6
+        }
+    );
     assert!(e.to_string().contains("0..=6"));
     let e = ReferenceConditions::parse("clamped_both", 4).unwrap_err();
-    assert!(e.to_string().contains("clamped_both") && e.to_string().contains("simply_supported"), "{e}");
+    assert!(
+        e.to_string().contains("clamped_both") && e.to_string().contains("simply_supported"),
+        "{e}"
+    );
     let e = ReferenceConditions::parse("body_fixed_mid", 3).unwrap_err();
     assert!(e.to_string().contains("even"), "{e}");
 }
@@ -235,7 +322,15 @@ fn bad_input_gives_typed_errors_naming_the_value() {
 #[test]
 fn general_constraint_sets_are_checked() {
     let p = bench();
-    let build = |c: Vec<usize>| ComponentModes::new(p, 4, ReferenceConditions::Constrained { coordinates: c }, MassKind::Consistent, &ModeSelection::Count(2));
+    let build = |c: Vec<usize>| {
+        ComponentModes::new(
+            p,
+            4,
+            ReferenceConditions::Constrained { coordinates: c },
+            MassKind::Consistent,
+            &ModeSelection::Count(2),
+        )
+    };
     // u_B, v_B, v_C: the simply supported set, accepted; same frequencies as the named one.
     let general = build(vec![0, 1, 13]).unwrap();
     let named = all_modes(4, ReferenceConditions::SimplySupported);
@@ -245,7 +340,10 @@ fn general_constraint_sets_are_checked() {
     assert!(e.to_string().contains("leave 1 rigid-body mode"), "{e}");
     // u_B, u_C, v_B: rotation left in and axial stretch removed.
     let e = build(vec![0, 12, 1]).unwrap_err();
-    assert!(e.to_string().contains("rigid-body") && e.to_string().contains("over-constrain"), "{e}");
+    assert!(
+        e.to_string().contains("rigid-body") && e.to_string().contains("over-constrain"),
+        "{e}"
+    );
     // Four independent constraints over-constrain.
     let e = build(vec![0, 1, 13, 2]).unwrap_err();
     assert!(e.to_string().contains("over-constrain"), "{e}");

@@ -17,7 +17,11 @@ fn scene(f: impl FnOnce(&mut Scene)) -> Scene {
 }
 
 fn constant(t: f64, w: f64) -> CrankInput {
-    CrankInput { angle: w * t, speed: w, acceleration: 0.0 }
+    CrankInput {
+        angle: w * t,
+        speed: w,
+        acceleration: 0.0,
+    }
 }
 
 /// Run at constant speed with communication step `dt` for `revolutions`; returns (t, outputs).
@@ -35,19 +39,31 @@ fn run(scene: &Scene, w: f64, dt: f64, revolutions: f64) -> (Vec<(f64, Outputs)>
 }
 
 fn peak(rows: &[(f64, Outputs)]) -> f64 {
-    rows.iter().map(|r| r.1.deflection_rel.abs()).fold(0.0, f64::max)
+    rows.iter()
+        .map(|r| r.1.deflection_rel.abs())
+        .fold(0.0, f64::max)
 }
 
 /// Largest pointwise |delta v_mid/L| relative to the reference's peak (physics.md, "How error is measured").
 fn deflection_error(rows: &[(f64, Outputs)], reference: &[(f64, Outputs)]) -> f64 {
     assert_eq!(rows.len(), reference.len());
-    let d = rows.iter().zip(reference).map(|(a, b)| (a.1.deflection_rel - b.1.deflection_rel).abs()).fold(0.0, f64::max);
+    let d = rows
+        .iter()
+        .zip(reference)
+        .map(|(a, b)| (a.1.deflection_rel - b.1.deflection_rel).abs())
+        .fold(0.0, f64::max);
     d / peak(reference)
 }
 
 /// Closed-form inverse dynamics of the rigid slider-crank (massless slider, no slider force):
 /// returns (force of rod on crank pin, force of rod on slider, crank torque).
-fn rigid_inverse_dynamics(r: f64, l: f64, m: f64, th: f64, w: f64) -> (Vector2<f64>, Vector2<f64>, f64) {
+fn rigid_inverse_dynamics(
+    r: f64,
+    l: f64,
+    m: f64,
+    th: f64,
+    w: f64,
+) -> (Vector2<f64>, Vector2<f64>, f64) {
     let (s, c) = th.sin_cos();
     let b = Vector2::new(r * c, r * s);
     let phi = (-r * s / l).asin();
@@ -129,7 +145,9 @@ fn energy_balance_undamped() {
     let dt = 1e-5;
     let mut sim = Simulation::new(&s).unwrap();
     sim.start(0.0, constant(0.0, W), 0.0).unwrap();
-    let energy = |sim: &Simulation| sim.mechanism().kinetic_energy(sim.state()) + sim.mechanism().strain_energy(sim.state());
+    let energy = |sim: &Simulation| {
+        sim.mechanism().kinetic_energy(sim.state()) + sim.mechanism().strain_energy(sim.state())
+    };
     let e0 = energy(&sim);
     let n = (2.0 * 2.0 * std::f64::consts::PI / W / dt).round() as usize;
     let mut power = vec![sim.outputs().crank_torque * W];
@@ -161,7 +179,9 @@ fn rod_momentum_balance() {
     let momentum = |sim: &Simulation| {
         let nr = sim.mechanism().rod.n_coordinates();
         let st = sim.state();
-        sim.mechanism().rod.linear_momentum(&st.dae.q[..nr], &st.dae.v[..nr])
+        sim.mechanism()
+            .rod
+            .linear_momentum(&st.dae.q[..nr], &st.dae.v[..nr])
     };
     let mut p = vec![momentum(&sim)];
     let mut f = vec![sim.outputs()];
@@ -176,7 +196,10 @@ fn rod_momentum_balance() {
     for k in 1..p.len() - 1 {
         let rate = (p[k + 1] - p[k - 1]) / (2.0 * dt);
         let o = f[k];
-        let on_rod = -Vector2::new(o.pin_b_force[0] + o.pin_c_force[0], o.pin_b_force[1] + o.pin_c_force[1]);
+        let on_rod = -Vector2::new(
+            o.pin_b_force[0] + o.pin_c_force[0],
+            o.pin_b_force[1] + o.pin_c_force[1],
+        );
         worst = worst.max((rate - on_rod).norm());
         scale = scale.max(on_rod.norm());
     }
@@ -199,7 +222,10 @@ fn converges_in_the_step_at_second_order() {
     };
     let reference = at(2.5e-6);
     let steps = [8e-5, 4e-5, 2e-5, 1e-5];
-    let errors: Vec<f64> = steps.iter().map(|&h| deflection_error(&at(h), &reference)).collect();
+    let errors: Vec<f64> = steps
+        .iter()
+        .map(|&h| deflection_error(&at(h), &reference))
+        .collect();
     let orders: Vec<f64> = errors.windows(2).map(|w| (w[0] / w[1]).log2()).collect();
     println!("step convergence: h = {steps:?}, errors {errors:?}, observed orders {orders:?}");
     assert!(orders.iter().all(|&o| o > 1.7 && o < 2.5), "{orders:?}");
@@ -208,28 +234,83 @@ fn converges_in_the_step_at_second_order() {
 #[test]
 fn converges_in_elements_and_modes_and_reference_conditions_agree() {
     // Seed 001 Fig. 5: 2, 4, 6 elements (all modes of 2 elements = 6; here 6 modes each).
-    let reference = run(&scene(|s| { s.rod.elements = 16; s.rod.modes = 12; }), W, 1e-4, 2.0).0;
+    let reference = run(
+        &scene(|s| {
+            s.rod.elements = 16;
+            s.rod.modes = 12;
+        }),
+        W,
+        1e-4,
+        2.0,
+    )
+    .0;
     let mut last = f64::INFINITY;
     for n in [2usize, 4, 6] {
-        let rows = run(&scene(|s| { s.rod.elements = n; s.rod.modes = 6; }), W, 1e-4, 2.0).0;
+        let rows = run(
+            &scene(|s| {
+                s.rod.elements = n;
+                s.rod.modes = 6;
+            }),
+            W,
+            1e-4,
+            2.0,
+        )
+        .0;
         let e = deflection_error(&rows, &reference);
-        println!("{n} elements, 6 modes: peak |v/L| {:.5e}, error against 16 elements {e:.3e}", peak(&rows));
+        println!(
+            "{n} elements, 6 modes: peak |v/L| {:.5e}, error against 16 elements {e:.3e}",
+            peak(&rows)
+        );
         assert!(e < last);
         last = e;
     }
     for m in [1usize, 2, 4, 8] {
-        let rows = run(&scene(|s| { s.rod.elements = 8; s.rod.modes = m; }), W, 1e-4, 2.0).0;
-        println!("8 elements, {m} modes: peak |v/L| {:.5e}, error against 16 elements {:.3e}", peak(&rows), deflection_error(&rows, &reference));
+        let rows = run(
+            &scene(|s| {
+                s.rod.elements = 8;
+                s.rod.modes = m;
+            }),
+            W,
+            1e-4,
+            2.0,
+        )
+        .0;
+        println!(
+            "8 elements, {m} modes: peak |v/L| {:.5e}, error against 16 elements {:.3e}",
+            peak(&rows),
+            deflection_error(&rows, &reference)
+        );
     }
     // Seed 000 Figs. 6-8: simply supported, mean axis, body-fixed at the midpoint agree; the
     // cantilever does not. 4 elements, 6 modes, linear modes (as in 1985).
-    let by = |r: ReferenceKind| run(&scene(|s| { s.rod.elements = 4; s.rod.modes = 6; s.rod.reference = r; s.rod.axial_stiffening = false; }), W, 1e-4, 2.0).0;
+    let by = |r: ReferenceKind| {
+        run(
+            &scene(|s| {
+                s.rod.elements = 4;
+                s.rod.modes = 6;
+                s.rod.reference = r;
+                s.rod.axial_stiffening = false;
+            }),
+            W,
+            1e-4,
+            2.0,
+        )
+        .0
+    };
     let ss = by(ReferenceKind::SimplySupported);
     let mut diffs = Vec::new();
-    for r in [ReferenceKind::MeanAxis, ReferenceKind::BodyFixedMid, ReferenceKind::Cantilever] {
+    for r in [
+        ReferenceKind::MeanAxis,
+        ReferenceKind::BodyFixedMid,
+        ReferenceKind::Cantilever,
+    ] {
         let rows = by(r);
         let d = deflection_error(&rows, &ss);
-        println!("{r:?} against simply supported: peak {:.5e} vs {:.5e}, pointwise difference {d:.3e}", peak(&rows), peak(&ss));
+        println!(
+            "{r:?} against simply supported: peak {:.5e} vs {:.5e}, pointwise difference {d:.3e}",
+            peak(&rows),
+            peak(&ss)
+        );
         diffs.push(d);
     }
     assert!(diffs[0] < 0.1 && diffs[1] < 0.1, "{diffs:?}");
@@ -245,10 +326,19 @@ fn stiff_all_modes_stay_bounded() {
         s.solver.step = 1e-4;
     });
     let sim = Simulation::new(&s).unwrap();
-    println!("highest retained frequency {:.0} Hz", sim.frequencies_hz()[17]);
+    println!(
+        "highest retained frequency {:.0} Hz",
+        sim.frequencies_hz()[17]
+    );
     let (rows, sim) = run(&s, W, 1e-3, 100.0);
-    let p_first = rows[..rows.len() / 50].iter().map(|r| r.1.deflection_rel.abs()).fold(0.0, f64::max);
-    let p_last = rows[rows.len() * 49 / 50..].iter().map(|r| r.1.deflection_rel.abs()).fold(0.0, f64::max);
+    let p_first = rows[..rows.len() / 50]
+        .iter()
+        .map(|r| r.1.deflection_rel.abs())
+        .fold(0.0, f64::max);
+    let p_last = rows[rows.len() * 49 / 50..]
+        .iter()
+        .map(|r| r.1.deflection_rel.abs())
+        .fold(0.0, f64::max);
     let stats = sim.stats();
     println!("100 revolutions: peak |v/L| first 2 revs {p_first:.4e}, last 2 revs {p_last:.4e}; {} steps, {} Newton iterations, {} halvings", stats.steps, stats.newton_iterations, stats.halvings);
     assert!(rows.iter().all(|r| r.1.deflection_rel.is_finite()));

@@ -21,7 +21,7 @@ pub const GAUSS4: [(f64, f64); 4] = {
 pub const GAUSS5: [(f64, f64); 5] = {
     // Abramowitz and Stegun 25.4.30, mapped from [-1, 1] to [0, 1].
     const A: f64 = 0.538_469_310_105_683_1;
-    const B: f64 = 0.906_179_845_938_664_0;
+    const B: f64 = 0.906_179_845_938_664;
     const W0: f64 = 0.568_888_888_888_888_9;
     const WA: f64 = 0.478_628_670_499_366_5;
     const WB: f64 = 0.236_926_885_056_189_1;

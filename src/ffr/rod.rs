@@ -135,7 +135,13 @@ impl FfrRod {
     }
 
     /// Coefficients (n0, n1, n2) of the axial force N(s) = n0 + n1 s + n2 s^2, N.
-    pub fn axial_force_coefficients(&self, q: &[f64], v: &[f64], a: &[f64], end_force_c: Vector2<f64>) -> [f64; 3] {
+    pub fn axial_force_coefficients(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        a: &[f64],
+        end_force_c: Vector2<f64>,
+    ) -> [f64; 3] {
         let (c, s) = rot(q[2]);
         let e = Vector2::new(c, s);
         let w = v[2] * v[2];
@@ -160,7 +166,15 @@ impl RodBody for FfrRod {
         }
     }
 
-    fn place_undeformed(&self, b: Vector2<f64>, c: Vector2<f64>, vb: Vector2<f64>, omega: f64, q: &mut [f64], v: &mut [f64]) {
+    fn place_undeformed(
+        &self,
+        b: Vector2<f64>,
+        c: Vector2<f64>,
+        vb: Vector2<f64>,
+        omega: f64,
+        q: &mut [f64],
+        v: &mut [f64],
+    ) {
         let d = c - b;
         let phi = d.y.atan2(d.x);
         let (cs, sn) = rot(phi);
@@ -233,7 +247,11 @@ impl RodBody for FfrRod {
             i2pd.x += ig.i2[(0, j)] * pd[j];
             i2pd.y += ig.i2[(1, j)] * pd[j];
         }
-        let qr = rotate(c, s, self.first_moment(q) * (w * w) - tilde(i2pd) * (2.0 * w));
+        let qr = rotate(
+            c,
+            s,
+            self.first_moment(q) * (w * w) - tilde(i2pd) * (2.0 * w),
+        );
         f[0] = qr.x;
         f[1] = qr.y;
         // Qv_phi = -2 w (I4 + p^T M_ff) p'.
@@ -260,7 +278,8 @@ impl RodBody for FfrRod {
             fi -= self.stiffness[i] * p[i] + self.damping[i] * pd[i];
             if let Some([n0, n1, n2]) = kg {
                 for j in 0..n {
-                    let mut kij = n0 * ig.g[0][(i, j)] + n1 * ig.g[1][(i, j)] + n2 * ig.g[2][(i, j)];
+                    let mut kij =
+                        n0 * ig.g[0][(i, j)] + n1 * ig.g[1][(i, j)] + n2 * ig.g[2][(i, j)];
                     for k in 0..n {
                         let cu = a[3 + k] - w * w * p[k];
                         let cv = a[2] * p[k] + 2.0 * w * pd[k];
@@ -281,7 +300,8 @@ impl RodBody for FfrRod {
             out[(3 + i, 3 + i)] += c_k * self.stiffness[i] + c_d * self.damping[i];
             for j in 0..n {
                 // -d(Qv_p)/dp = -w^2 M_ff (centrifugal softening); -d(Qv_p)/dp' = 2 w S~ (gyroscopic).
-                out[(3 + i, 3 + j)] += -c_k * w * w * ig.m_uu[(i, j)] + c_d * 2.0 * w * ig.s_tilde[(i, j)];
+                out[(3 + i, 3 + j)] +=
+                    -c_k * w * w * ig.m_uu[(i, j)] + c_d * 2.0 * w * ig.s_tilde[(i, j)];
             }
         }
     }
@@ -312,10 +332,21 @@ impl RodBody for FfrRod {
         // -phi'^2 A ubar + 2 phi' A I~ S_hat p'.
         let (c, s) = rot(q[2]);
         let w = v[2];
-        rotate(c, s, self.ubar(p, q) * (-w * w) + tilde(self.shape_rate(p, v)) * (2.0 * w))
+        rotate(
+            c,
+            s,
+            self.ubar(p, q) * (-w * w) + tilde(self.shape_rate(p, v)) * (2.0 * w),
+        )
     }
 
-    fn add_point_force_tangent(&self, p: RodPoint, q: &[f64], f: Vector2<f64>, coef: f64, mut out: MatMut<'_, f64>) {
+    fn add_point_force_tangent(
+        &self,
+        p: RodPoint,
+        q: &[f64],
+        f: Vector2<f64>,
+        coef: f64,
+        mut out: MatMut<'_, f64>,
+    ) {
         // J^T f = [f; (A I~ ubar).f; (A S_hat)^T f].
         // d/dphi (A I~ ubar).f = -(A ubar).f; d/dp (A I~ ubar).f = (A I~ S_hat)^T f = d/dphi (A S_hat)^T f.
         let (c, s) = rot(q[2]);
@@ -344,14 +375,21 @@ impl RodBody for FfrRod {
     }
 
     fn strain_energy(&self, q: &[f64]) -> f64 {
-        (0..self.n).map(|i| 0.5 * self.stiffness[i] * q[3 + i] * q[3 + i]).sum()
+        (0..self.n)
+            .map(|i| 0.5 * self.stiffness[i] * q[3 + i] * q[3 + i])
+            .sum()
     }
 
     fn linear_momentum(&self, q: &[f64], v: &[f64]) -> Vector2<f64> {
         let (c, s) = rot(q[2]);
-        let mut p = Vector2::new(v[0], v[1]) * self.mass + rotate(c, s, tilde(self.first_moment(q))) * v[2];
+        let mut p =
+            Vector2::new(v[0], v[1]) * self.mass + rotate(c, s, tilde(self.first_moment(q))) * v[2];
         for j in 0..self.n {
-            p += rotate(c, s, Vector2::new(self.integrals.i2[(0, j)], self.integrals.i2[(1, j)])) * v[3 + j];
+            p += rotate(
+                c,
+                s,
+                Vector2::new(self.integrals.i2[(0, j)], self.integrals.i2[(1, j)]),
+            ) * v[3 + j];
         }
         p
     }

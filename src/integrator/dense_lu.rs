@@ -90,7 +90,9 @@ mod tests {
             }
         }
         let x = [1.0, -2.0, 0.5];
-        let mut b: Vec<f64> = (0..3).map(|i| (0..3).map(|j| a[i][j] * x[j]).sum()).collect();
+        let mut b: Vec<f64> = (0..3)
+            .map(|i| (0..3).map(|j| a[i][j] * x[j]).sum())
+            .collect();
         assert!(lu.factor());
         lu.solve(&mut b);
         for i in 0..3 {

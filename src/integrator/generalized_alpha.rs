@@ -38,7 +38,10 @@ pub struct DaeState {
 #[derive(Clone, Debug, PartialEq)]
 pub enum StepFailure {
     /// Newton did not converge in the allowed iterations.
-    NewtonDiverged { iterations: usize, last_correction: f64 },
+    NewtonDiverged {
+        iterations: usize,
+        last_correction: f64,
+    },
     /// The iteration matrix is singular (a lost constraint, a degenerate configuration).
     SingularMatrix,
     /// A value became NaN or infinite.
@@ -106,7 +109,12 @@ pub struct GeneralizedAlpha {
 }
 
 impl GeneralizedAlpha {
-    pub fn new(system: &dyn DaeSystem, rho_inf: f64, tolerance: f64, max_iterations: usize) -> Self {
+    pub fn new(
+        system: &dyn DaeSystem,
+        rho_inf: f64,
+        tolerance: f64,
+        max_iterations: usize,
+    ) -> Self {
         let n = system.n_coordinates();
         let m = system.n_constraints();
         GeneralizedAlpha {
@@ -134,7 +142,12 @@ impl GeneralizedAlpha {
 
     /// Advance `state` by `h`. On success returns the Newton iterations used and overwrites
     /// `state`; on failure `state` is untouched.
-    pub fn step(&mut self, system: &dyn DaeSystem, state: &mut DaeState, h: f64) -> Result<usize, StepFailure> {
+    pub fn step(
+        &mut self,
+        system: &dyn DaeSystem,
+        state: &mut DaeState,
+        h: f64,
+    ) -> Result<usize, StepFailure> {
         let (n, m) = (self.n, self.m);
         let AlphaCoefficients {
             alpha_m,
@@ -153,10 +166,12 @@ impl GeneralizedAlpha {
         tr.t = t1;
         for i in 0..n {
             let qdd = state.qdd[i];
-            let acc = (alpha_f * state.qdd[i] - alpha_m * state.acc[i] + (1.0 - alpha_f) * qdd) / (1.0 - alpha_m);
+            let acc = (alpha_f * state.qdd[i] - alpha_m * state.acc[i] + (1.0 - alpha_f) * qdd)
+                / (1.0 - alpha_m);
             tr.qdd[i] = qdd;
             tr.acc[i] = acc;
-            tr.q[i] = state.q[i] + h * state.v[i] + h * h * ((0.5 - beta) * state.acc[i] + beta * acc);
+            tr.q[i] =
+                state.q[i] + h * state.v[i] + h * h * ((0.5 - beta) * state.acc[i] + beta * acc);
             tr.v[i] = state.v[i] + h * ((1.0 - gamma) * state.acc[i] + gamma * acc);
         }
         tr.lambda.copy_from_slice(&state.lambda);
@@ -189,7 +204,14 @@ impl GeneralizedAlpha {
                         a[(i, j)] = mass_factor * self.mass[(i, j)];
                     }
                 }
-                system.add_tangent(&tr.q, &tr.v, &tr.lambda, s, gamma * h, a.as_mut().submatrix_mut(0, 0, n, n));
+                system.add_tangent(
+                    &tr.q,
+                    &tr.v,
+                    &tr.lambda,
+                    s,
+                    gamma * h,
+                    a.as_mut().submatrix_mut(0, 0, n, n),
+                );
                 for k in 0..m {
                     for j in 0..n {
                         a[(n + k, j)] = self.jac[(k, j)];
@@ -221,7 +243,9 @@ impl GeneralizedAlpha {
             }
             if err <= self.tolerance {
                 for i in 0..n {
-                    tr.acc[i] = (alpha_f * state.qdd[i] - alpha_m * state.acc[i] + (1.0 - alpha_f) * tr.qdd[i]) / (1.0 - alpha_m);
+                    tr.acc[i] = (alpha_f * state.qdd[i] - alpha_m * state.acc[i]
+                        + (1.0 - alpha_f) * tr.qdd[i])
+                        / (1.0 - alpha_m);
                 }
                 if tr.lambda.iter().any(|x| !x.is_finite()) {
                     return Err(StepFailure::NonFinite);

@@ -28,5 +28,13 @@ pub trait DaeSystem {
     fn constraint_acceleration_rhs(&self, t: f64, q: &[f64], v: &[f64], out: &mut [f64]);
     /// Add `c_k (K_t + d(Phi_q^T lambda)/dq) + c_d C_t` to `out` (n x n), with `K_t = -dQ/dq`
     /// and `C_t = -dQ/dq'` (approximations are fine: they only steer Newton).
-    fn add_tangent(&self, q: &[f64], v: &[f64], lambda: &[f64], c_k: f64, c_d: f64, out: MatMut<'_, f64>);
+    fn add_tangent(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        lambda: &[f64],
+        c_k: f64,
+        c_d: f64,
+        out: MatMut<'_, f64>,
+    );
 }

@@ -99,7 +99,15 @@ impl DaeSystem for SliderCrankDae<'_> {
         out[3] = c.y;
     }
 
-    fn add_tangent(&self, q: &[f64], v: &[f64], lambda: &[f64], c_k: f64, c_d: f64, mut out: MatMut<'_, f64>) {
+    fn add_tangent(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        lambda: &[f64],
+        c_k: f64,
+        c_d: f64,
+        mut out: MatMut<'_, f64>,
+    ) {
         let nr = self.nr();
         let mut rod_block = out.rb_mut().submatrix_mut(0, 0, nr, nr);
         self.rod.add_tangent(q, v, c_k, c_d, rod_block.rb_mut());

@@ -26,7 +26,15 @@ pub trait RodBody: Send {
     fn coordinate_scale(&self, i: usize) -> f64;
     /// Undeformed rod with its B end at `b` and C end at `c` (|c - b| = L), moving rigidly with
     /// B velocity `vb` and angular velocity `omega` (rad/s). Writes `q` and `v` (n each).
-    fn place_undeformed(&self, b: Vector2<f64>, c: Vector2<f64>, vb: Vector2<f64>, omega: f64, q: &mut [f64], v: &mut [f64]);
+    fn place_undeformed(
+        &self,
+        b: Vector2<f64>,
+        c: Vector2<f64>,
+        vb: Vector2<f64>,
+        omega: f64,
+        q: &mut [f64],
+        v: &mut [f64],
+    );
     /// Mass matrix (n x n) into `m`.
     fn mass(&self, q: &[f64], m: MatMut<'_, f64>);
     /// Generalized forces: quadratic velocity terms, elastic and damping forces, and the
@@ -42,7 +50,14 @@ pub trait RodBody: Send {
     /// `(d/dt J_p) q'`: the velocity-product part of the point's acceleration.
     fn point_bias_acceleration(&self, p: RodPoint, q: &[f64], v: &[f64]) -> Vector2<f64>;
     /// Add `c d(J_p^T f)/dq` (n x n) into `out`, for a constant global force `f` at point p.
-    fn add_point_force_tangent(&self, p: RodPoint, q: &[f64], f: Vector2<f64>, c: f64, out: MatMut<'_, f64>);
+    fn add_point_force_tangent(
+        &self,
+        p: RodPoint,
+        q: &[f64],
+        f: Vector2<f64>,
+        c: f64,
+        out: MatMut<'_, f64>,
+    );
     /// Kinetic energy, J.
     fn kinetic_energy(&self, q: &[f64], v: &[f64]) -> f64;
     /// Strain energy (elastic potential), J.

@@ -98,7 +98,11 @@ pub fn build_rod(scene: &Scene, props: RodProperties) -> Result<Box<dyn RodBody>
                 rod.mass,
                 &ModeSelection::Count(rod.modes),
             )?;
-            Ok(Box::new(FfrRod::new(modes, rod.damping_ratio, rod.axial_stiffening)))
+            Ok(Box::new(FfrRod::new(
+                modes,
+                rod.damping_ratio,
+                rod.axial_stiffening,
+            )))
         }
         RodModelKind::Segments => crate::segments::build(scene, props),
     }
@@ -200,7 +204,12 @@ impl Mechanism {
 
     /// Consistent start: undeformed rod on the crank at angle `input.angle`, rigid velocities
     /// from the crank speed, accelerations and multipliers from the index-1 solve.
-    pub fn initial_state(&self, t0: f64, input: CrankInput, slider_force: f64) -> Result<MechanismState, ModelError> {
+    pub fn initial_state(
+        &self,
+        t0: f64,
+        input: CrankInput,
+        slider_force: f64,
+    ) -> Result<MechanismState, ModelError> {
         let nr = self.rod.n_coordinates();
         let n = nr + 1;
         let r = self.crank_length;
@@ -214,7 +223,8 @@ impl Mechanism {
         let vc_x = vb.x - omega * (cpt.y - b.y);
         let mut q = vec![0.0; n];
         let mut v = vec![0.0; n];
-        self.rod.place_undeformed(b, cpt, vb, omega, &mut q[..nr], &mut v[..nr]);
+        self.rod
+            .place_undeformed(b, cpt, vb, omega, &mut q[..nr], &mut v[..nr]);
         q[nr] = cpt.x;
         v[nr] = vc_x;
         let mut state = MechanismState {
@@ -306,7 +316,12 @@ impl Mechanism {
         }
     }
 
-    fn step_with_halving(&mut self, state: &mut MechanismState, target: f64, depth: usize) -> Result<(), (f64, f64, String)> {
+    fn step_with_halving(
+        &mut self,
+        state: &mut MechanismState,
+        target: f64,
+        depth: usize,
+    ) -> Result<(), (f64, f64, String)> {
         let h = target - state.dae.t;
         let sys = SliderCrankDae {
             rod: self.rod.as_ref(),
@@ -350,7 +365,11 @@ impl Mechanism {
     }
 
     /// Outputs at the state's time (physics.md, "Output definitions and sign conventions").
-    fn compute_outputs(&self, work: &mut OutputWork, state: &MechanismState) -> Result<Outputs, ModelError> {
+    fn compute_outputs(
+        &self,
+        work: &mut OutputWork,
+        state: &MechanismState,
+    ) -> Result<Outputs, ModelError> {
         let (_, lambda) = work.consistent_accelerations(self, state, true)?;
         let nr = self.rod.n_coordinates();
         let q = &state.dae.q;
@@ -379,12 +398,14 @@ impl Mechanism {
     pub fn kinetic_energy(&self, state: &MechanismState) -> f64 {
         let nr = self.rod.n_coordinates();
         let v = &state.dae.v;
-        self.rod.kinetic_energy(&state.dae.q[..nr], &v[..nr]) + 0.5 * self.slider_mass * v[nr] * v[nr]
+        self.rod.kinetic_energy(&state.dae.q[..nr], &v[..nr])
+            + 0.5 * self.slider_mass * v[nr] * v[nr]
     }
 
     /// Strain energy of the rod, J.
     pub fn strain_energy(&self, state: &MechanismState) -> f64 {
-        self.rod.strain_energy(&state.dae.q[..self.rod.n_coordinates()])
+        self.rod
+            .strain_energy(&state.dae.q[..self.rod.n_coordinates()])
     }
 }
 
@@ -416,7 +437,12 @@ impl OutputWork {
 
     /// Project the velocities on `Phi_q v + Phi_t = 0` (M-weighted) and solve for the
     /// accelerations and multipliers. Returns (q'', lambda); the projected v stays in `self.v`.
-    fn consistent_accelerations(&mut self, mech: &Mechanism, state: &MechanismState, project: bool) -> Result<(&[f64], [f64; 4]), ModelError> {
+    fn consistent_accelerations(
+        &mut self,
+        mech: &Mechanism,
+        state: &MechanismState,
+        project: bool,
+    ) -> Result<(&[f64], [f64; 4]), ModelError> {
         let sys = mech.system(state);
         let n = sys.n_coordinates();
         let m = 4;
@@ -458,7 +484,14 @@ impl OutputWork {
             self.lu.solve(&mut self.rhs);
             self.v.copy_from_slice(&self.rhs[..n]);
         }
-        sys.forces(t, q, &self.v, &state.dae.qdd, &state.dae.lambda, &mut self.f);
+        sys.forces(
+            t,
+            q,
+            &self.v,
+            &state.dae.qdd,
+            &state.dae.lambda,
+            &mut self.f,
+        );
         let mut gamma = [0.0; 4];
         sys.constraint_acceleration_rhs(t, q, &self.v, &mut gamma);
         self.rhs[..n].copy_from_slice(&self.f);
@@ -474,7 +507,12 @@ impl OutputWork {
         self.qdd.copy_from_slice(&self.rhs[..n]);
         Ok((
             &self.qdd,
-            [self.rhs[n], self.rhs[n + 1], self.rhs[n + 2], self.rhs[n + 3]],
+            [
+                self.rhs[n],
+                self.rhs[n + 1],
+                self.rhs[n + 2],
+                self.rhs[n + 3],
+            ],
         ))
     }
 }

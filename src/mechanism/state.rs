@@ -50,12 +50,22 @@ impl MechanismState {
             put(x);
         }
         put(self.dae.t);
-        for v in [&self.dae.q, &self.dae.v, &self.dae.qdd, &self.dae.acc, &self.dae.lambda] {
+        for v in [
+            &self.dae.q,
+            &self.dae.v,
+            &self.dae.qdd,
+            &self.dae.acc,
+            &self.dae.lambda,
+        ] {
             for &x in v.iter() {
                 put(x);
             }
         }
-        for c in [self.stats.steps, self.stats.newton_iterations, self.stats.halvings] {
+        for c in [
+            self.stats.steps,
+            self.stats.newton_iterations,
+            self.stats.halvings,
+        ] {
             out.extend_from_slice(&c.to_le_bytes());
         }
         out.push(self.large_deflection_warned as u8);
@@ -117,7 +127,13 @@ impl MechanismState {
         self.stats.halvings = count();
         self.large_deflection_warned = bytes[expected - 1] != 0;
         let finite = self.time.is_finite()
-            && self.dae.q.iter().chain(&self.dae.v).chain(&self.dae.lambda).all(|x| x.is_finite());
+            && self
+                .dae
+                .q
+                .iter()
+                .chain(&self.dae.v)
+                .chain(&self.dae.lambda)
+                .all(|x| x.is_finite());
         if !finite {
             return Err("it holds non-finite numbers".into());
         }

@@ -16,7 +16,10 @@ pub struct GeneralizedEigen {
 }
 
 /// Solve `K a = lambda M a` for symmetric `K` and symmetric positive definite `M`.
-pub fn generalized_symmetric_eigen(k: &Mat<f64>, m: &Mat<f64>) -> Result<GeneralizedEigen, ModelError> {
+pub fn generalized_symmetric_eigen(
+    k: &Mat<f64>,
+    m: &Mat<f64>,
+) -> Result<GeneralizedEigen, ModelError> {
     let n = k.nrows();
     if n == 0 {
         return Ok(GeneralizedEigen {
@@ -34,12 +37,15 @@ pub fn generalized_symmetric_eigen(k: &Mat<f64>, m: &Mat<f64>) -> Result<General
     let mut c = x.transpose().to_owned();
     l.solve_lower_triangular_in_place(c.as_mut());
     let c = Mat::from_fn(n, n, |i, j| 0.5 * (c[(i, j)] + c[(j, i)]));
-    let evd = c.self_adjoint_eigen(Side::Lower).map_err(|e| ModelError::Numerical {
-        message: format!("the eigensolver did not converge ({e:?})"),
-    })?;
+    let evd = c
+        .self_adjoint_eigen(Side::Lower)
+        .map_err(|e| ModelError::Numerical {
+            message: format!("the eigensolver did not converge ({e:?})"),
+        })?;
     let values: Vec<f64> = (0..n).map(|i| evd.S()[i]).collect();
     let mut vectors = evd.U().to_owned();
-    l.transpose().solve_upper_triangular_in_place(vectors.as_mut());
+    l.transpose()
+        .solve_upper_triangular_in_place(vectors.as_mut());
     Ok(GeneralizedEigen { values, vectors })
 }
 

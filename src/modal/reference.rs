@@ -42,7 +42,7 @@ impl ReferenceConditions {
             ReferenceKind::MeanAxis => ReferenceConditions::MeanAxis,
             ReferenceKind::Cantilever => ReferenceConditions::BodyFixed { node: 0 },
             ReferenceKind::BodyFixedMid => {
-                if n_elements % 2 != 0 {
+                if !n_elements.is_multiple_of(2) {
                     return Err(ModelError::InvalidParameter {
                         name: "rod.elements",
                         value: n_elements as f64,
@@ -80,7 +80,9 @@ impl ReferenceConditions {
         let last = mesh.n_elements;
         match self {
             ReferenceConditions::SimplySupported => Some(vec![0, 1, 3 * last + 1]),
-            ReferenceConditions::BodyFixed { node } => Some(vec![3 * node, 3 * node + 1, 3 * node + 2]),
+            ReferenceConditions::BodyFixed { node } => {
+                Some(vec![3 * node, 3 * node + 1, 3 * node + 2])
+            }
             ReferenceConditions::Constrained { coordinates } => Some(coordinates.clone()),
             ReferenceConditions::MeanAxis => None,
         }
@@ -99,7 +101,12 @@ impl ReferenceConditions {
 
     /// Build `B_r` for `mesh` (whose `x_b` must be [`Self::frame_x_b`]). Rejects sets that
     /// leave a rigid-body mode in or over-constrain the rod, saying which.
-    pub fn basis(&self, mesh: &RodMesh, k: &Mat<f64>, m: &Mat<f64>) -> Result<ReferenceBasis, ModelError> {
+    pub fn basis(
+        &self,
+        mesh: &RodMesh,
+        k: &Mat<f64>,
+        m: &Mat<f64>,
+    ) -> Result<ReferenceBasis, ModelError> {
         let n = mesh.n_coordinates();
         let x_b = mesh.x_b;
         match self.constrained(mesh) {
@@ -113,7 +120,13 @@ impl ReferenceConditions {
                 // Mean axis: the elastic modes of the free-free rod span the M-orthogonal
                 // complement of the rigid-body modes.
                 let eig = generalized_symmetric_eigen(k, m)?;
-                let scale = eig.values.get(3).copied().unwrap_or(1.0).abs().max(f64::MIN_POSITIVE);
+                let scale = eig
+                    .values
+                    .get(3)
+                    .copied()
+                    .unwrap_or(1.0)
+                    .abs()
+                    .max(f64::MIN_POSITIVE);
                 for (i, v) in eig.values.iter().take(3).enumerate() {
                     if v.abs() > 1e-6 * scale {
                         return Err(ModelError::Numerical {

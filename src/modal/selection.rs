@@ -35,7 +35,9 @@ impl ModeSelection {
                         allowed: "a value >= 0 Hz (infinity keeps all)".into(),
                     });
                 }
-                Ok((0..available).filter(|&i| frequencies_hz[i] <= *max_hz).collect())
+                Ok((0..available)
+                    .filter(|&i| frequencies_hz[i] <= *max_hz)
+                    .collect())
             }
             ModeSelection::Indices(list) => {
                 let mut sorted = list.clone();
@@ -67,11 +69,20 @@ mod tests {
     fn selections() {
         let f = [10.0, 20.0, 30.0];
         assert_eq!(ModeSelection::Count(2).select(&f).unwrap(), vec![0, 1]);
-        assert_eq!(ModeSelection::Cutoff { max_hz: 25.0 }.select(&f).unwrap(), vec![0, 1]);
-        assert_eq!(ModeSelection::Indices(vec![2, 0]).select(&f).unwrap(), vec![0, 2]);
+        assert_eq!(
+            ModeSelection::Cutoff { max_hz: 25.0 }.select(&f).unwrap(),
+            vec![0, 1]
+        );
+        assert_eq!(
+            ModeSelection::Indices(vec![2, 0]).select(&f).unwrap(),
+            vec![0, 2]
+        );
         assert!(matches!(
             ModeSelection::Count(4).select(&f),
-            Err(ModelError::TooManyModes { requested: 4, available: 3 })
+            Err(ModelError::TooManyModes {
+                requested: 4,
+                available: 3
+            })
         ));
         assert!(ModeSelection::Indices(vec![3]).select(&f).is_err());
         assert!(ModeSelection::Indices(vec![1, 1]).select(&f).is_err());

@@ -84,7 +84,11 @@ impl ShapeIntegrals {
         let mut i5 = DVector::zeros(n);
         let mut i_rot = DVector::zeros(n);
         let mut s_tilde = DMatrix::zeros(n, n);
-        let mut g = [DMatrix::zeros(n, n), DMatrix::zeros(n, n), DMatrix::zeros(n, n)];
+        let mut g = [
+            DMatrix::zeros(n, n),
+            DMatrix::zeros(n, n),
+            DMatrix::zeros(n, n),
+        ];
         let mut rotary_total = 0.0;
         let mut m_uu = DMatrix::zeros(n, n);
 

@@ -52,7 +52,10 @@ fn parse(args: &[String]) -> Result<(Scene, Vec<(String, String)>), String> {
 }
 
 fn flag<'a>(flags: &'a [(String, String)], name: &str) -> Option<&'a str> {
-    flags.iter().find(|(n, _)| n == name).map(|(_, v)| v.as_str())
+    flags
+        .iter()
+        .find(|(n, _)| n == name)
+        .map(|(_, v)| v.as_str())
 }
 
 fn number(flags: &[(String, String)], name: &str, default: f64) -> Result<f64, String> {
@@ -72,10 +75,20 @@ fn modes(args: &[String]) -> Result<(), String> {
         }
         return Ok(());
     }
-    let props = flexrod::mechanism::slider_crank::validate_scene(&scene).map_err(|e| e.to_string())?;
-    let reference = ReferenceConditions::from_kind(scene.rod.reference, scene.rod.elements).map_err(|e| e.to_string())?;
-    let all = ComponentModes::new(props, scene.rod.elements, reference, scene.rod.mass, &ModeSelection::Cutoff { max_hz: f64::INFINITY })
+    let props =
+        flexrod::mechanism::slider_crank::validate_scene(&scene).map_err(|e| e.to_string())?;
+    let reference = ReferenceConditions::from_kind(scene.rod.reference, scene.rod.elements)
         .map_err(|e| e.to_string())?;
+    let all = ComponentModes::new(
+        props,
+        scene.rod.elements,
+        reference,
+        scene.rod.mass,
+        &ModeSelection::Cutoff {
+            max_hz: f64::INFINITY,
+        },
+    )
+    .map_err(|e| e.to_string())?;
     println!(
         "scene {}: {} elements, {:?} reference conditions, {:?} mass; {} modes retained of {}",
         scene.name,
@@ -87,7 +100,11 @@ fn modes(args: &[String]) -> Result<(), String> {
     );
     println!("mode  frequency_hz  retained");
     for (k, f) in all.all_frequencies_hz.iter().enumerate() {
-        println!("{:>4}  {f:>12.4}  {}", k + 1, if k < scene.rod.modes { "yes" } else { "no" });
+        println!(
+            "{:>4}  {f:>12.4}  {}",
+            k + 1,
+            if k < scene.rod.modes { "yes" } else { "no" }
+        );
     }
     if let Some(path) = flag(&flags, "csv") {
         let mut out = std::fs::File::create(path).map_err(|e| format!("{path}: {e}"))?;
@@ -116,18 +133,29 @@ fn modes(args: &[String]) -> Result<(), String> {
 enum Drive {
     Constant(f64),
     /// Speed rises as w (1 - cos(pi t / T)) / 2 over T seconds.
-    Ramp { speed: f64, time: f64 },
+    Ramp {
+        speed: f64,
+        time: f64,
+    },
     Table(Vec<[f64; 3]>),
 }
 
 impl Drive {
     fn at(&self, t: f64) -> CrankInput {
         match self {
-            Drive::Constant(w) => CrankInput { angle: w * t, speed: *w, acceleration: 0.0 },
+            Drive::Constant(w) => CrankInput {
+                angle: w * t,
+                speed: *w,
+                acceleration: 0.0,
+            },
             Drive::Ramp { speed, time } => {
                 if t >= *time {
                     let angle0 = 0.5 * speed * time;
-                    CrankInput { angle: angle0 + speed * (t - time), speed: *speed, acceleration: 0.0 }
+                    CrankInput {
+                        angle: angle0 + speed * (t - time),
+                        speed: *speed,
+                        acceleration: 0.0,
+                    }
                 } else {
                     let k = std::f64::consts::PI / time;
                     CrankInput {
@@ -159,18 +187,31 @@ fn simulate(args: &[String]) -> Result<(), String> {
         let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
         let rows: Vec<[f64; 3]> = text
             .lines()
-            .filter(|l| l.chars().next().is_some_and(|c| c.is_ascii_digit() || c == '-' || c == '.'))
+            .filter(|l| {
+                l.chars()
+                    .next()
+                    .is_some_and(|c| c.is_ascii_digit() || c == '-' || c == '.')
+            })
             .map(|l| {
                 let v: Vec<f64> = l.split(',').filter_map(|x| x.trim().parse().ok()).collect();
-                if v.len() >= 3 { Ok([v[0], v[1], v[2]]) } else { Err(format!("{path}: a row needs t, angle, speed: {l}")) }
+                if v.len() >= 3 {
+                    Ok([v[0], v[1], v[2]])
+                } else {
+                    Err(format!("{path}: a row needs t, angle, speed: {l}"))
+                }
             })
             .collect::<Result<_, _>>()?;
         if rows.len() < 2 {
-            return Err(format!("{path}: needs at least two rows of t, angle, speed"));
+            return Err(format!(
+                "{path}: needs at least two rows of t, angle, speed"
+            ));
         }
         Drive::Table(rows)
     } else if let Some(t) = flag(&flags, "ramp") {
-        Drive::Ramp { speed, time: t.parse().map_err(|_| "--ramp: not a number")? }
+        Drive::Ramp {
+            speed,
+            time: t.parse().map_err(|_| "--ramp: not a number")?,
+        }
     } else {
         Drive::Constant(speed)
     };
@@ -182,14 +223,16 @@ fn simulate(args: &[String]) -> Result<(), String> {
     };
     let mut sim = Simulation::new(&scene).map_err(|e| e.to_string())?;
     let t0 = scene.experiment.start_time;
-    sim.start(t0, drive.at(t0), 0.0).map_err(|e| e.to_string())?;
+    sim.start(t0, drive.at(t0), 0.0)
+        .map_err(|e| e.to_string())?;
     let mut rows = vec![(t0, drive.at(t0), sim.outputs())];
     let n = ((stop - t0) / dt).round().max(1.0) as usize;
     let wall = Instant::now();
     for k in 0..n {
         let t = t0 + k as f64 * dt;
         sim.set_input(drive.at(t)).map_err(|e| e.to_string())?;
-        sim.advance(t0 + (k + 1) as f64 * dt - sim.time()).map_err(|e| e.to_string())?;
+        sim.advance(t0 + (k + 1) as f64 * dt - sim.time())
+            .map_err(|e| e.to_string())?;
         for w in sim.take_warnings() {
             eprintln!("warning: {w}");
         }
@@ -197,10 +240,22 @@ fn simulate(args: &[String]) -> Result<(), String> {
     }
     let elapsed = wall.elapsed().as_secs_f64();
     let stats = sim.stats();
-    let peak = rows.iter().map(|r| r.2.deflection_rel.abs()).fold(0.0, f64::max);
-    let peak_b = rows.iter().map(|r| r.2.pin_b_force[0].hypot(r.2.pin_b_force[1])).fold(0.0, f64::max);
-    let peak_c = rows.iter().map(|r| r.2.pin_c_force[0].hypot(r.2.pin_c_force[1])).fold(0.0, f64::max);
-    println!("scene {}: {:?} rod, {} elements, {} modes, {:?}", scene.name, scene.rod.model, scene.rod.elements, scene.rod.modes, scene.rod.reference);
+    let peak = rows
+        .iter()
+        .map(|r| r.2.deflection_rel.abs())
+        .fold(0.0, f64::max);
+    let peak_b = rows
+        .iter()
+        .map(|r| r.2.pin_b_force[0].hypot(r.2.pin_b_force[1]))
+        .fold(0.0, f64::max);
+    let peak_c = rows
+        .iter()
+        .map(|r| r.2.pin_c_force[0].hypot(r.2.pin_c_force[1]))
+        .fold(0.0, f64::max);
+    println!(
+        "scene {}: {:?} rod, {} elements, {} modes, {:?}",
+        scene.name, scene.rod.model, scene.rod.elements, scene.rod.modes, scene.rod.reference
+    );
     println!("simulated {:.4} s ({:.2} revolutions) in {:.2} ms wall: {} steps, {} Newton iterations, {} halvings", stop - t0, (stop - t0) * speed / (2.0 * std::f64::consts::PI), elapsed * 1e3, stats.steps, stats.newton_iterations, stats.halvings);
     println!("peak |v_mid/L| = {peak:.5e}, peak |F_B| = {peak_b:.2} N, peak |F_C| = {peak_c:.2} N");
     if let Some(path) = flag(&flags, "out") {
@@ -218,22 +273,46 @@ fn simulate(args: &[String]) -> Result<(), String> {
     }
     if let Some(prefix) = flag(&flags, "plot") {
         use svg_plot::{line_plot, Curve};
-        let pts = |f: &dyn Fn(&flexrod::Outputs) -> f64| rows.iter().map(|(_, i, o)| (i.angle, f(o))).collect::<Vec<_>>();
+        let pts = |f: &dyn Fn(&flexrod::Outputs) -> f64| {
+            rows.iter()
+                .map(|(_, i, o)| (i.angle, f(o)))
+                .collect::<Vec<_>>()
+        };
         let deflection = line_plot(
             &format!("{}: midpoint deflection", scene.name),
             "crank angle (rad)",
             "v_mid / L",
-            &[Curve { label: "v_mid/L", colour: "#1f77b4", points: pts(&|o| o.deflection_rel) }],
+            &[Curve {
+                label: "v_mid/L",
+                colour: "#1f77b4",
+                points: pts(&|o| o.deflection_rel),
+            }],
         );
         let forces = line_plot(
             &format!("{}: pin forces (rod on pin)", scene.name),
             "crank angle (rad)",
             "force (N)",
             &[
-                Curve { label: "pin B x", colour: "#1f77b4", points: pts(&|o| o.pin_b_force[0]) },
-                Curve { label: "pin B y", colour: "#ff7f0e", points: pts(&|o| o.pin_b_force[1]) },
-                Curve { label: "pin C x", colour: "#2ca02c", points: pts(&|o| o.pin_c_force[0]) },
-                Curve { label: "pin C y", colour: "#d62728", points: pts(&|o| o.pin_c_force[1]) },
+                Curve {
+                    label: "pin B x",
+                    colour: "#1f77b4",
+                    points: pts(&|o| o.pin_b_force[0]),
+                },
+                Curve {
+                    label: "pin B y",
+                    colour: "#ff7f0e",
+                    points: pts(&|o| o.pin_b_force[1]),
+                },
+                Curve {
+                    label: "pin C x",
+                    colour: "#2ca02c",
+                    points: pts(&|o| o.pin_c_force[0]),
+                },
+                Curve {
+                    label: "pin C y",
+                    colour: "#d62728",
+                    points: pts(&|o| o.pin_c_force[1]),
+                },
             ],
         );
         for (name, svg) in [("deflection", deflection), ("forces", forces)] {

@@ -12,17 +12,22 @@ pub struct Curve<'a> {
 pub fn line_plot(title: &str, x_label: &str, y_label: &str, curves: &[Curve]) -> String {
     let (w, h, ml, mr, mt, mb) = (800.0, 420.0, 80.0, 20.0, 40.0, 50.0);
     let all = curves.iter().flat_map(|c| c.points.iter());
-    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
     for &(x, y) in all {
         x0 = x0.min(x);
         x1 = x1.max(x);
         y0 = y0.min(y);
         y1 = y1.max(y);
     }
-    if !(x1 > x0) {
+    if x1.partial_cmp(&x0) != Some(std::cmp::Ordering::Greater) {
         x1 = x0 + 1.0;
     }
-    if !(y1 > y0) {
+    if y1.partial_cmp(&y0) != Some(std::cmp::Ordering::Greater) {
         y1 = y0 + 1.0;
     }
     let pad = 0.05 * (y1 - y0);
@@ -50,12 +55,30 @@ pub fn line_plot(title: &str, x_label: &str, y_label: &str, curves: &[Curve]) ->
             x = px(xv)
         );
     }
-    s += &format!("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{x_label}</text>\n", w / 2.0, h - 8.0);
+    s += &format!(
+        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{x_label}</text>\n",
+        w / 2.0,
+        h - 8.0
+    );
     s += &format!("<text x=\"16\" y=\"{}\" text-anchor=\"middle\" transform=\"rotate(-90 16 {})\">{y_label}</text>\n", h / 2.0, h / 2.0);
     for (i, c) in curves.iter().enumerate() {
-        let path: Vec<String> = c.points.iter().map(|&(x, y)| format!("{:.2},{:.2}", px(x), py(y))).collect();
-        s += &format!("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.3\" points=\"{}\"/>\n", c.colour, path.join(" "));
-        s += &format!("<text x=\"{}\" y=\"{}\" fill=\"{}\">{}</text>\n", ml + 10.0 + 150.0 * i as f64, mt + 14.0, c.colour, c.label);
+        let path: Vec<String> = c
+            .points
+            .iter()
+            .map(|&(x, y)| format!("{:.2},{:.2}", px(x), py(y)))
+            .collect();
+        s += &format!(
+            "<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.3\" points=\"{}\"/>\n",
+            c.colour,
+            path.join(" ")
+        );
+        s += &format!(
+            "<text x=\"{}\" y=\"{}\" fill=\"{}\">{}</text>\n",
+            ml + 10.0 + 150.0 * i as f64,
+            mt + 14.0,
+            c.colour,
+            c.label
+        );
     }
     s + "</svg>\n"
 }
