@@ -1,7 +1,8 @@
 //! The FFR rod against a geometrically exact reference (tests/data/exudyn_ancf_150rad_s.csv:
 //! Exudyn ANCF cable, 32/64 elements, converged to < 1e-5 of the peak). Issue 3's target:
 //! with axial stiffening and a handful of modes, the peak |v_mid/L| within 0.5 %; linear modes
-//! overshoot it by about 10 % (physics.md, "What linear modes miss").
+//! overshoot it by about 10 % (physics.md, "What linear modes miss"). Pointwise, the stiffened
+//! rod follows the exact beam to 1 % at the default step and 0.15 % at h = 1e-5 s.
 
 use flexrod::{CrankInput, Scene, Simulation};
 
@@ -120,7 +121,16 @@ fn stiffened_modes_match_the_geometrically_exact_peak() {
         );
         if stiffened {
             assert!(peak_error.abs() < 0.005, "{name}: {peak_error}");
-            assert!(pointwise < 0.15, "{name}: {pointwise}");
+            // Pointwise: the default step 1e-4 s is within 2 %, the converged step within 0.5 %;
+            // h = 3e-4 s trades pointwise phase accuracy for speed (peak still within 0.5 %).
+            let bound = if name.starts_with("default") {
+                0.02
+            } else if name.starts_with("converged") {
+                0.005
+            } else {
+                0.10
+            };
+            assert!(pointwise < bound, "{name}: {pointwise}");
         } else {
             assert!(
                 peak_error > 0.08 && peak_error < 0.12,

@@ -791,16 +791,14 @@ fn default_solver_two_revolutions() {
     }
 }
 
-/// Where the segment rod and the FFR rod with axial stiffening differ: both converged (segments
-/// N = 64, FFR as in the benchmark; solver step 2.5e-5 s), the pointwise difference of v_mid/L
-/// grows with the crank speed (the axial-force effect on bending grows as Omega^2) and from the
-/// first to the second revolution (a drift in phase), and vanishes in the linear regime. The FFR
-/// stiffening takes the axial force from the rigid frame motion only (physics.md, "What linear
-/// modes miss"); the chain carries the exact one.
+/// The segment rod and the FFR rod with axial stiffening (the inertial axial force through the
+/// distributed foreshortening, and the chord's foreshortening in the C pin) agree pointwise over
+/// two revolutions at 50, 100 and 150 rad/s (segments N = 64, FFR as in the benchmark; solver
+/// step 2.5e-5 s). Before the chord's foreshortening was carried in the pin kinematics, the FFR
+/// rod drifted in phase to 0.75, 2.8 and 4.8 % of the peak here.
 #[test]
-fn ffr_difference_grows_with_speed() {
+fn ffr_and_segments_agree_across_speeds() {
     let dt = 1e-4;
-    let mut previous = 0.0;
     println!("Omega (rad/s)  peak FFR+stiff  peak seg N=64  max diff/peak rev 1  rev 2");
     for omega in [50.0, 100.0, 150.0] {
         let mut f = Scene::benchmark();
@@ -819,10 +817,6 @@ fn ffr_difference_grows_with_speed() {
             peak(&xf),
             peak(&xs)
         );
-        assert!(d2 > previous && d2 > d1);
-        if omega == 50.0 {
-            assert!(d2 < 1e-2, "linear regime: {d2}");
-        }
-        previous = d2;
+        assert!(d1 < 2e-3 && d2 < 2e-3, "{omega} rad/s: {d1} {d2}");
     }
 }

@@ -42,20 +42,6 @@ impl BeamElement {
         s
     }
 
-    /// `int_0^{xi l} S dx` (2 x 6, m): the running integral of the shape matrix.
-    pub fn shape_integral(&self, xi: f64) -> ShapeMatrix {
-        let l = self.length;
-        let (t2, t3, t4) = (xi * xi, xi * xi * xi, xi * xi * xi * xi);
-        let mut s = ShapeMatrix::zeros();
-        s[(0, 0)] = l * (xi - 0.5 * t2);
-        s[(0, 3)] = l * 0.5 * t2;
-        s[(1, 1)] = l * (xi - t3 + 0.5 * t4);
-        s[(1, 2)] = l * l * (0.5 * t2 - 2.0 * t3 / 3.0 + 0.25 * t4);
-        s[(1, 4)] = l * (t3 - 0.5 * t4);
-        s[(1, 5)] = l * l * (0.25 * t4 - t3 / 3.0);
-        s
-    }
-
     /// Slope dv/dx at `xi` (per metre of x).
     pub fn slope(&self, xi: f64) -> SlopeRow {
         let l = self.length;
@@ -182,18 +168,6 @@ mod tests {
         let r = e.rigid_modes(0.3);
         let kr = (k * r).abs().max();
         assert!(kr < 1e-6 * k.abs().max(), "{kr}");
-    }
-
-    #[test]
-    fn shape_integral_is_antiderivative() {
-        let e = element();
-        for xi in [0.2, 0.6, 1.0] {
-            let mut q = ShapeMatrix::zeros();
-            for (t, w) in GAUSS4 {
-                q += e.shape(t * xi) * (w * xi * e.length);
-            }
-            assert!((q - e.shape_integral(xi)).abs().max() < 1e-15);
-        }
     }
 
     #[test]

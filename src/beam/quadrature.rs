@@ -17,34 +17,9 @@ pub const GAUSS4: [(f64, f64); 4] = {
     ]
 };
 
-/// 5-point Gauss-Legendre nodes and weights on [0, 1]: exact to degree 9.
-pub const GAUSS5: [(f64, f64); 5] = {
-    // Abramowitz and Stegun 25.4.30, mapped from [-1, 1] to [0, 1].
-    const A: f64 = 0.538_469_310_105_683_1;
-    const B: f64 = 0.906_179_845_938_664;
-    const W0: f64 = 0.568_888_888_888_888_9;
-    const WA: f64 = 0.478_628_670_499_366_5;
-    const WB: f64 = 0.236_926_885_056_189_1;
-    [
-        ((1.0 - B) / 2.0, WB / 2.0),
-        ((1.0 - A) / 2.0, WA / 2.0),
-        (0.5, W0 / 2.0),
-        ((1.0 + A) / 2.0, WA / 2.0),
-        ((1.0 + B) / 2.0, WB / 2.0),
-    ]
-};
-
 #[cfg(test)]
 mod tests {
     use super::GAUSS4;
-
-    #[test]
-    fn five_points_integrate_degree_nine_exactly() {
-        for k in 0..=9 {
-            let q: f64 = super::GAUSS5.iter().map(|(x, w)| w * x.powi(k)).sum();
-            assert!((q - 1.0 / (k as f64 + 1.0)).abs() < 1e-15, "degree {k}");
-        }
-    }
 
     #[test]
     fn integrates_degree_seven_exactly() {

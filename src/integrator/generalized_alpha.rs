@@ -22,7 +22,7 @@ use super::dense_lu::DenseLu;
 use super::system::DaeSystem;
 
 /// Positions, velocities, accelerations, the acceleration-like variable `a`, and multipliers.
-#[derive(Clone, Debug, PartialEq, Default)]
+#[derive(Debug, PartialEq, Default)]
 pub struct DaeState {
     pub t: f64,
     pub q: Vec<f64>,
@@ -32,6 +32,29 @@ pub struct DaeState {
     /// The algorithmic acceleration `a`.
     pub acc: Vec<f64>,
     pub lambda: Vec<f64>,
+}
+
+impl Clone for DaeState {
+    fn clone(&self) -> Self {
+        DaeState {
+            t: self.t,
+            q: self.q.clone(),
+            v: self.v.clone(),
+            qdd: self.qdd.clone(),
+            acc: self.acc.clone(),
+            lambda: self.lambda.clone(),
+        }
+    }
+
+    /// Reuses the buffers: no allocation when the sizes match (the backup before each step).
+    fn clone_from(&mut self, source: &Self) {
+        self.t = source.t;
+        self.q.clone_from(&source.q);
+        self.v.clone_from(&source.v);
+        self.qdd.clone_from(&source.qdd);
+        self.acc.clone_from(&source.acc);
+        self.lambda.clone_from(&source.lambda);
+    }
 }
 
 /// Why a step failed.
@@ -241,7 +264,10 @@ impl GeneralizedAlpha {
             if !err.is_finite() {
                 return Err(StepFailure::NonFinite);
             }
-            if err <= self.tolerance {
+            // Converged, or stagnating at round-off within 100 x the tolerance (large
+            // deflections: the correction stops shrinking at the floating-point floor).
+            let stagnated = iteration >= 2 && err <= 100.0 * self.tolerance && err > 0.5 * previous;
+            if err <= self.tolerance || stagnated {
                 for i in 0..n {
                     tr.acc[i] = (alpha_f * state.qdd[i] - alpha_m * state.acc[i]
                         + (1.0 - alpha_f) * tr.qdd[i])

@@ -21,7 +21,7 @@
 use nalgebra::{DMatrix, DVector, Vector2};
 
 use super::component_modes::ComponentModes;
-use crate::beam::quadrature::{GAUSS4, GAUSS5};
+use crate::beam::quadrature::GAUSS4;
 use crate::scene::MassKind;
 
 /// The shape integrals of one rod with its retained modes.
@@ -51,12 +51,6 @@ pub struct ShapeIntegrals {
     pub s_tilde: DMatrix<f64>,
     /// Geometric stiffness moments G_0, G_1, G_2 (n x n each), chord-relative slopes.
     pub g: [DMatrix<f64>; 3],
-    /// Geometric stiffness of the axial force carried by the elastic motion:
-    /// `H^u_j = int_0^L U_j(s) D^T D ds`, `H^v_j = int_0^L V_j(s) D^T D ds` with the tail
-    /// integrals `U_j(s) = int_s^L S_u,j`, `V_j(s) = int_s^L S_v,j` of mode j's axial and
-    /// transverse shape (n matrices of n x n each; exact 5-point Gauss quadrature).
-    pub h_u: Vec<DMatrix<f64>>,
-    pub h_v: Vec<DMatrix<f64>>,
     /// S_hat at the B end (s = 0), the C end (s = L) and the midpoint (s = L / 2).
     pub s_b: DMatrix<f64>,
     pub s_c: DMatrix<f64>,
@@ -155,34 +149,6 @@ impl ShapeIntegrals {
         }
 
         i3 += rotary_total;
-        // Tail integrals of the shapes: full element integrals, then the sum over later elements.
-        let full: Vec<DMatrix<f64>> = (0..mesh.n_elements)
-            .map(|e| {
-                let r = el.shape_integral(1.0) * modes.element_shapes(e);
-                DMatrix::from_fn(2, n, |i, j| r[(i, j)])
-            })
-            .collect();
-        let mut tail_after = vec![DMatrix::zeros(2, n); mesh.n_elements];
-        for e in (0..mesh.n_elements.saturating_sub(1)).rev() {
-            tail_after[e] = &tail_after[e + 1] + &full[e + 1];
-        }
-        let mut h_u = vec![DMatrix::zeros(n, n); n];
-        let mut h_v = vec![DMatrix::zeros(n, n); n];
-        for e in 0..mesh.n_elements {
-            let t = modes.element_shapes(e);
-            for (xi, w) in GAUSS5 {
-                let part = el.shape_integral(xi) * &t;
-                let d = el.slope(xi) * &t - &chord;
-                let dtd = d.transpose() * &d * (w * l);
-                for j in 0..n {
-                    let uj = full[e][(0, j)] - part[(0, j)] + tail_after[e][(0, j)];
-                    let vj = full[e][(1, j)] - part[(1, j)] + tail_after[e][(1, j)];
-                    h_u[j] += &dtd * uj;
-                    h_v[j] += &dtd * vj;
-                }
-            }
-        }
-
         let m_ff = match modes.mass_kind {
             MassKind::Consistent => {
                 let mut m_ff = DMatrix::zeros(n, n);
@@ -215,8 +181,6 @@ impl ShapeIntegrals {
             m_uu,
             s_tilde,
             g,
-            h_u,
-            h_v,
             s_b,
             s_c,
             s_mid,
