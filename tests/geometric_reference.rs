@@ -88,6 +88,16 @@ fn stiffened_modes_match_the_geometrically_exact_peak() {
             true,
         ),
         (
+            "converged step (8 el, 4 modes, h 1e-5)",
+            {
+                let mut s = Scene::benchmark();
+                s.solver.step = 1e-5;
+                s
+            },
+            1e-4,
+            true,
+        ),
+        (
             "linear modes (8 el, 4 modes, h 1e-4)",
             {
                 let mut s = Scene::benchmark();
