@@ -27,6 +27,22 @@ pub fn check_identifier(identifier: &str) -> Result<(), String> {
     }
 }
 
+/// The FMI 2.0 platform folder under `binaries/` and the file name of the shared library
+/// cargo builds, for the platform this packager runs on (the library is built natively).
+/// Only `linux64` is supported: the resource loading, the tests and the contract are Linux's.
+pub fn platform() -> Result<(&'static str, &'static str), String> {
+    platform_of(std::env::consts::OS, std::env::consts::ARCH)
+}
+
+fn platform_of(os: &str, arch: &str) -> Result<(&'static str, &'static str), String> {
+    match (os, arch) {
+        ("linux", "x86_64") => Ok(("linux64", "libflexrod.so")),
+        _ => Err(format!(
+            "cannot package for {os}/{arch}: this packager builds FMUs only on x86_64 Linux (binaries/linux64); build and package on such a machine"
+        )),
+    }
+}
+
 /// The cargo target directory this binary was built in (`<target>/<profile>/fmu`), so
 /// `CARGO_TARGET_DIR` and `build.target-dir` are honoured.
 pub fn target_dir() -> Result<PathBuf, String> {
@@ -40,6 +56,7 @@ pub fn target_dir() -> Result<PathBuf, String> {
 
 /// `cargo build --release --lib -p flexrod`; returns the path of the shared library.
 pub fn build_library(target_dir: &Path) -> Result<PathBuf, String> {
+    let (_, library_name) = platform()?;
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_string());
     let workspace = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     println!("building the FMU binary: {cargo} build --release --lib -p flexrod");
@@ -59,7 +76,7 @@ pub fn build_library(target_dir: &Path) -> Result<PathBuf, String> {
     if !status.success() {
         return Err(format!("cargo build of the FMU library failed ({status})"));
     }
-    let library = target_dir.join("release").join("libflexrod.so");
+    let library = target_dir.join("release").join(library_name);
     if !library.is_file() {
         return Err(format!(
             "the build succeeded but {} does not exist",
@@ -78,6 +95,7 @@ pub fn write_fmu(
     library: &Path,
 ) -> Result<PathBuf, String> {
     let identifier = model_identifier(scene);
+    let (platform, _) = platform()?;
     let binary = std::fs::read(library)
         .map_err(|e| format!("cannot read the library {}: {e}", library.display()))?;
     std::fs::create_dir_all(out_dir)
@@ -92,7 +110,11 @@ pub fn write_fmu(
             description.xml.as_bytes(),
             0o644,
         ),
-        (format!("binaries/linux64/{identifier}.so"), &binary, 0o755),
+        (
+            format!("binaries/{platform}/{identifier}.so"),
+            &binary,
+            0o755,
+        ),
         (
             format!("resources/{SCENE_FILE}"),
             scene_text.as_bytes(),
@@ -120,4 +142,25 @@ pub fn write_fmu(
     zip.finish()
         .map_err(|e| format!("cannot finish {}: {e}", path.display()))?;
     Ok(path)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn platform_folder_from_os_and_arch() {
+        assert_eq!(
+            platform_of("linux", "x86_64").unwrap(),
+            ("linux64", "libflexrod.so")
+        );
+        for (os, arch) in [
+            ("linux", "aarch64"),
+            ("windows", "x86_64"),
+            ("macos", "aarch64"),
+        ] {
+            let e = platform_of(os, arch).unwrap_err();
+            assert!(e.contains(&format!("{os}/{arch}")), "{e}");
+        }
+    }
 }

@@ -161,9 +161,24 @@ fn guid_from_hash(h: u128) -> String {
     )
 }
 
-/// Shortest text that reads back as the same f64.
-fn real_text(x: f64) -> String {
-    format!("{x:?}")
+/// Shortest text that reads back as the same f64. Non-finite values have no xs:double text
+/// that importers accept (and are never valid start values or bounds here): an error.
+fn real_text(x: f64) -> io::Result<String> {
+    if x.is_finite() {
+        Ok(format!("{x:?}"))
+    } else {
+        Err(io::Error::new(
+            io::ErrorKind::InvalidData,
+            format!("the value {x} is not finite and cannot be written into modelDescription.xml"),
+        ))
+    }
+}
+
+fn value_text(value: Value) -> io::Result<String> {
+    match value {
+        Value::Real(x) => real_text(x),
+        Value::Integer(n) => Ok(n.to_string()),
+    }
 }
 
 fn render(scene: &Scene, table: &VariableTable, guid: &str) -> io::Result<String> {
@@ -197,6 +212,10 @@ fn render(scene: &Scene, table: &VariableTable, guid: &str) -> io::Result<String
 }
 
 type W = Writer<Vec<u8>>;
+
+fn named_error(name: &str, attribute: &str, e: io::Error) -> io::Error {
+    io::Error::new(e.kind(), format!("{name}: {attribute}: {e}"))
+}
 
 fn write_co_simulation(w: &mut W, scene: &Scene) -> io::Result<()> {
     let mut attributes = vec![("modelIdentifier", model_identifier(scene))];
@@ -279,9 +298,9 @@ fn write_log_categories(w: &mut W) -> io::Result<()> {
 fn write_default_experiment(w: &mut W, scene: &Scene) -> io::Result<()> {
     let e = &scene.experiment;
     let (start, stop, step) = (
-        real_text(e.start_time),
-        real_text(e.stop_time),
-        real_text(e.step_size),
+        real_text(e.start_time)?,
+        real_text(e.stop_time)?,
+        real_text(e.step_size)?,
     );
     w.create_element("DefaultExperiment")
         .with_attributes([
@@ -312,10 +331,10 @@ fn write_model_variables(w: &mut W, table: &VariableTable) -> io::Result<()> {
                 if let Some(initial) = v.initial {
                     attributes.push(("initial", initial.as_str()));
                 }
-                let start = v.start.map(|s| match s {
-                    Value::Real(x) => real_text(x),
-                    Value::Integer(n) => n.to_string(),
-                });
+                let text = |value: Option<Value>| value.map(value_text).transpose();
+                let start = text(v.start).map_err(|e| named_error(&v.name, "start", e))?;
+                let min = text(v.min).map_err(|e| named_error(&v.name, "min", e))?;
+                let max = text(v.max).map_err(|e| named_error(&v.name, "max", e))?;
                 w.create_element("ScalarVariable")
                     .with_attributes(attributes)
                     .write_inner_content(|w| {
@@ -335,6 +354,12 @@ fn write_model_variables(w: &mut W, table: &VariableTable) -> io::Result<()> {
                                 ("Enumeration", vec![("declaredType", ty.name)])
                             }
                         };
+                        if let Some(m) = &min {
+                            type_attributes.push(("min", m.as_str()));
+                        }
+                        if let Some(m) = &max {
+                            type_attributes.push(("max", m.as_str()));
+                        }
                         if let Some(s) = &start {
                             type_attributes.push(("start", s.as_str()));
                         }
@@ -441,5 +466,31 @@ mod tests {
         assert!(a.xml.contains(&a.guid));
         assert!(a.xml.contains("canSerializeFMUstate=\"true\""));
         assert_eq!(a.xml.matches("canRunAsynchronuously").count(), 1);
+    }
+
+    #[test]
+    fn non_finite_values_are_not_written() {
+        let mut scene = Scene::benchmark();
+        scene.experiment.stop_time = f64::INFINITY;
+        let e = ModelDescription::new(&scene, VariableTable::new(&scene, 6))
+            .err()
+            .expect("an infinite stop time is rejected");
+        assert!(e.to_string().contains("not finite"), "{e}");
+    }
+
+    #[test]
+    fn parameter_bounds_are_declared() {
+        let scene = Scene::benchmark();
+        let xml = ModelDescription::new(&scene, VariableTable::new(&scene, 6))
+            .unwrap()
+            .xml;
+        assert!(
+            xml.contains("<Real unit=\"m\" min=\"0.0\" start=\"0.3048\"/>"),
+            "{xml}"
+        );
+        assert!(
+            xml.contains("<Integer min=\"1\" max=\"4096\" start=\"8\"/>"),
+            "{xml}"
+        );
     }
 }

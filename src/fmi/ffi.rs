@@ -11,15 +11,25 @@
 //! strings are NUL-terminated. NULL pointers are detected and reported.
 //!
 //! FMU state handles are opaque integers (never dereferenced), looked up per instance, so a
-//! stale or foreign handle gives an error, not undefined behaviour.
+//! stale or foreign handle gives an error (or a new handle where FMI allows one), not
+//! undefined behaviour.
+//!
+//! Re-entrancy: an `fmi2Component` points to a [`Component`], which holds the [`Instance`] in
+//! an `UnsafeCell` behind a busy flag. `&mut Instance` is created only by the call that set
+//! the flag, so a logger callback that calls back into the same instance (or a second thread
+//! calling it concurrently) never aliases it: such a nested call returns `fmi2Error` and is
+//! reported through the logger.
 
 #![allow(non_snake_case, non_camel_case_types)]
 #![allow(clippy::missing_safety_doc)]
 #![deny(unsafe_op_in_unsafe_fn)]
 
+use std::borrow::Cow;
+use std::cell::UnsafeCell;
 use std::ffi::{c_char, c_int, c_uint, c_void, CStr, CString};
 use std::panic::AssertUnwindSafe;
 use std::ptr;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::guard;
 use super::instance::{Instance, InstantiateArgs};
@@ -64,6 +74,7 @@ pub struct fmi2CallbackFunctions {
 const ERROR: fmi2Status = Status::Error as fmi2Status;
 
 /// The importer's logger callback.
+#[derive(Clone)]
 struct CallbackSink {
     callback: fmi2CallbackLogger,
     environment: fmi2ComponentEnvironment,
@@ -90,6 +101,45 @@ impl LogSink for CallbackSink {
                 message.as_ptr(),
             );
         }
+    }
+}
+
+/// What an `fmi2Component` points to.
+struct Component {
+    /// Set while a call runs on `instance`.
+    busy: AtomicBool,
+    /// Set while a nested call is being reported (a logger that calls back on every
+    /// message must not recurse without end).
+    reporting: AtomicBool,
+    /// The importer's logger, for reporting nested calls without touching `instance`.
+    sink: Option<CallbackSink>,
+    instance: UnsafeCell<Instance>,
+}
+
+impl Component {
+    /// Report a call that arrived while another call on this instance was running.
+    fn report_busy(&self, name: &str) {
+        if self.reporting.swap(true, Ordering::Acquire) {
+            return;
+        }
+        if let Some(sink) = &self.sink {
+            let message = format!(
+                "{name}: illegal call while another call on this instance is in progress (a re-entrant call from a callback, or concurrent calls from two threads); nothing was done"
+            );
+            let _ = guard::catch(AssertUnwindSafe(|| {
+                sink.emit(Status::Error, "logStatusError", &message);
+            }));
+        }
+        self.reporting.store(false, Ordering::Release);
+    }
+}
+
+/// Clears the busy flag when the call ends (also if it unwinds).
+struct Busy<'a>(&'a AtomicBool);
+
+impl Drop for Busy<'_> {
+    fn drop(&mut self) {
+        self.0.store(false, Ordering::Release);
     }
 }
 
@@ -139,6 +189,15 @@ unsafe fn out<'a, T>(p: *mut T, what: &str) -> FmiResult<&'a mut T> {
     unsafe { p.as_mut() }.ok_or_else(|| FmiError::rejected(format!("{what} is NULL")))
 }
 
+/// Text from a C string, invalid UTF-8 replaced by U+FFFD; `None` for NULL.
+unsafe fn lossy_text<'a>(p: *const c_char) -> Option<Cow<'a, str>> {
+    if p.is_null() {
+        return None;
+    }
+    // SAFETY: non-null, and the caller guarantees a NUL-terminated string.
+    Some(unsafe { CStr::from_ptr(p) }.to_string_lossy())
+}
+
 /// `&str` from a C string; `None` for NULL.
 unsafe fn text<'a>(p: *const c_char, what: &str) -> Result<Option<&'a str>, String> {
     if p.is_null() {
@@ -165,12 +224,26 @@ unsafe fn dispatch(
     call: Call,
     f: impl FnOnce(&mut Instance) -> FmiResult<Status>,
 ) -> fmi2Status {
-    // SAFETY: c is NULL or a live pointer from fmi2Instantiate (FMI 2.0), used by one
-    // thread at a time.
-    let Some(instance) = (unsafe { c.cast::<Instance>().as_mut() }) else {
+    // SAFETY: c is NULL or a live pointer from fmi2Instantiate (FMI 2.0). Only a shared
+    // reference is made here: a nested call may hold one at the same time.
+    let Some(component) = (unsafe { c.cast::<Component>().as_ref() }) else {
         return ERROR;
     };
-    guard::catch(AssertUnwindSafe(|| instance.run(call, f).code())).unwrap_or(ERROR)
+    if component.busy.swap(true, Ordering::Acquire) {
+        component.report_busy(call.name());
+        return ERROR;
+    }
+    let _busy = Busy(&component.busy);
+    // SAFETY: this call set the busy flag, so no other `&mut Instance` exists until it is
+    // cleared (when `_busy` drops, after the last use of `instance`).
+    let instance = unsafe { &mut *component.instance.get() };
+    match guard::catch(AssertUnwindSafe(|| instance.run(call, f).code())) {
+        Ok(code) => code,
+        Err(_) => {
+            instance.enter_error_state();
+            ERROR
+        }
+    }
 }
 
 // ------------------------------------------------------------------ inquire platform
@@ -201,59 +274,69 @@ pub unsafe extern "C" fn fmi2Instantiate(
         // SAFETY: NULL or the importer's callback struct (FMI 2.0).
         let functions = unsafe { functions.as_ref() }?;
         // SAFETY (all three): NULL or NUL-terminated strings (FMI 2.0).
-        let name = unsafe { text(instanceName, "instanceName") };
+        let name = unsafe { lossy_text(instanceName) };
         let guid = unsafe { text(fmuGUID, "fmuGUID") };
         let location = unsafe { text(fmuResourceLocation, "fmuResourceLocation") };
-        let name_for_log = match &name {
-            Ok(Some(n)) => c_string(n),
-            _ => c_string("?"),
-        };
-        let sink = functions.logger.map(|callback| {
-            Box::new(CallbackSink {
-                callback,
-                environment: functions.component_environment,
-                instance_name: name_for_log,
-            }) as Box<dyn LogSink>
+        let sink = functions.logger.map(|callback| CallbackSink {
+            callback,
+            environment: functions.component_environment,
+            instance_name: c_string(name.as_deref().unwrap_or("")),
         });
-        let logger = Logger::new(sink, loggingOn != 0);
-        let args = match (name, guid, location) {
-            (Ok(Some(instance_name)), Ok(Some(guid)), Ok(resource_location)) => InstantiateArgs {
+        let logger = Logger::new(
+            sink.clone().map(|s| Box::new(s) as Box<dyn LogSink>),
+            loggingOn != 0,
+        );
+        let args = match (&name, guid, location) {
+            (Some(instance_name), Ok(Some(guid)), Ok(resource_location)) => InstantiateArgs {
                 instance_name,
                 fmu_type: fmuType,
                 guid,
                 resource_location,
             },
             (name, guid, location) => {
-                let problem = [name, guid]
-                    .into_iter()
-                    .zip(["instanceName", "fmuGUID"])
-                    .find_map(|(r, what)| match r {
-                        Ok(Some(_)) => None,
-                        Ok(None) => Some(format!("{what} is NULL")),
-                        Err(e) => Some(e),
-                    })
-                    .or_else(|| location.err())
-                    .unwrap_or_default();
+                let problem = if name.is_none() {
+                    "instanceName is NULL".to_string()
+                } else {
+                    match guid {
+                        Ok(None) => "fmuGUID is NULL".to_string(),
+                        Err(e) => e,
+                        Ok(Some(_)) => location.err().unwrap_or_default(),
+                    }
+                };
                 logger.status(Status::Error, &format!("fmi2Instantiate: {problem}"));
                 return None;
             }
         };
-        Instance::instantiate(args, logger)
+        let instance = Instance::instantiate(args, logger)?;
+        Some(Component {
+            busy: AtomicBool::new(false),
+            reporting: AtomicBool::new(false),
+            sink,
+            instance: UnsafeCell::new(instance),
+        })
     }));
     match created {
-        Ok(Some(instance)) => Box::into_raw(Box::new(instance)).cast(),
+        Ok(Some(component)) => Box::into_raw(Box::new(component)).cast(),
         _ => ptr::null_mut(),
     }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2FreeInstance(c: fmi2Component) {
-    if c.is_null() {
+    // SAFETY: c is NULL or a live pointer from fmi2Instantiate (FMI 2.0).
+    let Some(component) = (unsafe { c.cast::<Component>().as_ref() }) else {
+        return;
+    };
+    if component.busy.swap(true, Ordering::Acquire) {
+        // Freed from inside a callback of a running call: refuse rather than free memory
+        // that call still uses.
+        component.report_busy("fmi2FreeInstance");
         return;
     }
-    // SAFETY: c came from Box::into_raw in fmi2Instantiate and is freed once (FMI 2.0).
-    let instance = unsafe { Box::from_raw(c.cast::<Instance>()) };
-    let _ = guard::catch(AssertUnwindSafe(move || drop(instance)));
+    // SAFETY: c came from Box::into_raw in fmi2Instantiate, no call is running on it (the busy
+    // flag), and it is freed once (FMI 2.0).
+    let component = unsafe { Box::from_raw(c.cast::<Component>()) };
+    let _ = guard::catch(AssertUnwindSafe(move || drop(component)));
 }
 
 #[no_mangle]
@@ -268,13 +351,12 @@ pub unsafe extern "C" fn fmi2SetDebugLogging(
             let pointers = slice(categories, nCategories, "categories[]")?;
             let mut names = Vec::with_capacity(pointers.len());
             for (k, &p) in pointers.iter().enumerate() {
-                let what = format!("categories[{k}]");
-                match text(p, &what) {
-                    Ok(Some(name)) => names.push(name),
-                    Ok(None) => return Err(FmiError::rejected(format!("{what} is NULL"))),
-                    Err(e) => return Err(FmiError::rejected(e)),
+                match lossy_text(p) {
+                    Some(name) => names.push(name),
+                    None => return Err(FmiError::rejected(format!("categories[{k}] is NULL"))),
                 }
             }
+            let names: Vec<&str> = names.iter().map(|n| n.as_ref()).collect();
             i.set_debug_logging(loggingOn != 0, &names)
         })
     }

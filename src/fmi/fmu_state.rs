@@ -8,21 +8,32 @@
 //! magic "FLXRFMI2", format version u32, GUID (u32 length + UTF-8),
 //! machine state u8, last step status u8, started u8,
 //! start time f64, stop time defined u8, stop time f64,
-//! inputs: angle, speed, slider force, acceleration f64, flags u8,
-//!         law angle, law speed, law acceleration, law time f64,
-//! scene (u32 length + TOML), simulation present u8 (+ u64 length + core bytes)
+//! inputs: angle, speed, slider force, acceleration f64,
+//!         acceleration source u8 (0 none, 1 crank.speed, 2 crank.angle), force changed u8,
+//! scene (u32 length + TOML), simulation present u8 (+ u64 length + core bytes),
+//! checksum u64: FNV-1a 64 of all bytes before it
 //! ```
 //!
-//! The core's bytes carry their own magic, version and model fingerprint.
+//! The law in force (theta_k, omega_k, alpha_k, t_k) is part of the core's bytes, which carry
+//! their own magic, version and model fingerprint. The checksum makes any corruption of the
+//! bytes (a flipped bit in a stored double, too) a rejection rather than a silently different
+//! state.
 
-use super::inputs::{Experiment, Inputs};
+use super::inputs::{AccelerationSource, Experiment, Inputs};
 use super::state_machine::MachineState;
 use super::status::Status;
 use crate::scene::Scene;
-use crate::simulation::{CrankInput, Snapshot};
+use crate::simulation::Snapshot;
 
 const MAGIC: &[u8; 8] = b"FLXRFMI2";
-const VERSION: u32 = 1;
+const VERSION: u32 = 2;
+
+/// FNV-1a, 64 bits.
+fn fnv1a_64(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+    })
+}
 
 /// A saved state of an instance.
 #[derive(Clone, Debug)]
@@ -67,14 +78,8 @@ pub(crate) fn serialize(guid: &str, state: &FmuState, simulation_bytes: Option<&
     for x in [i.angle, i.speed, i.slider_force, i.acceleration] {
         put_f64(&mut out, x);
     }
-    out.push(
-        u8::from(i.acceleration_set)
-            | u8::from(i.crank_changed) << 1
-            | u8::from(i.force_changed) << 2,
-    );
-    for x in [i.law.angle, i.law.speed, i.law.acceleration, i.law_time] {
-        put_f64(&mut out, x);
-    }
+    out.push(i.source.code());
+    out.push(u8::from(i.force_changed));
     put_bytes_u32(&mut out, state.scene.to_toml().as_bytes());
     match simulation_bytes {
         None => out.push(0),
@@ -84,6 +89,8 @@ pub(crate) fn serialize(guid: &str, state: &FmuState, simulation_bytes: Option<&
             out.extend_from_slice(b);
         }
     }
+    let checksum = fnv1a_64(&out);
+    out.extend_from_slice(&checksum.to_le_bytes());
     out
 }
 
@@ -156,6 +163,25 @@ pub(crate) fn deserialize<'a>(guid: &str, bytes: &'a [u8]) -> Result<Parsed<'a>,
             "format version {version}, this FMU reads version {VERSION}"
         ));
     }
+    if bytes.len() < MAGIC.len() + 4 + 8 {
+        return Err(format!(
+            "truncated: {} bytes cannot hold a state and its checksum",
+            bytes.len()
+        ));
+    }
+    let (content, stored) = bytes.split_at(bytes.len() - 8);
+    let mut checksum = [0u8; 8];
+    checksum.copy_from_slice(stored);
+    if u64::from_le_bytes(checksum) != fnv1a_64(content) {
+        return Err(format!(
+            "the checksum of the {} bytes does not match their content (corrupted, truncated or extended bytes)",
+            bytes.len()
+        ));
+    }
+    let mut r = Reader {
+        bytes: content,
+        at: r.at,
+    };
     let written_by = r.str_u32("the GUID")?;
     if written_by != guid {
         return Err(format!(
@@ -176,16 +202,10 @@ pub(crate) fn deserialize<'a>(guid: &str, bytes: &'a [u8]) -> Result<Parsed<'a>,
     let speed = r.f64("crank.speed")?;
     let slider_force = r.f64("slider.force")?;
     let acceleration = r.f64("the crank acceleration")?;
-    let flags = r.u8("the input flags")?;
-    if flags > 7 {
-        return Err(format!("input flags {flags} are invalid, allowed 0..=7"));
-    }
-    let law = CrankInput {
-        angle: r.f64("the law's angle")?,
-        speed: r.f64("the law's speed")?,
-        acceleration: r.f64("the law's acceleration")?,
-    };
-    let law_time = r.f64("the law's time")?;
+    let source_code = r.u8("the acceleration source")?;
+    let source = AccelerationSource::from_code(source_code)
+        .ok_or_else(|| format!("acceleration source code {source_code} is unknown"))?;
+    let force_changed = r.flag("the slider force flag")?;
     let scene_text = r.str_u32("the scene")?;
     let scene =
         Scene::from_toml_str(scene_text, "the serialized state").map_err(|e| e.to_string())?;
@@ -196,10 +216,10 @@ pub(crate) fn deserialize<'a>(guid: &str, bytes: &'a [u8]) -> Result<Parsed<'a>,
     } else {
         None
     };
-    if r.at != bytes.len() {
+    if r.at != content.len() {
         return Err(format!(
             "{} unexpected bytes after the end of the state at offset {}",
-            bytes.len() - r.at,
+            content.len() - r.at,
             r.at
         ));
     }
@@ -208,11 +228,8 @@ pub(crate) fn deserialize<'a>(guid: &str, bytes: &'a [u8]) -> Result<Parsed<'a>,
         speed,
         slider_force,
         acceleration,
-        acceleration_set: flags & 1 != 0,
-        crank_changed: flags & 2 != 0,
-        force_changed: flags & 4 != 0,
-        law,
-        law_time,
+        source,
+        force_changed,
     };
     Ok(Parsed {
         state: FmuState {
@@ -241,15 +258,8 @@ mod tests {
             speed: 150.0,
             slider_force: -3.5,
             acceleration: 10.0,
-            acceleration_set: true,
-            crank_changed: false,
+            source: AccelerationSource::Angle,
             force_changed: true,
-            law: CrankInput {
-                angle: 1.0,
-                speed: 149.0,
-                acceleration: 2.0,
-            },
-            law_time: 0.01,
         };
         FmuState {
             machine: MachineState::StepComplete,
@@ -286,7 +296,10 @@ mod tests {
             .contains("foreign"));
         for cut in [3, 20, bytes.len() - 1] {
             let e = deserialize("{g}", &bytes[..cut]).err().expect("truncated");
-            assert!(e.contains("truncated") || e.contains("foreign"), "{e}");
+            assert!(
+                e.contains("truncated") || e.contains("foreign") || e.contains("checksum"),
+                "{e}"
+            );
         }
         assert!(deserialize("{h}", &bytes).err().unwrap().contains("GUID"));
         let mut longer = bytes.clone();
@@ -294,6 +307,16 @@ mod tests {
         assert!(deserialize("{g}", &longer)
             .err()
             .unwrap()
-            .contains("unexpected"));
+            .contains("checksum"));
+    }
+
+    #[test]
+    fn every_flipped_byte_is_rejected() {
+        let bytes = serialize("{g}", &sample(), Some(&[9; 40]));
+        for at in 0..bytes.len() {
+            let mut corrupted = bytes.clone();
+            corrupted[at] ^= 0x10;
+            assert!(deserialize("{g}", &corrupted).is_err(), "byte {at} flipped");
+        }
     }
 }

@@ -20,13 +20,20 @@ fn install_hook() {
     INSTALL_HOOK.call_once(|| {
         let previous = panic::take_hook();
         panic::set_hook(Box::new(move |info| {
-            if GUARDED.with(Cell::get) > 0 {
+            // try_with: during thread teardown the thread-locals may be gone; then the
+            // previous hook reports the panic.
+            if GUARDED.try_with(Cell::get).unwrap_or(0) > 0 {
                 let location = info
                     .location()
                     .map(|l| format!(" at {}:{}", l.file(), l.line()))
                     .unwrap_or_default();
                 let message = super::instance::panic_text(info.payload());
-                LAST_PANIC.with(|p| *p.borrow_mut() = Some(format!("{message}{location}")));
+                let text = format!("{message}{location}");
+                let _ = LAST_PANIC.try_with(|p| {
+                    if let Ok(mut slot) = p.try_borrow_mut() {
+                        *slot = Some(text);
+                    }
+                });
             } else {
                 previous(info);
             }
@@ -37,12 +44,14 @@ fn install_hook() {
 /// Run `f`; a panic becomes `Err(message)`.
 pub fn catch<T>(f: impl FnOnce() -> T + UnwindSafe) -> Result<T, String> {
     install_hook();
-    GUARDED.with(|g| g.set(g.get() + 1));
+    let _ = GUARDED.try_with(|g| g.set(g.get() + 1));
     let result = panic::catch_unwind(f);
-    GUARDED.with(|g| g.set(g.get() - 1));
+    let _ = GUARDED.try_with(|g| g.set(g.get().saturating_sub(1)));
     result.map_err(|payload| {
         LAST_PANIC
-            .with(|p| p.borrow_mut().take())
+            .try_with(|p| p.try_borrow_mut().ok().and_then(|mut slot| slot.take()))
+            .ok()
+            .flatten()
             .unwrap_or_else(|| super::instance::panic_text(payload.as_ref()))
     })
 }

@@ -1,30 +1,66 @@
-//! Inputs between communication points follow the contract's law
-//! `theta(t_k + s) = theta_k + omega_k s + alpha_k s^2 / 2`, `omega(t_k + s) = omega_k + alpha_k s`:
-//! when the importer sets `crank.angle`, `crank.speed` or the crank acceleration (order-1
-//! derivative of `crank.speed`) at `t_k`, a new law starts at `t_k` with `alpha_k` = the
-//! derivative set at `t_k`, or 0. When it sets none of them, the current law continues, and
-//! `fmi2GetReal` of the inputs reports the law's values at the current time.
+//! The inputs and their law between communication points (fmu-contract.md, "Behaviour"):
+//! `theta(t_k + s) = theta_k + omega_k s + alpha_k s^2 / 2`, `omega(t_k + s) = omega_k + alpha_k s`.
+//!
+//! At every `fmi2DoStep(t_k, h)` a new law starts at `t_k`:
+//! - `theta_k`, `omega_k`: the values set by the importer at `t_k`; for an input not set at
+//!   `t_k`, the value the previous law has at `t_k` (so an FMU left without inputs continues the
+//!   motion it was started with);
+//! - `alpha_k`: the crank acceleration set at `t_k` with `fmi2SetRealInputDerivatives` (order 1
+//!   of `crank.speed`, or order 2 of `crank.angle`), and 0 if none was set at `t_k`.
+//!
+//! After the step, `fmi2GetReal` of `crank.angle` and `crank.speed` returns the values the law
+//! had at `t_k + h` (read back from the core's law, so they are exactly those the integrator
+//! used there).
 
 use super::variables::{Access, InputSlot, Value, VariableTable};
 use crate::simulation::CrankInput;
 
+/// Where the crank acceleration of the current communication point came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AccelerationSource {
+    /// Not set at this point: `alpha_k` = 0.
+    None,
+    /// Order 1 of `crank.speed` (takes precedence).
+    Speed,
+    /// Order 2 of `crank.angle`.
+    Angle,
+}
+
+impl AccelerationSource {
+    /// Stable code for serialized FMU states.
+    pub fn code(self) -> u8 {
+        match self {
+            AccelerationSource::None => 0,
+            AccelerationSource::Speed => 1,
+            AccelerationSource::Angle => 2,
+        }
+    }
+
+    /// Decode [`AccelerationSource::code`].
+    pub fn from_code(code: u8) -> Option<AccelerationSource> {
+        [
+            AccelerationSource::None,
+            AccelerationSource::Speed,
+            AccelerationSource::Angle,
+        ]
+        .into_iter()
+        .find(|s| s.code() == code)
+    }
+}
+
 /// The inputs as the instance keeps them.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Inputs {
-    /// Current values (set by the importer, or the law evaluated at the current time).
+    /// Current values: set by the importer, or the law's values at the current time.
     pub angle: f64,
     pub speed: f64,
     pub slider_force: f64,
-    /// Order-1 derivative of `crank.speed` set at this communication point.
+    /// Crank acceleration set at this communication point (meaningful unless `source` is
+    /// `None`).
     pub acceleration: f64,
-    pub acceleration_set: bool,
-    /// A crank value or derivative was set since the last step: a new law starts.
-    pub crank_changed: bool,
+    pub source: AccelerationSource,
     /// `slider.force` was set since the last step.
     pub force_changed: bool,
-    /// The law in use and the time it started.
-    pub law: CrankInput,
-    pub law_time: f64,
 }
 
 impl Inputs {
@@ -39,21 +75,13 @@ impl Inputs {
                 })
                 .unwrap_or(0.0)
         };
-        let (angle, speed) = (start(InputSlot::CrankAngle), start(InputSlot::CrankSpeed));
         Inputs {
-            angle,
-            speed,
+            angle: start(InputSlot::CrankAngle),
+            speed: start(InputSlot::CrankSpeed),
             slider_force: start(InputSlot::SliderForce),
             acceleration: 0.0,
-            acceleration_set: false,
-            crank_changed: false,
+            source: AccelerationSource::None,
             force_changed: false,
-            law: CrankInput {
-                angle,
-                speed,
-                acceleration: 0.0,
-            },
-            law_time: 0.0,
         }
     }
 
@@ -69,47 +97,34 @@ impl Inputs {
         match slot {
             InputSlot::CrankAngle => self.angle = x,
             InputSlot::CrankSpeed => self.speed = x,
-            InputSlot::SliderForce => self.slider_force = x,
-        }
-        match slot {
-            InputSlot::CrankAngle | InputSlot::CrankSpeed => self.crank_changed = true,
-            InputSlot::SliderForce => self.force_changed = true,
+            InputSlot::SliderForce => {
+                self.slider_force = x;
+                self.force_changed = true;
+            }
         }
     }
 
-    /// The crank input at the current communication point.
+    /// The acceleration set at this point, if any.
+    pub fn acceleration_set(&self) -> Option<f64> {
+        (self.source != AccelerationSource::None).then_some(self.acceleration)
+    }
+
+    /// The law that starts at the current communication point.
     pub fn crank_input(&self) -> CrankInput {
         CrankInput {
             angle: self.angle,
             speed: self.speed,
-            acceleration: if self.acceleration_set {
-                self.acceleration
-            } else {
-                0.0
-            },
+            acceleration: self.acceleration_set().unwrap_or(0.0),
         }
     }
 
-    /// Start a new law at `time` from the current values; clear the change flags.
-    pub fn start_law(&mut self, time: f64) {
-        self.law = self.crank_input();
-        self.law_time = time;
-        self.clear_point();
-    }
-
-    /// After a step to `time`: the current values are the law's values there.
-    pub fn follow_law(&mut self, time: f64) {
-        let s = time - self.law_time;
-        let law = self.law;
-        self.angle = law.angle + law.speed * s + 0.5 * law.acceleration * s * s;
-        self.speed = law.speed + law.acceleration * s;
-        self.clear_point();
-    }
-
-    fn clear_point(&mut self) {
+    /// After a step: the current values are the law's values at the new time; nothing is set
+    /// at the new communication point yet.
+    pub fn after_step(&mut self, angle: f64, speed: f64) {
+        self.angle = angle;
+        self.speed = speed;
         self.acceleration = 0.0;
-        self.acceleration_set = false;
-        self.crank_changed = false;
+        self.source = AccelerationSource::None;
         self.force_changed = false;
     }
 }

@@ -13,7 +13,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use super::description::ModelDescription;
 use super::fmu_state::{self, FmuState};
 use super::guard;
-use super::inputs::{Experiment, Inputs};
+use super::inputs::{AccelerationSource, Experiment, Inputs};
 use super::logging::Logger;
 use super::resource;
 use super::state_machine::{self, Call, MachineState};
@@ -147,28 +147,37 @@ impl Instance {
             state_machine::check(call, self.state)?;
             f(self)
         }));
-        match result {
-            Ok(Ok(status)) => status,
+        let (status, message) = match result {
+            Ok(Ok(status)) => return status,
             Ok(Err(e)) => {
                 if e.instance_failed {
                     self.state = MachineState::Error;
                 }
-                self.logger
-                    .status(e.status, &format!("{}: {}", call.name(), e.message));
-                e.status
+                (e.status, format!("{}: {}", call.name(), e.message))
             }
             Err(panic) => {
                 self.state = MachineState::Error;
-                self.logger.status(
+                (
                     Status::Error,
-                    &format!(
-                        "{}: internal error (a panic was caught at the FMI boundary): {panic}; the instance is in the Error state: call fmi2Reset or fmi2FreeInstance",
+                    format!(
+                        "{}: internal error (a panic was caught at the FMI boundary): {panic}; the instance is in the Error state: call fmi2Reset, fmi2SetFMUstate or fmi2FreeInstance",
                         call.name()
                     ),
-                );
-                Status::Error
+                )
             }
+        };
+        let logger = &self.logger;
+        if guard::catch(AssertUnwindSafe(|| logger.status(status, &message))).is_err() {
+            self.enter_error_state();
+            return Status::Error;
         }
+        status
+    }
+
+    /// A panic escaped a call (in the logging path): the instance cannot be trusted to
+    /// continue and enters the `Error` state.
+    pub fn enter_error_state(&mut self) {
+        self.state = MachineState::Error;
     }
 
     // ---------------------------------------------------------------- logging and setup
@@ -222,11 +231,16 @@ impl Instance {
     /// built for a read in initialization mode) and start it consistently with the inputs.
     pub fn exit_initialization_mode(&mut self) -> FmiResult<Status> {
         if let Err(e) = self.ensure_started() {
+            // Nothing may look started: outputs read in the Error state fail with this reason.
+            self.simulation = None;
+            self.started = false;
             self.failure = Some(e.message.clone());
             return Err(FmiError::failed(e.message));
         }
         let t0 = self.experiment.start_time;
-        self.inputs.start_law(t0);
+        // The simulation starts with the current slider force; the crank acceleration set in
+        // initialization mode holds for the first step (it was set at t0).
+        self.inputs.force_changed = false;
         self.state = MachineState::StepComplete;
         self.last_step = Status::Ok;
         if self.logger.events_on() {
@@ -247,9 +261,11 @@ impl Instance {
         Ok(Status::Ok)
     }
 
-    /// `fmi2Reset`: back to `Instantiated` with the start values of the exported scene.
-    /// Saved FMU states stay valid.
+    /// `fmi2Reset`: back to `Instantiated` with the start values of the exported scene and
+    /// the logging settings of `fmi2Instantiate` (its `loggingOn`). Saved FMU states stay
+    /// valid.
     pub fn reset(&mut self) -> FmiResult<Status> {
+        self.logger.reset();
         self.scene = self.exported.clone();
         self.inputs = Inputs::from_start_values(&self.table);
         self.experiment = Experiment {
@@ -466,10 +482,18 @@ impl Instance {
         }
     }
 
-    /// `fmi2SetRealInputDerivatives`. Order 1 of `crank.speed` is the crank acceleration
-    /// alpha_k. Order 1 of `crank.angle` is accepted and not used (the angle follows from the
-    /// speed); a value different from `crank.speed` gives a warning. A zero order-1 derivative
-    /// of `slider.force` is accepted (the force is held over a step). Anything else is an error.
+    /// `fmi2SetRealInputDerivatives`: the crank acceleration alpha_k of the law that starts
+    /// at this communication point.
+    ///
+    /// - Order 1 of `crank.speed` and order 2 of `crank.angle` are alpha_k. If both are given
+    ///   at the same point and differ, `crank.speed`'s is used, with a warning.
+    /// - Order 1 of `crank.angle` is accepted and not used (the angle follows from
+    ///   `crank.speed`); a value different from `crank.speed` gives a warning.
+    /// - A derivative the law already has (0 for `slider.force`, which is held over a step, for
+    ///   order >= 2 of `crank.speed` and order >= 3 of `crank.angle`) is accepted silently; any
+    ///   other value of these cannot be used: it is ignored with a warning.
+    /// - Order <= 0, unknown value references, variables that are not inputs and non-finite
+    ///   values are errors, and then nothing is set.
     pub fn set_real_input_derivatives(
         &mut self,
         vrs: &[ValueReference],
@@ -478,60 +502,93 @@ impl Instance {
     ) -> FmiResult<Status> {
         for ((&vr, &order), &x) in vrs.iter().zip(orders).zip(values) {
             let v = self.variable(vr, Family::Real)?;
-            let Access::Input(slot) = v.access else {
+            if !matches!(v.access, Access::Input(_)) {
                 return Err(FmiError::rejected(format!(
-                    "{} (value reference {vr}) is not an input: input derivatives can be set only for crank.speed (and crank.angle)",
-                    v.name
+                    "{} (value reference {vr}) has causality {}: input derivatives can be set only for inputs (crank.speed, crank.angle); nothing was set",
+                    v.name,
+                    v.causality.as_str()
                 )));
-            };
-            if order != 1 {
+            }
+            if order <= 0 {
                 return Err(FmiError::rejected(format!(
-                    "derivative order {order} of {} is not supported: allowed order 1 (inputs are extrapolated with at most a constant crank acceleration)",
+                    "derivative order {order} of {} is out of range: allowed an order >= 1 (order 1 of crank.speed or order 2 of crank.angle is the crank acceleration); nothing was set",
                     v.name
                 )));
             }
             if !x.is_finite() {
                 return Err(FmiError::rejected(format!(
-                    "derivative of {} = {x} is out of range: allowed a finite value; nothing was set",
+                    "order-{order} derivative of {} = {x} is out of range: allowed a finite value; nothing was set",
                     v.name
                 )));
             }
-            if slot == InputSlot::SliderForce && x != 0.0 {
-                return Err(FmiError::rejected(format!(
-                    "derivative of slider.force = {x} is not supported: slider.force is held constant over a step; allowed 0"
-                )));
-            }
         }
-        let mut status = Status::Ok;
-        for ((&vr, _), &x) in vrs.iter().zip(orders).zip(values) {
+        let mut warnings = Vec::new();
+        for ((&vr, &order), &x) in vrs.iter().zip(orders).zip(values) {
             let Some(Access::Input(slot)) = self.table.get(vr).map(|v| v.access) else {
                 continue;
             };
-            match slot {
-                InputSlot::CrankSpeed => {
+            match (slot, order) {
+                (InputSlot::CrankSpeed, 1) => {
+                    let previous = self.inputs.acceleration;
+                    if self.inputs.source == AccelerationSource::Angle && previous != x {
+                        warnings.push(format!(
+                            "the crank acceleration is given twice at this point: order 2 of crank.angle = {previous} rad/s^2 and order 1 of crank.speed = {x} rad/s^2; crank.speed's is used"
+                        ));
+                    }
                     self.inputs.acceleration = x;
-                    self.inputs.acceleration_set = true;
-                    self.inputs.crank_changed = true;
+                    self.inputs.source = AccelerationSource::Speed;
                 }
-                InputSlot::CrankAngle => {
+                (InputSlot::CrankAngle, 2) => match self.inputs.source {
+                    AccelerationSource::Speed => {
+                        let used = self.inputs.acceleration;
+                        if used != x {
+                            warnings.push(format!(
+                                "the crank acceleration is given twice at this point: order 1 of crank.speed = {used} rad/s^2 and order 2 of crank.angle = {x} rad/s^2; crank.speed's is used"
+                            ));
+                        }
+                    }
+                    AccelerationSource::None | AccelerationSource::Angle => {
+                        self.inputs.acceleration = x;
+                        self.inputs.source = AccelerationSource::Angle;
+                    }
+                },
+                (InputSlot::CrankAngle, 1) => {
                     let speed = self.inputs.speed;
                     if (x - speed).abs() > 1e-9 * speed.abs().max(1.0) {
-                        self.logger.status(
-                            Status::Warning,
-                            &format!(
-                                "fmi2SetRealInputDerivatives: derivative of crank.angle = {x} rad/s differs from crank.speed = {speed} rad/s; it is not used (the angle follows from crank.speed)"
-                            ),
-                        );
-                        status = Status::Warning;
+                        warnings.push(format!(
+                            "order-1 derivative of crank.angle = {x} rad/s differs from crank.speed = {speed} rad/s; it is not used (the angle follows from crank.speed)"
+                        ));
                     }
                 }
-                InputSlot::SliderForce => {}
+                (_, _) if x == 0.0 => {}
+                (slot, order) => {
+                    let name = self.table.get(vr).map(|v| v.name.as_str()).unwrap_or("?");
+                    let why = match slot {
+                        InputSlot::SliderForce => "slider.force is held constant over a step",
+                        InputSlot::CrankSpeed | InputSlot::CrankAngle => {
+                            "the crank law has a constant acceleration over a step (order 1 of crank.speed or order 2 of crank.angle)"
+                        }
+                    };
+                    warnings.push(format!(
+                        "order-{order} derivative of {name} = {x} cannot be used and is ignored: {why}"
+                    ));
+                }
             }
+        }
+        for w in &warnings {
+            self.logger.status(
+                Status::Warning,
+                &format!("fmi2SetRealInputDerivatives: {w}"),
+            );
         }
         if self.state != MachineState::StepComplete {
             self.invalidate(false);
         }
-        Ok(status)
+        Ok(if warnings.is_empty() {
+            Status::Ok
+        } else {
+            Status::Warning
+        })
     }
 
     /// `fmi2GetRealOutputDerivatives`: not provided (`maxOutputDerivativeOrder="0"`).
@@ -576,33 +633,40 @@ impl Instance {
                 )));
             }
         }
-        if self.inputs.crank_changed {
-            simulation
-                .set_input(self.inputs.crank_input())
-                .map_err(|e| FmiError::rejected(model_error(e)))?;
-            self.inputs.start_law(now);
-        }
+        // A new law starts at every communication point: theta_k, omega_k as set (or the
+        // previous law's values at t_k), alpha_k as set at t_k or 0 (see `inputs`).
+        simulation
+            .set_input(self.inputs.crank_input())
+            .map_err(|e| FmiError::rejected(model_error(e)))?;
         if self.inputs.force_changed {
             simulation
                 .set_slider_force(self.inputs.slider_force)
                 .map_err(|e| FmiError::rejected(model_error(e)))?;
-            self.inputs.force_changed = false;
         }
         match simulation.advance(h) {
             Ok(_) => {
+                // The values the law used at the new time, from the core's own law.
                 let time = simulation.time();
-                self.inputs.follow_law(time);
+                let (angle, speed, _) = simulation
+                    .mechanism()
+                    .crank_law(simulation.state())
+                    .kinematics(time);
+                self.inputs.after_step(angle, speed);
                 self.last_step = Status::Ok;
                 Ok(self.take_warnings())
             }
             Err(e @ ModelError::StepFailed { .. }) => {
                 self.state = MachineState::StepFailed;
                 self.last_step = Status::Discard;
+                self.take_warnings();
                 Err(FmiError::discard(format!(
                     "{e}. Restore a state saved before the step (fmi2SetFMUstate) and retry with a smaller communication step, or terminate"
                 )))
             }
-            Err(e) => Err(FmiError::failed(model_error(e))),
+            Err(e) => {
+                self.take_warnings();
+                Err(FmiError::failed(model_error(e)))
+            }
         }
     }
 
@@ -626,7 +690,7 @@ impl Instance {
     pub fn get_status(&self, kind: StatusKind) -> FmiResult<Status> {
         match kind {
             StatusKind::DoStepStatus => Ok(self.last_step),
-            _ => Err(self.undefined_status(kind, "fmi2GetStatus", "fmi2DoStepStatus")),
+            _ => Err(self.undefined_status(kind, "fmi2GetStatus", "only fmi2DoStepStatus")),
         }
     }
 
@@ -635,20 +699,26 @@ impl Instance {
     pub fn get_real_status(&self, kind: StatusKind) -> FmiResult<f64> {
         match (kind, &self.simulation) {
             (StatusKind::LastSuccessfulTime, Some(s)) => Ok(s.time()),
-            _ => Err(self.undefined_status(kind, "fmi2GetRealStatus", "fmi2LastSuccessfulTime")),
+            _ => {
+                Err(self.undefined_status(kind, "fmi2GetRealStatus", "only fmi2LastSuccessfulTime"))
+            }
         }
     }
 
     /// `fmi2GetIntegerStatus`: FMI 2.0 defines no integer status.
     pub fn get_integer_status(&self, kind: StatusKind) -> FmiResult<i32> {
-        Err(self.undefined_status(kind, "fmi2GetIntegerStatus", "none"))
+        Err(self.undefined_status(
+            kind,
+            "fmi2GetIntegerStatus",
+            "no integer status (FMI 2.0 defines none)",
+        ))
     }
 
     /// `fmi2GetBooleanStatus`: `fmi2Terminated` is false (the FMU never asks to stop).
     pub fn get_boolean_status(&self, kind: StatusKind) -> FmiResult<bool> {
         match kind {
             StatusKind::Terminated => Ok(false),
-            _ => Err(self.undefined_status(kind, "fmi2GetBooleanStatus", "fmi2Terminated")),
+            _ => Err(self.undefined_status(kind, "fmi2GetBooleanStatus", "only fmi2Terminated")),
         }
     }
 
@@ -657,13 +727,16 @@ impl Instance {
         Err(self.undefined_status(
             kind,
             "fmi2GetStringStatus",
-            "fmi2PendingStatus, only while fmi2DoStep is pending, which never happens here",
+            "fmi2PendingStatus only while fmi2DoStep is pending, which never happens here (canRunAsynchronuously = false)",
         ))
     }
 
+    /// A status kind this FMU cannot provide: `fmi2Discard` (FMI 2.0, 4.2.3: "If a status is
+    /// required which cannot be retrieved by the slave it returns fmi2Discard"). Invalid kind
+    /// codes are errors ([`StatusKind::from_code`]).
     fn undefined_status(&self, kind: StatusKind, function: &str, allowed: &str) -> FmiError {
-        FmiError::rejected(format!(
-            "{function} has no value for {}: allowed {allowed}",
+        FmiError::discard(format!(
+            "{function} cannot provide {}: it provides {allowed}",
             kind.name()
         ))
     }
@@ -690,15 +763,24 @@ impl Instance {
         })
     }
 
-    /// `fmi2GetFMUstate`: a new handle, or `existing` overwritten.
-    pub fn get_fmu_state(&mut self, existing: Option<usize>) -> FmiResult<usize> {
-        if let Some(h) = existing {
-            self.saved(h)?;
+    /// The handle to store a state under: `existing` if it is a live state of this instance
+    /// (it is overwritten), else a new one (NULL, or a handle of another instance or one
+    /// already freed: that handle is left alone).
+    fn handle_for(&self, existing: Option<usize>) -> usize {
+        match existing {
+            Some(h) if self.fmu_states.contains_key(&h) => h,
+            _ => NEXT_STATE_HANDLE.fetch_add(1, Ordering::Relaxed),
         }
+    }
+
+    /// `fmi2GetFMUstate`: a new handle, or `existing` overwritten if it is this instance's.
+    pub fn get_fmu_state(&mut self, existing: Option<usize>) -> FmiResult<usize> {
         let state = self.capture();
-        let handle = existing.unwrap_or_else(|| NEXT_STATE_HANDLE.fetch_add(1, Ordering::Relaxed));
+        let handle = self.handle_for(existing);
         self.fmu_states.insert(handle, state);
-        self.serialized = None;
+        if matches!(self.serialized, Some((h, _)) if h == handle) {
+            self.serialized = None;
+        }
         Ok(handle)
     }
 
@@ -789,16 +871,15 @@ impl Instance {
         Ok(Status::Ok)
     }
 
-    /// `fmi2DeSerializeFMUstate`: a new handle, or `existing` overwritten. Foreign, truncated
-    /// or other-model bytes are rejected and nothing changes.
+    /// `fmi2DeSerializeFMUstate`: a new handle, or `existing` overwritten if it is this
+    /// instance's (a handle of another instance, e.g. the one the bytes were serialized from,
+    /// gets a new handle here). Foreign, truncated, corrupted or other-model bytes are
+    /// rejected and nothing changes.
     pub fn deserialize_fmu_state(
         &mut self,
         bytes: &[u8],
         existing: Option<usize>,
     ) -> FmiResult<usize> {
-        if let Some(h) = existing {
-            self.saved(h)?;
-        }
         let parsed = fmu_state::deserialize(&self.guid, bytes)
             .map_err(|m| FmiError::rejected(format!("serialized state rejected: {m}")))?;
         let simulation = match parsed.simulation_bytes {
@@ -817,7 +898,7 @@ impl Instance {
             simulation,
             ..parsed.state
         };
-        let handle = existing.unwrap_or_else(|| NEXT_STATE_HANDLE.fetch_add(1, Ordering::Relaxed));
+        let handle = self.handle_for(existing);
         self.fmu_states.insert(handle, state);
         if matches!(self.serialized, Some((h, _)) if h == handle) {
             self.serialized = None;
@@ -828,6 +909,12 @@ impl Instance {
 
 /// Check the arguments of `fmi2Instantiate` and load the scene its resources name.
 fn load(args: &InstantiateArgs<'_>, logger: &Logger) -> Result<resource::LoadedModel, String> {
+    if args.instance_name.is_empty() {
+        return Err(
+            "instanceName is empty: allowed a non-empty name (it identifies the instance in messages)"
+                .to_string(),
+        );
+    }
     if args.fmu_type != FMI2_CO_SIMULATION {
         return Err(format!(
             "fmuType = {} is not supported: allowed {FMI2_CO_SIMULATION} (fmi2CoSimulation); this FMU implements only Co-Simulation",
@@ -882,5 +969,58 @@ pub(crate) fn panic_text(payload: &(dyn std::any::Any + Send)) -> String {
         s.clone()
     } else {
         "unknown panic payload".to_string()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fmi::logging::LogSink;
+
+    struct PanickingSink;
+    impl LogSink for PanickingSink {
+        fn emit(&self, _: Status, _: &'static str, message: &str) {
+            panic!("the logger failed on: {message}");
+        }
+    }
+
+    fn instance(sink: Option<Box<dyn LogSink>>) -> Instance {
+        let scene = Scene::benchmark();
+        let description = ModelDescription::for_scene(&scene).unwrap();
+        Instance::from_description(scene, description, Logger::new(sink, false))
+    }
+
+    #[test]
+    fn a_panic_while_logging_moves_the_instance_to_error() {
+        let mut i = instance(Some(Box::new(PanickingSink)));
+        let status = i.run(Call::GetReal, |i| i.get_real(&[9999], &mut [0.0]));
+        assert_eq!(status, Status::Error);
+        assert_eq!(i.machine_state(), MachineState::Error);
+    }
+
+    #[test]
+    fn unavailable_status_kinds_are_discarded() {
+        let mut i = instance(None);
+        for call in [Call::SetupExperiment, Call::EnterInitializationMode] {
+            let status = i.run(call, |i| match call {
+                Call::SetupExperiment => i.setup_experiment(None, 0.0, None),
+                _ => i.enter_initialization_mode(),
+            });
+            assert_eq!(status, Status::Ok);
+        }
+        assert_eq!(
+            i.run(
+                Call::ExitInitializationMode,
+                Instance::exit_initialization_mode
+            ),
+            Status::Ok
+        );
+        let e = i.get_integer_status(StatusKind::DoStepStatus).unwrap_err();
+        assert_eq!(e.status, Status::Discard);
+        assert_eq!(
+            i.get_status(StatusKind::PendingStatus).unwrap_err().status,
+            Status::Discard
+        );
+        assert_eq!(StatusKind::from_code(9).unwrap_err().status, Status::Error);
     }
 }

@@ -56,15 +56,24 @@ pub struct Logger {
     sink: Option<Box<dyn LogSink>>,
     /// Enabled flags, indexed like [`LOG_CATEGORIES`] (without `logAll`).
     enabled: [bool; 5],
+    /// The flags given at `fmi2Instantiate`, restored by `fmi2Reset`.
+    initial: [bool; 5],
 }
 
 impl Logger {
     /// `logging_on` is `loggingOn` of `fmi2Instantiate`: it switches `logEvents` on.
     pub fn new(sink: Option<Box<dyn LogSink>>, logging_on: bool) -> Logger {
+        let enabled = [logging_on, true, true, true, true];
         Logger {
             sink,
-            enabled: [logging_on, true, true, true, true],
+            enabled,
+            initial: enabled,
         }
+    }
+
+    /// `fmi2Reset`: back to the settings of `fmi2Instantiate`.
+    pub fn reset(&mut self) {
+        self.enabled = self.initial;
     }
 
     /// A logger that drops everything (for tools and tests).
@@ -180,6 +189,15 @@ mod tests {
             .unwrap_err();
         assert!(e.message.contains("logNonsense"));
         assert!(!log.enabled[EVENTS]);
+    }
+
+    #[test]
+    fn reset_restores_the_instantiation_settings() {
+        let mut log = Logger::new(None, true);
+        log.set_debug_logging(false, &[]).unwrap();
+        assert!(!log.enabled[EVENTS] && !log.enabled[WARNING]);
+        log.reset();
+        assert_eq!(log.enabled, [true; 5]);
     }
 
     #[test]

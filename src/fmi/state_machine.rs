@@ -25,7 +25,8 @@ pub enum MachineState {
     /// After `fmi2Terminate`: outputs may still be read.
     Terminated,
     /// A call returned `fmi2Error` and the instance cannot continue (a failed initialization,
-    /// an internal error). Reset, restore a state, read values or free the instance.
+    /// an internal error). Reset, restore a state (`fmi2SetFMUstate`), read values or free
+    /// the instance.
     Error,
 }
 
@@ -117,8 +118,10 @@ calls! {
     SetInteger => SETTABLE,
     SetBoolean => SETTABLE,
     SetString => SETTABLE,
-    // A state can be saved only from a non-erroneous state (FMI 2.0.4, 2.1.8).
-    GetFMUstate => ANY & !ERROR,
+    // As Reference-FMUs (MASK_fmi2FreeInstance): the state functions work in every state,
+    // so an importer can restore a state saved before an error (fmi2SetFMUstate puts the
+    // saved state machine state back).
+    GetFMUstate => ANY,
     SetFMUstate => ANY,
     FreeFMUstate => ANY,
     SerializedFMUstateSize => ANY,
@@ -191,8 +194,9 @@ mod tests {
             assert!(check(Call::FreeInstance, s).is_ok());
             assert!(check(Call::Reset, s).is_ok());
             assert!(check(Call::SetFMUstate, s).is_ok());
+            assert!(check(Call::GetFMUstate, s).is_ok());
+            assert!(check(Call::SerializeFMUstate, s).is_ok());
         }
-        assert!(check(Call::GetFMUstate, MachineState::Error).is_err());
     }
 
     #[test]

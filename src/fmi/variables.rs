@@ -232,6 +232,9 @@ pub struct Variable {
     pub initial: Option<Initial>,
     pub value_type: ValueType,
     pub start: Option<Value>,
+    /// `min` and `max` attributes (closed bounds; FMI 2.0 has no open ones).
+    pub min: Option<Value>,
+    pub max: Option<Value>,
     pub access: Access,
     /// Only for outputs and calculated parameters.
     pub initial_dependencies: InitialDependencies,
@@ -286,6 +289,17 @@ fn non_negative(value: i32) -> Result<usize, String> {
     usize::try_from(value).map_err(|_| "an integer >= 0".to_string())
 }
 
+/// `rod.elements`: the core's mesh takes 1..=ELEMENTS_MAX elements.
+pub const ELEMENTS_MAX: i32 = 4096;
+
+fn element_count(value: i32) -> Result<usize, String> {
+    if (1..=ELEMENTS_MAX).contains(&value) {
+        non_negative(value)
+    } else {
+        Err(format!("an integer in 1..={ELEMENTS_MAX}"))
+    }
+}
+
 fn model_index(kind: RodModelKind) -> i32 {
     match kind {
         RodModelKind::Ffr => 1,
@@ -328,6 +342,26 @@ struct Builder<'a> {
 }
 
 impl Builder<'_> {
+    /// `min`/`max` of the variable added last.
+    fn bounds(&mut self, min: Option<Value>, max: Option<Value>) {
+        if let Some(v) = self.variables.last_mut() {
+            v.min = min;
+            v.max = max;
+        }
+    }
+
+    /// `min="0"` on a Real parameter that must be positive: FMI 2.0 has no open bound, so 0
+    /// itself passes the declared range and is rejected at initialization (`fmi2Error` at
+    /// `fmi2ExitInitializationMode` naming the parameter).
+    fn positive(&mut self) {
+        self.bounds(Some(Value::Real(0.0)), None);
+    }
+
+    /// `min="0"`: zero allowed.
+    fn non_negative(&mut self) {
+        self.bounds(Some(Value::Real(0.0)), None);
+    }
+
     fn input(
         &mut self,
         name: &str,
@@ -346,6 +380,8 @@ impl Builder<'_> {
             initial: None,
             value_type: ty,
             start: Some(Value::Real(start)),
+            min: None,
+            max: None,
             access: Access::Input(slot),
             initial_dependencies: InitialDependencies::None,
         });
@@ -369,6 +405,8 @@ impl Builder<'_> {
             initial: Some(Initial::Calculated),
             value_type: ty,
             start: None,
+            min: None,
+            max: None,
             access: Access::Output(get),
             initial_dependencies: deps,
         });
@@ -392,6 +430,8 @@ impl Builder<'_> {
             initial: Some(Initial::Exact),
             value_type: ty,
             start: Some(Value::Real(get(self.scene))),
+            min: None,
+            max: None,
             access: Access::RealParameter { get, set },
             initial_dependencies: InitialDependencies::None,
         });
@@ -415,6 +455,8 @@ impl Builder<'_> {
             initial: Some(Initial::Exact),
             value_type: ty,
             start: Some(Value::Integer(get(self.scene))),
+            min: None,
+            max: None,
             access: Access::IntegerParameter { get, set },
             initial_dependencies: InitialDependencies::None,
         });
@@ -543,6 +585,7 @@ impl VariableTable {
             |s, v| s.crank.length = v,
             "Crank length r",
         );
+        b.positive();
         b.real_parameter(
             "rod.length",
             101,
@@ -551,6 +594,7 @@ impl VariableTable {
             |s, v| s.rod.length = v,
             "Rod length L",
         );
+        b.positive();
         b.real_parameter(
             "rod.youngs_modulus",
             102,
@@ -559,6 +603,7 @@ impl VariableTable {
             |s, v| s.rod.youngs_modulus = v,
             "Young's modulus E",
         );
+        b.positive();
         b.real_parameter(
             "rod.density",
             103,
@@ -567,6 +612,7 @@ impl VariableTable {
             |s, v| s.rod.density = v,
             "Density rho",
         );
+        b.positive();
         b.real_parameter(
             "rod.area",
             104,
@@ -575,6 +621,7 @@ impl VariableTable {
             |s, v| s.rod.area = v,
             "Cross-section area A",
         );
+        b.positive();
         b.real_parameter(
             "rod.area_moment",
             105,
@@ -583,6 +630,7 @@ impl VariableTable {
             |s, v| s.rod.area_moment = v,
             "Second moment of area I",
         );
+        b.positive();
         b.real_parameter(
             "rod.damping_ratio",
             106,
@@ -591,6 +639,7 @@ impl VariableTable {
             |s, v| s.rod.damping_ratio = v,
             "Modal damping ratio (0 = undamped)",
         );
+        b.non_negative();
         b.real_parameter(
             "slider.mass",
             107,
@@ -599,6 +648,7 @@ impl VariableTable {
             |s, v| s.slider.mass = v,
             "Slider mass m_s (0 allowed)",
         );
+        b.non_negative();
         b.integer_parameter(
             "rod.model",
             110,
@@ -612,9 +662,10 @@ impl VariableTable {
             111,
             ValueType::Integer,
             |s| usize_to_i32(s.rod.elements),
-            |s, v| non_negative(v).map(|n| s.rod.elements = n),
+            |s, v| element_count(v).map(|n| s.rod.elements = n),
             "Beam elements (FFR) or rigid segments (segments)",
         );
+        b.bounds(Some(Value::Integer(1)), Some(Value::Integer(ELEMENTS_MAX)));
         b.integer_parameter(
             "rod.reference",
             112,
@@ -631,6 +682,7 @@ impl VariableTable {
             |s, v| non_negative(v).map(|n| s.rod.modes = n),
             "Retained modes (FFR), lowest first",
         );
+        b.bounds(Some(Value::Integer(0)), None);
 
         // Calculated parameters.
         for k in 1..=n_frequencies {
@@ -645,6 +697,8 @@ impl VariableTable {
                 initial: Some(Initial::Calculated),
                 value_type: real("Hz"),
                 start: None,
+                min: None,
+                max: None,
                 access: Access::Frequency(k - 1),
                 initial_dependencies: D::Named(FREQUENCY_KNOWNS),
             });

@@ -2,9 +2,9 @@
 co-simulation loop driven through fmpy's FMU2Slave."""
 
 import csv
+import ctypes
 import math
 import subprocess
-from ctypes import byref
 from pathlib import Path
 
 import numpy as np
@@ -82,21 +82,30 @@ def assert_close(actual, expected, rtol=1e-9, what=""):
 
 
 class LogCapture:
-    """fmi2CallbackFunctions whose logger records (status, category, message)."""
+    """fmi2CallbackFunctions whose logger records (status, category, message), and the
+    componentEnvironment and instanceName it was called with. `hook(status, text)`, if set,
+    runs inside the logger callback (to test re-entrant calls)."""
 
-    def __init__(self):
+    def __init__(self, environment=None):
         self.messages = []
+        self.callers = []  # (componentEnvironment, instanceName) per message
+        self.hook = None
 
         def log(env, instance_name, status, category, message):
             # The FMU escapes '%' as '%%' (the message is a printf format).
             text = message.decode("utf-8", "replace").replace("%%", "%")
             self.messages.append((status, category.decode(), text))
+            self.callers.append((env, instance_name))
+            if self.hook is not None:
+                self.hook(status, text)
 
         self._logger = fmi2CallbackLoggerTYPE(log)
         self.callbacks = fmi2CallbackFunctions()
         self.callbacks.logger = self._logger
         self.callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
         self.callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+        if environment is not None:
+            self.callbacks.componentEnvironment = environment
 
     def text(self):
         return "\n".join(m for _, _, m in self.messages)
@@ -111,10 +120,10 @@ class LogCapture:
 class Slave:
     """One FMU instance driven through fmpy's FMU2Slave with a capturing logger."""
 
-    def __init__(self, unzipdir, name="instance", logging_on=False, guid=None):
+    def __init__(self, unzipdir, name="instance", logging_on=False, guid=None, environment=None):
         self.md = read_model_description(str(unzipdir))
         self.vr = {v.name: v.valueReference for v in self.md.modelVariables}
-        self.log = LogCapture()
+        self.log = LogCapture(environment)
         self.fmu = FMU2Slave(
             guid=guid or self.md.guid,
             unzipDirectory=str(unzipdir),
@@ -145,6 +154,14 @@ class Slave:
 
     def outputs(self):
         return self.get(*OUTPUTS)
+
+    def raw(self, name, *argtypes):
+        """The C function `name` of the FMU's library with these argument types, returning
+        the fmi2Status (a fresh ctypes function object: fmpy's own stay untouched)."""
+        f = self.fmu.dll[name]
+        f.argtypes = list(argtypes)
+        f.restype = ctypes.c_int
+        return f
 
     def free(self):
         self.fmu.freeInstance()

@@ -135,3 +135,38 @@ def test_serialize_deserialize_in_the_same_instance(unzipdir):
     s.fmu.freeFMUstate(restored)
     s.fmu.freeFMUstate(state)
     s.free()
+
+
+def test_deserialize_into_another_instance_with_a_foreign_handle(unzipdir):
+    """The slot of fmi2DeSerializeFMUstate may hold a handle of another instance (here the
+    one the bytes come from): the receiving instance allocates its own handle and leaves the
+    other instance's state alone."""
+    from fmpy.fmi2 import fmi2FMUstate
+
+    times = schedule(0.0, 0.02, DT)
+    a, b = Slave(unzipdir, "a"), Slave(unzipdir, "b")
+    a.init()
+    run_loop(a, times[:40])
+    state_a = a.fmu.getFMUstate()
+    blob = a.fmu.serializeFMUstate(state_a)
+    slot = fmi2FMUstate(state_a.value)
+    state_b = b.fmu.deSerializeFMUstate(blob, slot)
+    assert state_b.value not in (None, state_a.value)
+    b.fmu.setFMUstate(state_b)
+    out_b = run_loop(b, times[39:80])
+    # A's state is untouched and still A's.
+    a.fmu.setFMUstate(state_a)
+    out_a = run_loop(a, times[39:80])
+    assert np.array_equal(out_a, out_b)
+    # B reuses its own handle when it is passed back.
+    again = b.fmu.deSerializeFMUstate(blob, state_b)
+    assert again.value == state_b.value
+    # fmi2GetFMUstate with a foreign handle in the slot: a new handle as well.
+    slot = fmi2FMUstate(state_a.value)
+    b.fmu.fmi2GetFMUstate(b.fmu.component, __import__("ctypes").byref(slot))
+    assert slot.value not in (None, state_a.value, state_b.value)
+    b.fmu.freeFMUstate(slot)
+    b.fmu.freeFMUstate(state_b)
+    a.fmu.freeFMUstate(state_a)
+    a.free()
+    b.free()

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from fmpy import extract, read_model_description, simulate_fmu
 
-from helpers import OUTPUTS, Slave, assert_close, run_loop, schedule
+from helpers import OUTPUTS, Slave, assert_close, crank_input, run_loop, schedule
 
 STOP = 4 * math.pi / 150
 DT = 1e-4
@@ -79,6 +79,79 @@ def test_crank_acceleration_from_input_derivatives(unzipdir, ref):
         assert_close(out[:, i], expected[name], 1e-9, name)
     # Without the derivative the input is piecewise linear: different results.
     assert not np.allclose(out[:, 2], ref()["pinB.force_x"], rtol=1e-6)
+
+
+def test_crank_acceleration_as_order_2_of_the_angle(unzipdir, ref):
+    """Order 2 of crank.angle is the crank acceleration too: the same run as with order 1 of
+    crank.speed, bit for bit."""
+    accel = 3000.0
+    times = schedule(0.0, STOP, DT)[:300]
+    runs = []
+    for name, order in [("crank.speed", 1), ("crank.angle", 2)]:
+        slave = Slave(unzipdir)
+        slave.fmu.setupExperiment(startTime=0.0)
+        slave.fmu.enterInitializationMode()
+        slave.set(crank__angle=0.0, crank__speed=150.0)
+        slave.fmu.setRealInputDerivatives([slave.vr[name]], [order], [accel])
+        slave.fmu.exitInitializationMode()
+        rows = [slave.outputs()]
+        for k in range(len(times) - 1):
+            angle, speed = crank_input(times[k], accel=accel)
+            slave.set(crank__angle=angle, crank__speed=speed)
+            slave.fmu.setRealInputDerivatives([slave.vr[name]], [order], [accel])
+            slave.fmu.doStep(times[k], times[k + 1] - times[k])
+            rows.append(slave.outputs())
+        slave.free()
+        assert not any(status > 0 for status, _, _ in slave.log.messages), slave.log.text()
+        runs.append(np.array(rows))
+    assert np.array_equal(runs[0], runs[1])
+    expected = ref(accel=accel)
+    for i, name in enumerate(OUTPUTS):
+        assert_close(runs[0][:, i], expected[name][:300], 1e-9, name)
+
+
+def test_input_law_without_inputs_continues_without_acceleration(unzipdir):
+    """Nothing set at t_k: theta_k, omega_k continue the previous law, alpha_k = 0 (an
+    acceleration set at t_0 holds only for the step from t_0). fmi2GetReal of the inputs after
+    a step gives the law's values at the new time, exactly those the integrator used: setting
+    them explicitly gives the same run bit for bit."""
+    accel, h, n = 2000.0, 1e-4, 40
+    a = Slave(unzipdir)
+    a.init(accel=accel)
+    law = [a.get("crank.angle", "crank.speed")]
+    out_a = [a.outputs()]
+    for k in range(n):
+        if k == 1:
+            a.fmu.setRealInputDerivatives([a.vr["crank.speed"]], [1], [accel])
+        a.fmu.doStep(k * h, h)
+        law.append(a.get("crank.angle", "crank.speed"))
+        out_a.append(a.outputs())
+    a.free()
+    law = np.array(law)
+    # Step 0 (alpha set in initialization mode) and step 1 (set at t_1) accelerate; all
+    # others run at constant speed from where the previous law ended.
+    theta, omega = 0.0, 150.0
+    expected = [(theta, omega)]
+    for k in range(n):
+        alpha = accel if k in (0, 1) else 0.0
+        theta, omega = theta + omega * h + 0.5 * alpha * h * h, omega + alpha * h
+        expected.append((theta, omega))
+    np.testing.assert_allclose(law, np.array(expected), rtol=1e-13, atol=1e-13)
+    assert law[1, 1] == pytest.approx(150.0 + accel * h, abs=1e-12)
+    assert law[2, 1] == pytest.approx(150.0 + 2 * accel * h, abs=1e-12)
+    assert np.all(law[3:, 1] == law[2, 1])
+
+    b = Slave(unzipdir)
+    b.init(accel=accel)
+    out_b = [b.outputs()]
+    for k in range(n):
+        b.set(crank__angle=law[k, 0], crank__speed=law[k, 1])
+        if k in (0, 1):
+            b.fmu.setRealInputDerivatives([b.vr["crank.speed"]], [1], [accel])
+        b.fmu.doStep(k * h, h)
+        out_b.append(b.outputs())
+    b.free()
+    assert np.array_equal(np.array(out_a), np.array(out_b))
 
 
 def test_variable_communication_steps(unzipdir, ref):
