@@ -2,7 +2,8 @@
 //! Exudyn ANCF cable, 32/64 elements, converged to < 1e-5 of the peak). Issue 3's target:
 //! with axial stiffening and a handful of modes, the peak |v_mid/L| within 0.5 %; linear modes
 //! overshoot it by about 10 % (physics.md, "What linear modes miss"). Pointwise, the stiffened
-//! rod follows the exact beam to 1 % at the default step and 0.15 % at h = 1e-5 s.
+//! rod follows the exact beam to 0.5 % in the default scene (h = 5e-5 s), 1 % at h = 1e-4 s and
+//! 0.15 % at h = 1e-5 s.
 
 use flexrod::{CrankInput, Scene, Simulation};
 
@@ -71,8 +72,19 @@ fn stiffened_modes_match_the_geometrically_exact_peak() {
     let reference = reference();
     let cases = [
         (
-            "default scene (8 el, 4 modes, h 1e-4)",
+            "default scene (8 el, 3 modes, h 5e-5)",
             Scene::benchmark(),
+            1e-4,
+            true,
+        ),
+        (
+            "coarser step (8 el, 4 modes, h 1e-4)",
+            {
+                let mut s = Scene::benchmark();
+                s.rod.modes = 4;
+                s.solver.step = 1e-4;
+                s
+            },
             1e-4,
             true,
         ),
@@ -91,6 +103,7 @@ fn stiffened_modes_match_the_geometrically_exact_peak() {
             "converged step (8 el, 4 modes, h 1e-5)",
             {
                 let mut s = Scene::benchmark();
+                s.rod.modes = 4;
                 s.solver.step = 1e-5;
                 s
             },
@@ -102,6 +115,8 @@ fn stiffened_modes_match_the_geometrically_exact_peak() {
             {
                 let mut s = Scene::benchmark();
                 s.rod.axial_stiffening = false;
+                s.rod.modes = 4;
+                s.solver.step = 1e-4;
                 s
             },
             1e-4,
@@ -133,9 +148,9 @@ fn stiffened_modes_match_the_geometrically_exact_peak() {
             assert!(peak_error.abs() < 0.005, "{name}: {peak_error}");
             // Pointwise: the default step 1e-4 s is within 2 %, the converged step within 0.5 %;
             // h = 3e-4 s trades pointwise phase accuracy for speed (peak still within 0.5 %).
-            let bound = if name.starts_with("default") {
+            let bound = if name.starts_with("coarser") {
                 0.02
-            } else if name.starts_with("converged") {
+            } else if name.starts_with("default") || name.starts_with("converged") {
                 0.005
             } else {
                 0.10
