@@ -17,7 +17,16 @@ const W: f64 = 150.0;
 
 fn started(scene: &Scene) -> Simulation {
     let mut sim = Simulation::new(scene).unwrap();
-    sim.start(0.0, CrankInput { angle: 0.0, speed: W, acceleration: 0.0 }, 0.0).unwrap();
+    sim.start(
+        0.0,
+        CrankInput {
+            angle: 0.0,
+            speed: W,
+            acceleration: 0.0,
+        },
+        0.0,
+    )
+    .unwrap();
     sim
 }
 
@@ -26,22 +35,28 @@ fn one_step(c: &mut Criterion) {
     let h = scene.solver.step;
     let mut sim = started(&scene);
     // Constant speed: the input law of the start continues, no set_input needed.
-    c.bench_function("advance by one internal step (default scene, h 1e-4, outputs included)", |b| {
-        b.iter(|| {
-            sim.advance(black_box(h)).unwrap();
-            black_box(sim.outputs().deflection_rel)
-        })
-    });
+    c.bench_function(
+        "advance by one internal step (default scene, h 1e-4, outputs included)",
+        |b| {
+            b.iter(|| {
+                sim.advance(black_box(h)).unwrap();
+                black_box(sim.outputs().deflection_rel)
+            })
+        },
+    );
     let mut fast = Scene::benchmark();
     fast.rod.modes = 3;
     fast.solver.step = 3e-4;
     let mut sim = started(&fast);
-    c.bench_function("advance by one internal step (8 el, 3 modes, h 3e-4)", |b| {
-        b.iter(|| {
-            sim.advance(black_box(3e-4)).unwrap();
-            black_box(sim.outputs().deflection_rel)
-        })
-    });
+    c.bench_function(
+        "advance by one internal step (8 el, 3 modes, h 3e-4)",
+        |b| {
+            b.iter(|| {
+                sim.advance(black_box(3e-4)).unwrap();
+                black_box(sim.outputs().deflection_rel)
+            })
+        },
+    );
 }
 
 fn one_revolution(c: &mut Criterion) {
@@ -49,15 +64,27 @@ fn one_revolution(c: &mut Criterion) {
     let h = scene.solver.step;
     let n = (2.0 * std::f64::consts::PI / W / h).round() as usize;
     let mut sim = Simulation::new(&scene).unwrap();
-    c.bench_function("one revolution at 150 rad/s (default scene, outputs every 1e-4 s)", |b| {
-        b.iter(|| {
-            sim.start(0.0, CrankInput { angle: 0.0, speed: W, acceleration: 0.0 }, 0.0).unwrap();
-            for _ in 0..n {
-                sim.advance(h).unwrap();
-            }
-            black_box(sim.outputs().deflection_rel)
-        })
-    });
+    c.bench_function(
+        "one revolution at 150 rad/s (default scene, outputs every 1e-4 s)",
+        |b| {
+            b.iter(|| {
+                sim.start(
+                    0.0,
+                    CrankInput {
+                        angle: 0.0,
+                        speed: W,
+                        acceleration: 0.0,
+                    },
+                    0.0,
+                )
+                .unwrap();
+                for _ in 0..n {
+                    sim.advance(h).unwrap();
+                }
+                black_box(sim.outputs().deflection_rel)
+            })
+        },
+    );
 }
 
 fn do_step_overhead(c: &mut Criterion) {
@@ -74,7 +101,17 @@ fn do_step_overhead(c: &mut Criterion) {
     };
     // SAFETY: valid NUL-terminated strings, a callback struct that outlives the instance,
     // NULL resource location (the default scene is used if the GUID matches).
-    let comp = unsafe { ffi::fmi2Instantiate(name.as_ptr(), 1, guid.as_ptr(), ptr::null(), &functions, 0, 0) };
+    let comp = unsafe {
+        ffi::fmi2Instantiate(
+            name.as_ptr(),
+            1,
+            guid.as_ptr(),
+            ptr::null(),
+            &functions,
+            0,
+            0,
+        )
+    };
     assert!(!comp.is_null(), "fmi2Instantiate failed");
     unsafe {
         assert_eq!(ffi::fmi2SetupExperiment(comp, 0, 0.0, 0.0, 0, 0.0), 0);
@@ -93,12 +130,15 @@ fn do_step_overhead(c: &mut Criterion) {
     // SAFETY: comp came from fmi2Instantiate and is freed once.
     unsafe { ffi::fmi2FreeInstance(comp) };
     let mut sim = started(&scene);
-    c.bench_function("Simulation::advance h 1e-4 (default scene, same work as fmi2DoStep)", |b| {
-        b.iter(|| {
-            sim.advance(black_box(h)).unwrap();
-            black_box(sim.outputs().deflection_rel)
-        })
-    });
+    c.bench_function(
+        "Simulation::advance h 1e-4 (default scene, same work as fmi2DoStep)",
+        |b| {
+            b.iter(|| {
+                sim.advance(black_box(h)).unwrap();
+                black_box(sim.outputs().deflection_rel)
+            })
+        },
+    );
 }
 
 criterion_group!(benches, one_step, one_revolution, do_step_overhead);

@@ -19,7 +19,11 @@ fn scene(f: impl FnOnce(&mut Scene)) -> Scene {
 }
 
 fn constant(t: f64, w: f64) -> CrankInput {
-    CrankInput { angle: w * t, speed: w, acceleration: 0.0 }
+    CrankInput {
+        angle: w * t,
+        speed: w,
+        acceleration: 0.0,
+    }
 }
 
 /// A run: outputs at every communication point, the warnings, and the error that ended it.
@@ -31,7 +35,13 @@ struct Run {
 }
 
 /// Drive `scene` with `input(k, t_k)` at communication points `k dt`, k < n, slider force `force`.
-fn drive(scene: &Scene, dt: f64, n: usize, force: f64, mut input: impl FnMut(usize, f64) -> CrankInput) -> Run {
+fn drive(
+    scene: &Scene,
+    dt: f64,
+    n: usize,
+    force: f64,
+    mut input: impl FnMut(usize, f64) -> CrankInput,
+) -> Run {
     let mut sim = Simulation::new(scene).unwrap();
     sim.start(0.0, input(0, 0.0), force).unwrap();
     let mut rows = vec![(0.0, sim.outputs())];
@@ -53,24 +63,43 @@ fn drive(scene: &Scene, dt: f64, n: usize, force: f64, mut input: impl FnMut(usi
         }
         warnings.extend(sim.take_warnings());
     }
-    Run { rows, warnings, error, sim }
+    Run {
+        rows,
+        warnings,
+        error,
+        sim,
+    }
 }
 
 fn peak(rows: &[(f64, Outputs)]) -> f64 {
-    rows.iter().map(|r| r.1.deflection_rel.abs()).fold(0.0, f64::max)
+    rows.iter()
+        .map(|r| r.1.deflection_rel.abs())
+        .fold(0.0, f64::max)
 }
 
 fn peak_force(rows: &[(f64, Outputs)]) -> f64 {
-    rows.iter().map(|r| r.1.pin_b_force[0].hypot(r.1.pin_b_force[1])).fold(0.0, f64::max)
+    rows.iter()
+        .map(|r| r.1.pin_b_force[0].hypot(r.1.pin_b_force[1]))
+        .fold(0.0, f64::max)
 }
 
 fn finite(rows: &[(f64, Outputs)]) -> bool {
-    rows.iter().all(|(_, o)| o.deflection_rel.is_finite() && o.pin_b_force.iter().chain(&o.pin_c_force).all(|x| x.is_finite()))
+    rows.iter().all(|(_, o)| {
+        o.deflection_rel.is_finite()
+            && o.pin_b_force
+                .iter()
+                .chain(&o.pin_c_force)
+                .all(|x| x.is_finite())
+    })
 }
 
 /// Max pointwise |delta v/L| / reference peak on a common grid (same dt).
 fn deflection_error(rows: &[(f64, Outputs)], reference: &[(f64, Outputs)]) -> f64 {
-    let d = rows.iter().zip(reference).map(|(a, b)| (a.1.deflection_rel - b.1.deflection_rel).abs()).fold(0.0, f64::max);
+    let d = rows
+        .iter()
+        .zip(reference)
+        .map(|(a, b)| (a.1.deflection_rel - b.1.deflection_rel).abs())
+        .fold(0.0, f64::max);
     d / peak(reference)
 }
 
@@ -97,8 +126,16 @@ fn very_stiff_rod() {
     let dt = 1e-4;
     let n = revolutions(W, 2.0, dt);
     let nominal = drive(&Scene::benchmark(), dt, n, 0.0, |_, t| constant(t, W));
-    let stiff = drive(&scene(|s| s.rod.youngs_modulus *= 1000.0), dt, n, 0.0, |_, t| constant(t, W));
-    let rigid = drive(&scene(|s| s.rod.modes = 0), dt, n, 0.0, |_, t| constant(t, W));
+    let stiff = drive(
+        &scene(|s| s.rod.youngs_modulus *= 1000.0),
+        dt,
+        n,
+        0.0,
+        |_, t| constant(t, W),
+    );
+    let rigid = drive(&scene(|s| s.rod.modes = 0), dt, n, 0.0, |_, t| {
+        constant(t, W)
+    });
     assert!(stiff.error.is_none(), "{:?}", stiff.error);
     let ratio = peak(&stiff.rows) / peak(&nominal.rows);
     // Forces against the rigid rod, after the 1 ms in which the start rings the stiff modes.
@@ -106,7 +143,9 @@ fn very_stiff_rod() {
     let df = stiff.rows[skip..]
         .iter()
         .zip(&rigid.rows[skip..])
-        .map(|(a, b)| (a.1.pin_b_force[0] - b.1.pin_b_force[0]).hypot(a.1.pin_b_force[1] - b.1.pin_b_force[1]))
+        .map(|(a, b)| {
+            (a.1.pin_b_force[0] - b.1.pin_b_force[0]).hypot(a.1.pin_b_force[1] - b.1.pin_b_force[1])
+        })
         .fold(0.0, f64::max)
         / peak_force(&rigid.rows);
     let st = stiff.sim.stats();
@@ -133,7 +172,11 @@ fn very_flexible_rod_warns() {
             }
         });
         let run = drive(&s, dt, n, 0.0, |_, t| constant(t, W));
-        let first_over = run.rows.iter().find(|r| r.1.deflection_rel.abs() > 0.05).map(|r| r.0);
+        let first_over = run
+            .rows
+            .iter()
+            .find(|r| r.1.deflection_rel.abs() > 0.05)
+            .map(|r| r.0);
         println!(
             "E / 100, {model:?}: ran to t = {:.4} s of {:.4} s, peak |v/L| {:.3}, first |v/L| > 0.05 at t = {:?} s, error: {}, warnings: {:?}",
             run.sim.time(),
@@ -144,7 +187,11 @@ fn very_flexible_rod_warns() {
             run.warnings
         );
         // Either way: the large-deflection warning was given, and whatever was returned is finite.
-        assert!(!run.warnings.is_empty(), "no warning for |v/L| = {}", peak(&run.rows));
+        assert!(
+            !run.warnings.is_empty(),
+            "no warning for |v/L| = {}",
+            peak(&run.rows)
+        );
         assert!(run.warnings[0].contains("small-deformation range"));
         assert!(finite(&run.rows));
         assert!(first_over.is_some());
@@ -159,9 +206,24 @@ fn speed_600_rad_s() {
     let w = 600.0;
     let dt = 2.5e-5;
     let n = revolutions(w, 2.0, dt);
-    let ffr = drive(&scene(|s| s.solver.step = dt), dt, n, 0.0, |_, t| constant(t, w));
-    let seg = drive(&scene(|s| { s.rod.model = RodModelKind::Segments; s.rod.elements = 32; s.solver.step = dt; }), dt, n, 0.0, |_, t| constant(t, w));
-    for (name, run) in [("FFR stiffened 8 el / 4 modes", &ffr), ("segments N = 32", &seg)] {
+    let ffr = drive(&scene(|s| s.solver.step = dt), dt, n, 0.0, |_, t| {
+        constant(t, w)
+    });
+    let seg = drive(
+        &scene(|s| {
+            s.rod.model = RodModelKind::Segments;
+            s.rod.elements = 32;
+            s.solver.step = dt;
+        }),
+        dt,
+        n,
+        0.0,
+        |_, t| constant(t, w),
+    );
+    for (name, run) in [
+        ("FFR stiffened 8 el / 4 modes", &ffr),
+        ("segments N = 32", &seg),
+    ] {
         println!(
             "600 rad/s, {name}: ran to {:.4} s of {:.4} s, peak |v/L| {:.3e}, peak |F_B| {:.0} N, halvings {}, error: {}, warnings: {}",
             run.sim.time(), n as f64 * dt, peak(&run.rows), peak_force(&run.rows), run.sim.stats().halvings,
@@ -170,14 +232,21 @@ fn speed_600_rad_s() {
         );
         assert!(finite(&run.rows));
         if peak(&run.rows) > 0.05 {
-            assert!(!run.warnings.is_empty(), "{name}: deflection beyond 5 % without a warning");
+            assert!(
+                !run.warnings.is_empty(),
+                "{name}: deflection beyond 5 % without a warning"
+            );
         }
     }
     // The geometrically exact chain completes the run.
     assert!(seg.error.is_none());
     if ffr.error.is_none() {
         let e = deflection_error(&ffr.rows, &seg.rows);
-        println!("600 rad/s: FFR stiffened against segments N = 32: pointwise {:.1} %, peak {:+.1} %", 100.0 * e, 100.0 * (peak(&ffr.rows) / peak(&seg.rows) - 1.0));
+        println!(
+            "600 rad/s: FFR stiffened against segments N = 32: pointwise {:.1} %, peak {:+.1} %",
+            100.0 * e,
+            100.0 * (peak(&ffr.rows) / peak(&seg.rows) - 1.0)
+        );
     }
 }
 
@@ -191,7 +260,15 @@ fn speed_step_and_reversal() {
         let t1 = n1 as f64 * dt;
         let n = n1 + revolutions(w2.abs(), 1.0, dt);
         let run = drive(&Scene::benchmark(), dt, n, 0.0, |k, t| {
-            if k < n1 { constant(t, W) } else { CrankInput { angle: W * t1 + w2 * (t - t1), speed: w2, acceleration: 0.0 } }
+            if k < n1 {
+                constant(t, W)
+            } else {
+                CrankInput {
+                    angle: W * t1 + w2 * (t - t1),
+                    speed: w2,
+                    acceleration: 0.0,
+                }
+            }
         });
         let before = peak(&run.rows[..=n1]);
         let after = peak(&run.rows[n1..]);
@@ -221,7 +298,11 @@ fn speed_step_and_reversal() {
 #[test]
 fn standstill() {
     let dt = 1e-4;
-    let input = CrankInput { angle: 0.7, speed: 0.0, acceleration: 0.0 };
+    let input = CrankInput {
+        angle: 0.7,
+        speed: 0.0,
+        acceleration: 0.0,
+    };
     let run = drive(&Scene::benchmark(), dt, 1000, 0.0, |_, _| input);
     let first = run.rows[0].1;
     let mut worst_change: f64 = 0.0;
@@ -230,7 +311,12 @@ fn standstill() {
     for (_, o) in &run.rows {
         worst_change = worst_change.max((o.slider_position - first.slider_position).abs());
         worst_deflection = worst_deflection.max(o.deflection.abs());
-        for f in o.pin_b_force.iter().chain(&o.pin_c_force).chain(std::iter::once(&o.crank_torque)) {
+        for f in o
+            .pin_b_force
+            .iter()
+            .chain(&o.pin_c_force)
+            .chain(std::iter::once(&o.crank_torque))
+        {
             worst_force = worst_force.max(f.abs());
         }
     }
@@ -252,7 +338,12 @@ fn crank_angle_jump() {
         sim.advance(dt).unwrap();
     }
     let t = sim.time();
-    sim.set_input(CrankInput { angle: W * t + 0.5, speed: W, acceleration: 0.0 }).unwrap();
+    sim.set_input(CrankInput {
+        angle: W * t + 0.5,
+        speed: W,
+        acceleration: 0.0,
+    })
+    .unwrap();
     let before = sim.snapshot();
     let result = sim.advance(dt);
     match &result {
@@ -268,7 +359,12 @@ fn crank_angle_jump() {
         Ok(_) => {
             let mut p: f64 = 0.0;
             for k in 0..200 {
-                sim.set_input(CrankInput { angle: W * sim.time() + 0.5, speed: W, acceleration: 0.0 }).unwrap();
+                sim.set_input(CrankInput {
+                    angle: W * sim.time() + 0.5,
+                    speed: W,
+                    acceleration: 0.0,
+                })
+                .unwrap();
                 sim.advance(dt).unwrap();
                 p = p.max(sim.outputs().deflection_rel.abs());
                 let _ = k;
@@ -287,7 +383,13 @@ fn crank_angle_jump() {
 #[test]
 fn communication_steps_from_1e_7_to_1e_2() {
     let t_end = 1e-2;
-    let fine = drive(&scene(|s| s.solver.step = 1e-6), 1e-6, 10_000, 0.0, |_, t| constant(t, W));
+    let fine = drive(
+        &scene(|s| s.solver.step = 1e-6),
+        1e-6,
+        10_000,
+        0.0,
+        |_, t| constant(t, W),
+    );
     let reference = fine.rows.last().unwrap().1.deflection_rel;
     let scale = peak(&fine.rows);
     for dt in [1e-7f64, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2] {
@@ -334,7 +436,8 @@ fn all_modes_kept() {
 #[test]
 fn axial_load_near_and_above_buckling() {
     let base = Scene::benchmark();
-    let p_cr = std::f64::consts::PI.powi(2) * base.rod.youngs_modulus * base.rod.area_moment / base.rod.length.powi(2);
+    let p_cr = std::f64::consts::PI.powi(2) * base.rod.youngs_modulus * base.rod.area_moment
+        / base.rod.length.powi(2);
     let w = 10.0;
     let dt = 1e-4;
     let n = 500;
@@ -365,18 +468,27 @@ fn axial_load_near_and_above_buckling() {
         );
         // Below buckling: bounded, no warning, and the amplification of a beam-column.
         assert!(near.error.is_none() && near.warnings.is_empty());
-        assert!(amplification > 2.0 && amplification < 8.0, "{amplification}");
+        assert!(
+            amplification > 2.0 && amplification < 8.0,
+            "{amplification}"
+        );
         below.push(near.rows);
         // Above buckling: a clean StepFailed error (checked in `drive`) or a bounded large
         // deflection; either way the large-deflection warning comes first.
         assert!(finite(&above.rows));
-        assert!(!above.warnings.is_empty(), "{model:?}: buckled without a warning");
+        assert!(
+            !above.warnings.is_empty(),
+            "{model:?}: buckled without a warning"
+        );
         if above.error.is_none() {
             assert!(peak(&above.rows) < 1.0);
         }
     }
     let d = deflection_error(&below[0], &below[1]);
-    println!("0.8 P_cr: FFR stiffened against segments N = 32: pointwise {:.1} % of the peak", 100.0 * d);
+    println!(
+        "0.8 P_cr: FFR stiffened against segments N = 32: pointwise {:.1} % of the peak",
+        100.0 * d
+    );
     assert!(d < 0.25, "{d}");
 }
 
@@ -391,7 +503,9 @@ fn long_run(revs: usize) {
     let dt = REV / W / per_rev as f64;
     let mut sim = Simulation::new(&s).unwrap();
     sim.start(0.0, constant(0.0, W), 0.0).unwrap();
-    let energy = |sim: &Simulation| sim.mechanism().kinetic_energy(sim.state()) + sim.mechanism().strain_energy(sim.state());
+    let energy = |sim: &Simulation| {
+        sim.mechanism().kinetic_energy(sim.state()) + sim.mechanism().strain_energy(sim.state())
+    };
     let clock = std::time::Instant::now();
     let mut energies = Vec::with_capacity(revs);
     let mut peaks = Vec::with_capacity(revs);
@@ -412,8 +526,14 @@ fn long_run(revs: usize) {
         peaks.push(p);
     }
     let e1 = energies[0];
-    let samples: Vec<String> = [1usize, 2, 10, 100, 1000, 10_000].iter().filter(|&&r| r <= revs).map(|&r| format!("rev {r}: {:.5e}", energies[r - 1])).collect();
-    let (emin, emax) = energies.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &e| (a.min(e), b.max(e)));
+    let samples: Vec<String> = [1usize, 2, 10, 100, 1000, 10_000]
+        .iter()
+        .filter(|&&r| r <= revs)
+        .map(|&r| format!("rev {r}: {:.5e}", energies[r - 1]))
+        .collect();
+    let (emin, emax) = energies
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), &e| (a.min(e), b.max(e)));
     println!("T + U at theta = 0: {samples:?}; min {emin:.5e}, max {emax:.5e} J; velocity drift of pin B at the end {:.2e} m/s", pin_velocity_drift(&sim));
     let spread = energies.iter().map(|e| (e - e1).abs()).fold(0.0, f64::max) / e1;
     let strain_last = sim.mechanism().strain_energy(sim.state());
@@ -436,7 +556,12 @@ fn long_run(revs: usize) {
     assert!(spread < 0.15, "{spread}");
     assert!(trend < 0.02, "{trend}");
     assert!(pin_velocity_drift(&sim) < 1e-2);
-    assert!(peaks[revs - 1] <= 1.05 * peaks[0], "{} vs {}", peaks[revs - 1], peaks[0]);
+    assert!(
+        peaks[revs - 1] <= 1.05 * peaks[0],
+        "{} vs {}",
+        peaks[revs - 1],
+        peaks[0]
+    );
     assert!(drift_b < 1e-10 && drift_c < 1e-10, "{drift_b} {drift_c}");
 }
 
@@ -447,7 +572,8 @@ fn pin_velocity_drift(sim: &Simulation) -> f64 {
     let st = sim.state();
     let nr = mech.rod.n_coordinates();
     let mut j = faer::Mat::<f64>::zeros(2, nr);
-    mech.rod.point_jacobian(RodPoint::B, &st.dae.q[..nr], j.as_mut());
+    mech.rod
+        .point_jacobian(RodPoint::B, &st.dae.q[..nr], j.as_mut());
     let (_, vel, _) = mech.crank_law(st).pin(st.time);
     let mut vb = [0.0; 2];
     for r in 0..2 {

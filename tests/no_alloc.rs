@@ -26,8 +26,14 @@ static IN_TRACE: AtomicBool = AtomicBool::new(false);
 
 /// With FLEXROD_ALLOC_TRACE set, print where the first few counted allocations come from.
 fn trace() {
-    if ALLOCATIONS.load(Ordering::Relaxed) <= 5 && std::env::var_os("FLEXROD_ALLOC_TRACE").is_some() && !IN_TRACE.swap(true, Ordering::SeqCst) {
-        eprintln!("allocation:\n{}", std::backtrace::Backtrace::force_capture());
+    if ALLOCATIONS.load(Ordering::Relaxed) <= 5
+        && std::env::var_os("FLEXROD_ALLOC_TRACE").is_some()
+        && !IN_TRACE.swap(true, Ordering::SeqCst)
+    {
+        eprintln!(
+            "allocation:\n{}",
+            std::backtrace::Backtrace::force_capture()
+        );
         IN_TRACE.store(false, Ordering::SeqCst);
     }
 }
@@ -64,7 +70,16 @@ static GLOBAL: Counting = Counting;
 fn allocations_per_1000_advances(scene: &Scene, h: f64) -> usize {
     let w = 150.0;
     let mut sim = Simulation::new(scene).unwrap();
-    sim.start(0.0, CrankInput { angle: 0.0, speed: w, acceleration: 0.0 }, 0.0).unwrap();
+    sim.start(
+        0.0,
+        CrankInput {
+            angle: 0.0,
+            speed: w,
+            acceleration: 0.0,
+        },
+        0.0,
+    )
+    .unwrap();
     sim.advance(h).unwrap();
     MEASURED_THREAD.with(|c| c.set(true));
     ALLOCATIONS.store(0, Ordering::SeqCst);
@@ -72,7 +87,12 @@ fn allocations_per_1000_advances(scene: &Scene, h: f64) -> usize {
     let mut peak: f64 = 0.0;
     for k in 1..=1000 {
         let t = k as f64 * h;
-        sim.set_input(CrankInput { angle: w * t, speed: w, acceleration: 0.0 }).unwrap();
+        sim.set_input(CrankInput {
+            angle: w * t,
+            speed: w,
+            acceleration: 0.0,
+        })
+        .unwrap();
         sim.advance(h).unwrap();
         peak = peak.max(sim.outputs().deflection_rel.abs());
     }

@@ -27,6 +27,7 @@
 //!   the rod's rigid motion as the chord shortens, and its multiplier stiffens or softens the
 //!   bending as a tension or compression (Kane, Ryan and Banerjee 1987; Wallrapp 1994 on
 //!   geometric nonlinear FFR bodies).
+//!
 //! Measured against a geometrically exact beam at 150 rad/s: 0.15 % pointwise (h = 1e-5),
 //! where the quasi-static axial force alone (pin force in N, chord kept at L) drifted to 4.9 %.
 

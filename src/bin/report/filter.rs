@@ -51,7 +51,10 @@ impl Biquad {
         let w = 2.0 * std::f64::consts::PI * f / fs;
         let z1 = num_complex(w.cos(), -w.sin());
         let z2 = num_complex((2.0 * w).cos(), -(2.0 * w).sin());
-        let num = add(add((self.b[0], 0.0), scale(z1, self.b[1])), scale(z2, self.b[2]));
+        let num = add(
+            add((self.b[0], 0.0), scale(z1, self.b[1])),
+            scale(z2, self.b[2]),
+        );
         let den = add(add((1.0, 0.0), scale(z1, self.a[0])), scale(z2, self.a[1]));
         (num.0.hypot(num.1)) / (den.0.hypot(den.1))
     }

@@ -25,6 +25,9 @@
 //!
 //! Outputs: `report.csv`, `report.md`, `error_vs_runtime.svg` in the output folder.
 
+// Index loops are the natural notation for the filter and plot formulas.
+#![allow(clippy::needless_range_loop)]
+
 mod filter;
 mod svg;
 
@@ -91,10 +94,34 @@ impl Case {
 
 fn cases() -> Vec<Case> {
     vec![
-        Case { key: "a", title: "(a) constant 150 rad/s from t = 0, undeformed", speed: 150.0, ramp: None, slider_mass: 0.0 },
-        Case { key: "b", title: "(b) smooth start from rest to 150 rad/s in T = 0.02 s", speed: 150.0, ramp: Some(0.02), slider_mass: 0.0 },
-        Case { key: "c", title: "(c) constant 300 rad/s", speed: 300.0, ramp: None, slider_mass: 0.0 },
-        Case { key: "d", title: "(d) 150 rad/s, slider mass 0.03 kg", speed: 150.0, ramp: None, slider_mass: 0.03 },
+        Case {
+            key: "a",
+            title: "(a) constant 150 rad/s from t = 0, undeformed",
+            speed: 150.0,
+            ramp: None,
+            slider_mass: 0.0,
+        },
+        Case {
+            key: "b",
+            title: "(b) smooth start from rest to 150 rad/s in T = 0.02 s",
+            speed: 150.0,
+            ramp: Some(0.02),
+            slider_mass: 0.0,
+        },
+        Case {
+            key: "c",
+            title: "(c) constant 300 rad/s",
+            speed: 300.0,
+            ramp: None,
+            slider_mass: 0.0,
+        },
+        Case {
+            key: "d",
+            title: "(d) 150 rad/s, slider mass 0.03 kg",
+            speed: 150.0,
+            ramp: None,
+            slider_mass: 0.03,
+        },
     ]
 }
 
@@ -142,7 +169,11 @@ fn reference_name(r: ReferenceKind) -> &'static str {
 impl Setting {
     fn ffr(stiff: bool, elements: usize, modes: usize, h: f64) -> Setting {
         Setting {
-            model: if stiff { Model::FfrStiffened } else { Model::FfrLinear },
+            model: if stiff {
+                Model::FfrStiffened
+            } else {
+                Model::FfrLinear
+            },
             elements,
             modes,
             reference: ReferenceKind::SimplySupported,
@@ -171,7 +202,10 @@ impl Setting {
 
     fn label(&self) -> String {
         match self.model {
-            Model::Segments => format!("segments N={} h={:.0e} rho={}", self.elements, self.h, self.rho_inf),
+            Model::Segments => format!(
+                "segments N={} h={:.0e} rho={}",
+                self.elements, self.h, self.rho_inf
+            ),
             m => {
                 let r = match self.reference {
                     ReferenceKind::SimplySupported => "ss",
@@ -179,8 +213,15 @@ impl Setting {
                     ReferenceKind::BodyFixedMid => "fixed-mid",
                     ReferenceKind::Cantilever => "cantilever",
                 };
-                let kind = if m == Model::FfrLinear { "FFR linear" } else { "FFR stiffened" };
-                format!("{kind} {}el/{}m {r} h={:.0e} rho={}", self.elements, self.modes, self.h, self.rho_inf)
+                let kind = if m == Model::FfrLinear {
+                    "FFR linear"
+                } else {
+                    "FFR stiffened"
+                };
+                format!(
+                    "{kind} {}el/{}m {r} h={:.0e} rho={}",
+                    self.elements, self.modes, self.h, self.rho_inf
+                )
             }
         }
     }
@@ -297,7 +338,12 @@ impl Record {
 }
 
 /// One run of `case` with communication step `h`: start (not timed), then the loop (timed).
-fn run_once(sim: &mut Simulation, case: &Case, h: f64, rec: &mut Record) -> Result<(f64, StepStats), ModelError> {
+fn run_once(
+    sim: &mut Simulation,
+    case: &Case,
+    h: f64,
+    rec: &mut Record,
+) -> Result<(f64, StepStats), ModelError> {
     let n = (case.duration() / h * (1.0 + 1e-12)).floor() as usize;
     rec.clear();
     rec.h = h;
@@ -335,8 +381,17 @@ fn timed_runs(setting: &Setting, case: &Case, min_repeats: usize) -> Result<Time
     }
     times.sort_by(f64::total_cmp);
     let m = times.len();
-    let seconds = if m % 2 == 1 { times[m / 2] } else { 0.5 * (times[m / 2 - 1] + times[m / 2]) };
-    Ok(Timed { record, seconds, repeats: m, stats })
+    let seconds = if m % 2 == 1 {
+        times[m / 2]
+    } else {
+        0.5 * (times[m / 2 - 1] + times[m / 2])
+    };
+    Ok(Timed {
+        record,
+        seconds,
+        repeats: m,
+        stats,
+    })
 }
 
 // ------------------------------------------------------------------ errors
@@ -349,7 +404,12 @@ fn peak(x: &[f64]) -> f64 {
 fn stride(run: &Record, reference: &Record) -> usize {
     let s = run.h / reference.h;
     let k = s.round();
-    assert!((s - k).abs() < 1e-6 && k >= 1.0, "h = {} is not a multiple of the reference step {}", run.h, reference.h);
+    assert!(
+        (s - k).abs() < 1e-6 && k >= 1.0,
+        "h = {} is not a multiple of the reference step {}",
+        run.h,
+        reference.h
+    );
     k as usize
 }
 
@@ -376,7 +436,9 @@ fn force_error(run: &Record, reference: &Record, abrupt: bool) -> f64 {
         let mut worst: f64 = 0.0;
         let mut scale: f64 = 0.0;
         for k in 0..run.v.len() {
-            let Some(i) = Some(k * st).filter(|&i| i < reference.v.len()) else { break };
+            let Some(i) = Some(k * st).filter(|&i| i < reference.v.len()) else {
+                break;
+            };
             worst = worst.max((run.fx[k] - reference.fx[i]).hypot(run.fy[k] - reference.fy[i]));
         }
         for i in 0..reference.v.len() {
@@ -400,7 +462,10 @@ fn force_error(run: &Record, reference: &Record, abrupt: bool) -> f64 {
         ry.push(interp(&run.fy, t));
     }
     let fs = 1.0 / href;
-    let (rx, ry) = (filter::filtfilt(&rx, FILTER_CUTOFF, fs), filter::filtfilt(&ry, FILTER_CUTOFF, fs));
+    let (rx, ry) = (
+        filter::filtfilt(&rx, FILTER_CUTOFF, fs),
+        filter::filtfilt(&ry, FILTER_CUTOFF, fs),
+    );
     let gx = filter::filtfilt(&reference.fx[..n], FILTER_CUTOFF, fs);
     let gy = filter::filtfilt(&reference.fy[..n], FILTER_CUTOFF, fs);
     let (mut worst, mut scale): (f64, f64) = (0.0, 0.0);
@@ -418,7 +483,10 @@ fn force_error(run: &Record, reference: &Record, abrupt: bool) -> f64 {
 
 /// The Exudyn ANCF data: v_mid/L on a 1e-4 s grid (case a).
 fn exudyn() -> Vec<(f64, f64)> {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/exudyn_ancf_150rad_s.csv");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/exudyn_ancf_150rad_s.csv"
+    );
     let text = std::fs::read_to_string(path).unwrap_or_default();
     text.lines()
         .filter(|l| !l.starts_with('#') && !l.starts_with('t') && !l.trim().is_empty())
@@ -480,7 +548,8 @@ impl Row {
 }
 
 fn mark_pareto(rows: &mut [Row]) {
-    let snapshot: Vec<(f64, f64, bool)> = rows.iter().map(|r| (r.ms_per_s, r.error, r.ok())).collect();
+    let snapshot: Vec<(f64, f64, bool)> =
+        rows.iter().map(|r| (r.ms_per_s, r.error, r.ok())).collect();
     for (i, r) in rows.iter_mut().enumerate() {
         if !r.ok() {
             continue;
@@ -536,9 +605,15 @@ fn parse_args() -> Result<Options, String> {
             "--quick" => quick = true,
             "--out" => out = PathBuf::from(args.next().ok_or("--out needs a folder")?),
             "-h" | "--help" => {
-                return Err("usage: report [--quick] [--out DIR]  (default DIR: docs/report)".into())
+                return Err(
+                    "usage: report [--quick] [--out DIR]  (default DIR: docs/report)".into(),
+                )
             }
-            other => return Err(format!("unknown argument {other}; usage: report [--quick] [--out DIR]")),
+            other => {
+                return Err(format!(
+                    "unknown argument {other}; usage: report [--quick] [--out DIR]"
+                ))
+            }
         }
     }
     Ok(Options { quick, out })
@@ -552,7 +627,11 @@ fn run_report(quick: bool, out: &Path) -> Result<Vec<Row>, String> {
     let reference = reference_setting(quick);
     let min_repeats = if quick { 3 } else { 5 };
     let exudyn_data = exudyn();
-    let mut progress = Progress { total: all_cases.len() * settings.len(), done: 0, start: Instant::now() };
+    let mut progress = Progress {
+        total: all_cases.len() * settings.len(),
+        done: 0,
+        start: Instant::now(),
+    };
     let mut rows: Vec<Row> = Vec::new();
     let mut reference_peaks = Vec::new();
     for case in &all_cases {
@@ -562,15 +641,24 @@ fn run_report(quick: bool, out: &Path) -> Result<Vec<Row>, String> {
         reference_peaks.push((case.key, peak(&ref_run.record.v)));
         let mut case_rows = Vec::new();
         for s in &settings {
-            let is_reference = s.model == reference.model && s.elements == reference.elements && s.h == reference.h && s.rho_inf == reference.rho_inf;
+            let is_reference = s.model == reference.model
+                && s.elements == reference.elements
+                && s.h == reference.h
+                && s.rho_inf == reference.rho_inf;
             progress.tick(&format!("case {}: {}", case.key, s.label()));
-            let result = if is_reference { Ok(None) } else { timed_runs(s, case, min_repeats).map(Some) };
+            let result = if is_reference {
+                Ok(None)
+            } else {
+                timed_runs(s, case, min_repeats).map(Some)
+            };
             let row = match result {
                 Ok(timed) => {
                     let t = timed.as_ref().unwrap_or(&ref_run);
                     let (error, peak_error) = deflection_error(&t.record, &ref_run.record);
                     let force_error = force_error(&t.record, &ref_run.record, case.abrupt());
-                    let exudyn = (case.key == "a").then(|| exudyn_error(&t.record, &exudyn_data)).flatten();
+                    let exudyn = (case.key == "a")
+                        .then(|| exudyn_error(&t.record, &exudyn_data))
+                        .flatten();
                     let sim_seconds = t.record.end_time();
                     Row {
                         case: case.key,
@@ -612,10 +700,21 @@ fn run_report(quick: bool, out: &Path) -> Result<Vec<Row>, String> {
     eprintln!();
     std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
     let write = |name: &str, text: &str| {
-        std::fs::write(out.join(name), text).map_err(|e| format!("cannot write {}: {e}", out.join(name).display()))
+        std::fs::write(out.join(name), text)
+            .map_err(|e| format!("cannot write {}: {e}", out.join(name).display()))
     };
     write("report.csv", &csv(&rows))?;
-    write("report.md", &markdown(&rows, &all_cases, &reference, &reference_peaks, quick, clock.elapsed().as_secs_f64()))?;
+    write(
+        "report.md",
+        &markdown(
+            &rows,
+            &all_cases,
+            &reference,
+            &reference_peaks,
+            quick,
+            clock.elapsed().as_secs_f64(),
+        ),
+    )?;
     let panels: Vec<svg::Panel> = all_cases
         .iter()
         .map(|c| svg::Panel {
@@ -623,13 +722,21 @@ fn run_report(quick: bool, out: &Path) -> Result<Vec<Row>, String> {
             points: rows
                 .iter()
                 .filter(|r| r.case == c.key && r.ok() && !r.is_reference)
-                .map(|r| svg::Point { time: r.ms_per_s, error: r.error, model: r.setting.model.index(), pareto: r.pareto })
+                .map(|r| svg::Point {
+                    time: r.ms_per_s,
+                    error: r.error,
+                    model: r.setting.model.index(),
+                    pareto: r.pareto,
+                })
                 .collect(),
         })
         .collect();
     write(
         "error_vs_runtime.svg",
-        &svg::error_vs_runtime("Deflection error against run time (reference: segments N = 64, h = 1e-5 s)", &panels),
+        &svg::error_vs_runtime(
+            "Deflection error against run time (reference: segments N = 64, h = 1e-5 s)",
+            &panels,
+        ),
     )?;
     Ok(rows)
 }
@@ -653,8 +760,16 @@ fn csv(rows: &[Row]) -> String {
             r.case,
             st.model.name(),
             st.elements,
-            if st.model == Model::Segments { String::new() } else { st.modes.to_string() },
-            if st.model == Model::Segments { "" } else { reference_name(st.reference) },
+            if st.model == Model::Segments {
+                String::new()
+            } else {
+                st.modes.to_string()
+            },
+            if st.model == Model::Segments {
+                ""
+            } else {
+                reference_name(st.reference)
+            },
             st.h,
             st.rho_inf,
             r.status.replace('"', "'"),
@@ -695,19 +810,38 @@ fn pct_signed(x: f64) -> String {
 /// The fastest setting meeting `tol` in both pointwise and peak deflection error.
 fn fastest_within(rows: &[Row], case: &str, tol: f64) -> Option<Row> {
     rows.iter()
-        .filter(|r| r.case == case && r.ok() && !r.is_reference && r.error <= tol && r.peak_error.abs() <= tol)
+        .filter(|r| {
+            r.case == case
+                && r.ok()
+                && !r.is_reference
+                && r.error <= tol
+                && r.peak_error.abs() <= tol
+        })
         .min_by(|a, b| a.ms_per_s.total_cmp(&b.ms_per_s))
         .cloned()
 }
 
 fn fastest_model_within(rows: &[Row], case: &str, tol: f64, model: Model) -> Option<Row> {
     rows.iter()
-        .filter(|r| r.case == case && r.ok() && r.setting.model == model && r.error <= tol && r.peak_error.abs() <= tol)
+        .filter(|r| {
+            r.case == case
+                && r.ok()
+                && r.setting.model == model
+                && r.error <= tol
+                && r.peak_error.abs() <= tol
+        })
         .min_by(|a, b| a.ms_per_s.total_cmp(&b.ms_per_s))
         .cloned()
 }
 
-fn markdown(rows: &[Row], cases: &[Case], reference: &Setting, peaks: &[(&str, f64)], quick: bool, seconds: f64) -> String {
+fn markdown(
+    rows: &[Row],
+    cases: &[Case],
+    reference: &Setting,
+    peaks: &[(&str, f64)],
+    quick: bool,
+    seconds: f64,
+) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "# Error against run time (issue 6)\n");
     let _ = writeln!(
@@ -727,21 +861,55 @@ fn markdown(rows: &[Row], cases: &[Case], reference: &Setting, peaks: &[(&str, f
     let _ = writeln!(s);
 
     // Fastest settings.
-    let _ = writeln!(s, "## Fastest setting reaching 0.5 % deflection error (pointwise and peak)\n");
-    let _ = writeln!(s, "Against the case's reference, the reference itself excluded.\n");
+    let _ = writeln!(
+        s,
+        "## Fastest setting reaching 0.5 % deflection error (pointwise and peak)\n"
+    );
+    let _ = writeln!(
+        s,
+        "Against the case's reference, the reference itself excluded.\n"
+    );
     let _ = writeln!(s, "| case | fastest overall | error | peak | ms/s | RTF | fastest FFR stiffened (error) | fastest FFR linear |");
     let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
     for c in cases {
         let best = fastest_within(rows, c.key, 5e-3);
         let ffr = fastest_model_within(rows, c.key, 5e-3, Model::FfrStiffened);
         let lin = fastest_model_within(rows, c.key, 5e-3, Model::FfrLinear);
-        let desc = |r: &Option<Row>| r.as_ref().map(|r| format!("{} ({}, {:.0} ms/s)", r.setting.label(), pct(r.error), r.ms_per_s)).unwrap_or_else(|| "none in the matrix".into());
+        let desc = |r: &Option<Row>| {
+            r.as_ref()
+                .map(|r| {
+                    format!(
+                        "{} ({}, {:.0} ms/s)",
+                        r.setting.label(),
+                        pct(r.error),
+                        r.ms_per_s
+                    )
+                })
+                .unwrap_or_else(|| "none in the matrix".into())
+        };
         match &best {
             Some(r) => {
-                let _ = writeln!(s, "| {} | {} | {} | {} | {:.1} | {:.1} | {} | {} |", c.title, r.setting.label(), pct(r.error), pct_signed(r.peak_error), r.ms_per_s, r.rtf, desc(&ffr), desc(&lin));
+                let _ = writeln!(
+                    s,
+                    "| {} | {} | {} | {} | {:.1} | {:.1} | {} | {} |",
+                    c.title,
+                    r.setting.label(),
+                    pct(r.error),
+                    pct_signed(r.peak_error),
+                    r.ms_per_s,
+                    r.rtf,
+                    desc(&ffr),
+                    desc(&lin)
+                );
             }
             None => {
-                let _ = writeln!(s, "| {} | none | | | | | {} | {} |", c.title, desc(&ffr), desc(&lin));
+                let _ = writeln!(
+                    s,
+                    "| {} | none | | | | | {} | {} |",
+                    c.title,
+                    desc(&ffr),
+                    desc(&lin)
+                );
             }
         }
     }
@@ -749,37 +917,84 @@ fn markdown(rows: &[Row], cases: &[Case], reference: &Setting, peaks: &[(&str, f
     // Best FFR stiffened by pointwise error, for context.
     let _ = writeln!(s, "Most accurate FFR stiffened setting per case:\n");
     for c in cases {
-        if let Some(r) = rows.iter().filter(|r| r.case == c.key && r.ok() && r.setting.model == Model::FfrStiffened).min_by(|a, b| a.error.total_cmp(&b.error)) {
-            let _ = writeln!(s, "- {}: {} — error {}, peak {}", c.title, r.setting.label(), pct(r.error), pct_signed(r.peak_error));
+        if let Some(r) = rows
+            .iter()
+            .filter(|r| r.case == c.key && r.ok() && r.setting.model == Model::FfrStiffened)
+            .min_by(|a, b| a.error.total_cmp(&b.error))
+        {
+            let _ = writeln!(
+                s,
+                "- {}: {} — error {}, peak {}",
+                c.title,
+                r.setting.label(),
+                pct(r.error),
+                pct_signed(r.peak_error)
+            );
         }
     }
     let _ = writeln!(s);
 
     // Exudyn.
-    let _ = writeln!(s, "## Against the independent geometrically exact beam (Exudyn ANCF, case a)\n");
+    let _ = writeln!(
+        s,
+        "## Against the independent geometrically exact beam (Exudyn ANCF, case a)\n"
+    );
     let _ = writeln!(s, "tests/data/exudyn_ancf_150rad_s.csv, 1e-4 s grid, compared at the times common to both grids. Sorted by the error against Exudyn (best 12), then the default and benchmark FFR settings and linear modes.\n");
-    let _ = writeln!(s, "| setting | error vs Exudyn | peak vs Exudyn | error vs segment reference |");
+    let _ = writeln!(
+        s,
+        "| setting | error vs Exudyn | peak vs Exudyn | error vs segment reference |"
+    );
     let _ = writeln!(s, "|---|---|---|---|");
-    let mut ex_rows: Vec<&Row> = rows.iter().filter(|r| r.case == "a" && r.ok() && r.exudyn.is_some() && r.setting.model != Model::FfrLinear).collect();
+    let mut ex_rows: Vec<&Row> = rows
+        .iter()
+        .filter(|r| {
+            r.case == "a" && r.ok() && r.exudyn.is_some() && r.setting.model != Model::FfrLinear
+        })
+        .collect();
     ex_rows.sort_by(|a, b| a.exudyn.unwrap().0.total_cmp(&b.exudyn.unwrap().0));
     for r in ex_rows.iter().take(12) {
         let (e, p) = r.exudyn.unwrap();
-        let _ = writeln!(s, "| {}{} | {} | {} | {} |", r.setting.label(), if r.is_reference { " (reference)" } else { "" }, pct(e), pct_signed(p), pct(r.error));
+        let _ = writeln!(
+            s,
+            "| {}{} | {} | {} | {} |",
+            r.setting.label(),
+            if r.is_reference { " (reference)" } else { "" },
+            pct(e),
+            pct_signed(p),
+            pct(r.error)
+        );
     }
-    for r in rows.iter().filter(|r| r.case == "a" && r.ok() && r.exudyn.is_some()) {
+    for r in rows
+        .iter()
+        .filter(|r| r.case == "a" && r.ok() && r.exudyn.is_some())
+    {
         let l = &r.setting;
-        let notable = (l.model == Model::FfrStiffened && l.elements == 8 && ((l.modes == 4 && l.h == 1e-4) || (l.modes == 3 && l.h == 3e-4)) && l.rho_inf == 0.8 && l.reference == ReferenceKind::SimplySupported)
+        let notable = (l.model == Model::FfrStiffened
+            && l.elements == 8
+            && ((l.modes == 4 && l.h == 1e-4) || (l.modes == 3 && l.h == 3e-4))
+            && l.rho_inf == 0.8
+            && l.reference == ReferenceKind::SimplySupported)
             || (l.model == Model::FfrLinear && l.elements == 8 && l.modes == 4 && l.h == 1e-4);
         if notable && !ex_rows.iter().take(12).any(|x| std::ptr::eq(*x, r)) {
             let (e, p) = r.exudyn.unwrap();
-            let _ = writeln!(s, "| {} | {} | {} | {} |", l.label(), pct(e), pct_signed(p), pct(r.error));
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} |",
+                l.label(),
+                pct(e),
+                pct_signed(p),
+                pct(r.error)
+            );
         }
     }
     let _ = writeln!(s);
 
     for c in cases {
         let _ = writeln!(s, "## Case {}\n", c.title);
-        let _ = writeln!(s, "| setting | error | peak | force error | ms/s | RTF | steps | Newton | Pareto |");
+        let _ = writeln!(
+            s,
+            "| setting | error | peak | force error | ms/s | RTF | steps | Newton | Pareto |"
+        );
         let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|");
         let mut cr: Vec<&Row> = rows.iter().filter(|r| r.case == c.key).collect();
         cr.sort_by(|a, b| a.ms_per_s.total_cmp(&b.ms_per_s));
@@ -800,7 +1015,12 @@ fn markdown(rows: &[Row], cases: &[Case], reference: &Setting, peaks: &[(&str, f
                     if r.pareto { "yes" } else { "no" }
                 );
             } else {
-                let _ = writeln!(s, "| {} | {} | | | | | | | no |", r.setting.label(), r.status);
+                let _ = writeln!(
+                    s,
+                    "| {} | {} | | | | | | | no |",
+                    r.setting.label(),
+                    r.status
+                );
             }
         }
         let _ = writeln!(s);
@@ -821,11 +1041,21 @@ fn main() {
             let cases = cases();
             for c in &cases {
                 match fastest_within(&rows, c.key, 5e-3) {
-                    Some(r) => println!("case {}: fastest within 0.5 %: {} ({}, {:.1} ms/s, RTF {:.1})", c.key, r.setting.label(), pct(r.error), r.ms_per_s, r.rtf),
+                    Some(r) => println!(
+                        "case {}: fastest within 0.5 %: {} ({}, {:.1} ms/s, RTF {:.1})",
+                        c.key,
+                        r.setting.label(),
+                        pct(r.error),
+                        r.ms_per_s,
+                        r.rtf
+                    ),
                     None => println!("case {}: no setting within 0.5 %", c.key),
                 }
             }
-            println!("wrote {}/report.csv, report.md, error_vs_runtime.svg", options.out.display());
+            println!(
+                "wrote {}/report.csv, report.md, error_vs_runtime.svg",
+                options.out.display()
+            );
         }
         Err(e) => {
             eprintln!("report failed: {e}");
@@ -855,14 +1085,23 @@ mod tests {
     fn quick_report_runs() {
         let out = std::env::temp_dir().join(format!("flexrod-report-quick-{}", std::process::id()));
         let rows = run_report(true, &out).unwrap();
-        assert!(rows.iter().all(|r| r.ok()), "{:?}", rows.iter().filter(|r| !r.ok()).map(|r| &r.status).collect::<Vec<_>>());
+        assert!(
+            rows.iter().all(|r| r.ok()),
+            "{:?}",
+            rows.iter()
+                .filter(|r| !r.ok())
+                .map(|r| &r.status)
+                .collect::<Vec<_>>()
+        );
         for name in ["report.csv", "report.md", "error_vs_runtime.svg"] {
             let text = std::fs::read_to_string(out.join(name)).unwrap();
             assert!(text.len() > 200, "{name}");
         }
         // The reference has zero error; some setting is on each case's front.
         for c in cases() {
-            assert!(rows.iter().any(|r| r.case == c.key && r.is_reference && r.error == 0.0));
+            assert!(rows
+                .iter()
+                .any(|r| r.case == c.key && r.is_reference && r.error == 0.0));
             assert!(rows.iter().any(|r| r.case == c.key && r.pareto));
         }
         let _ = std::fs::remove_dir_all(&out);

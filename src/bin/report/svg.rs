@@ -60,7 +60,11 @@ pub fn error_vs_runtime(title: &str, panels: &[Panel]) -> String {
     for m in 0..3 {
         let x = 20.0 + 150.0 * m as f64;
         s += &marker(m, x, 40.0);
-        s += &format!("<text x=\"{}\" y=\"44\">{}</text>\n", x + 9.0, MODEL_NAMES[m]);
+        s += &format!(
+            "<text x=\"{}\" y=\"44\">{}</text>\n",
+            x + 9.0,
+            MODEL_NAMES[m]
+        );
     }
     s += "<line x1=\"470\" x2=\"500\" y1=\"40\" y2=\"40\" stroke=\"black\" stroke-dasharray=\"4 2\"/><text x=\"505\" y=\"44\">Pareto front</text>\n";
     for (i, panel) in panels.iter().enumerate() {
@@ -76,8 +80,16 @@ pub fn error_vs_runtime(title: &str, panels: &[Panel]) -> String {
         let tmax = pts.iter().map(|p| p.time).fold(0.0, f64::max);
         let emin = pts.iter().map(|p| p.error).fold(f64::INFINITY, f64::min);
         let emax = pts.iter().map(|p| p.error).fold(0.0, f64::max);
-        let (x0, x1) = if pts.is_empty() { (0.0, 1.0) } else { decades(tmin, tmax) };
-        let (y0, y1) = if pts.is_empty() { (-3.0, 0.0) } else { decades(emin, emax) };
+        let (x0, x1) = if pts.is_empty() {
+            (0.0, 1.0)
+        } else {
+            decades(tmin, tmax)
+        };
+        let (y0, y1) = if pts.is_empty() {
+            (-3.0, 0.0)
+        } else {
+            decades(emin, emax)
+        };
         let px = |t: f64| ox + ml + (t.log10() - x0) / (x1 - x0) * (pw - ml - mr);
         let py = |e: f64| oy + mt + (y1 - e.log10()) / (y1 - y0) * (ph - mt - mb);
         s += &format!(
@@ -137,7 +149,10 @@ pub fn error_vs_runtime(title: &str, panels: &[Panel]) -> String {
         let mut front: Vec<&&Point> = pts.iter().filter(|p| p.pareto).collect();
         front.sort_by(|a, b| a.time.total_cmp(&b.time));
         if front.len() > 1 {
-            let path: Vec<String> = front.iter().map(|p| format!("{:.1},{:.1}", px(p.time), py(p.error))).collect();
+            let path: Vec<String> = front
+                .iter()
+                .map(|p| format!("{:.1},{:.1}", px(p.time), py(p.error)))
+                .collect();
             s += &format!(
                 "<polyline fill=\"none\" stroke=\"black\" stroke-dasharray=\"4 2\" points=\"{}\"/>\n",
                 path.join(" ")
