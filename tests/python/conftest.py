@@ -9,10 +9,33 @@ from fmpy import extract
 from helpers import ROOT, build_fmu, reference
 
 
+# Every FMU test runs on both rod models (issue 5: the segments FMU passes the same tests).
+MODELS = ["ffr", "segments"]
+
+
+@pytest.fixture(scope="session", params=MODELS)
+def model(request):
+    return request.param
+
+
 @pytest.fixture(scope="session")
-def fmu_path(tmp_path_factory):
-    """The default FMU (scenes/benchmark.toml), built by `cargo run --release -p fmu`."""
-    return build_fmu(tmp_path_factory.mktemp("fmu"))
+def scene_path(model, tmp_path_factory):
+    """The scene of the FMU under test: scenes/benchmark.toml, or the same rod as a segment
+    chain (rod.model = "segments", as many segments as the scene has elements)."""
+    if model == "ffr":
+        return ROOT / "scenes" / "benchmark.toml"
+    text = (ROOT / "scenes" / "benchmark.toml").read_text()
+    text = text.replace('model = "ffr"', 'model = "segments"')
+    text = text.replace('name = "FlexibleSliderCrank"', 'name = "FlexibleSliderCrankSegments"')
+    scene = tmp_path_factory.mktemp("segments") / "segments.toml"
+    scene.write_text(text)
+    return scene
+
+
+@pytest.fixture(scope="session")
+def fmu_path(scene_path, tmp_path_factory):
+    """The FMU of the scene under test, built by `cargo run --release -p fmu -- SCENE`."""
+    return build_fmu(tmp_path_factory.mktemp("fmu"), scene_path)
 
 
 @pytest.fixture(scope="session")
@@ -21,30 +44,38 @@ def unzipdir(fmu_path, tmp_path_factory):
 
 
 @pytest.fixture(scope="session")
-def segments_fmu(tmp_path_factory):
-    """The benchmark rod with rod.model = "segments"; skipped if the core cannot build it."""
-    text = (ROOT / "scenes" / "benchmark.toml").read_text()
-    text = text.replace('model = "ffr"', 'model = "segments"')
-    text = text.replace('name = "FlexibleSliderCrank"', 'name = "FlexibleSliderCrankSegments"')
-    directory = tmp_path_factory.mktemp("segments")
-    scene = directory / "segments.toml"
-    scene.write_text(text)
-    try:
-        return build_fmu(directory, scene)
-    except RuntimeError as e:
-        pytest.skip(f"the segments rod model is not available from the core: {e}")
+def default_fmu(tmp_path_factory):
+    """The default FMU (scenes/benchmark.toml) alone, for the engine coupling tests."""
+    return build_fmu(tmp_path_factory.mktemp("default_fmu"))
 
 
 @pytest.fixture(scope="session")
-def ref(tmp_path_factory):
-    """The core's own results of the default experiment: ref(accel=0, steps=None)."""
+def default_unzipdir(default_fmu, tmp_path_factory):
+    return extract(str(default_fmu), str(tmp_path_factory.mktemp("default_unzipped")))
+
+
+@pytest.fixture(scope="session")
+def segments_fmu(tmp_path_factory):
+    """The benchmark rod as a segment chain, for tests that compare the two models."""
+    text = (ROOT / "scenes" / "benchmark.toml").read_text()
+    text = text.replace('model = "ffr"', 'model = "segments"')
+    text = text.replace('name = "FlexibleSliderCrank"', 'name = "FlexibleSliderCrankSegments"')
+    directory = tmp_path_factory.mktemp("segments_fmu")
+    scene = directory / "segments.toml"
+    scene.write_text(text)
+    return build_fmu(directory, scene)
+
+
+@pytest.fixture(scope="session")
+def ref(scene_path, tmp_path_factory):
+    """The core's own results of the scene's default experiment: ref(accel=0, steps=None)."""
     cache = {}
     directory = tmp_path_factory.mktemp("reference")
 
     def get(accel=0.0, steps=None):
         key = (accel, tuple(steps) if steps else None)
         if key not in cache:
-            cache[key] = reference(directory / f"ref{len(cache)}.csv", accel, steps)
+            cache[key] = reference(directory / f"ref{len(cache)}.csv", accel, steps, scene_path)
         return cache[key]
 
     return get

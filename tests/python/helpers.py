@@ -57,10 +57,13 @@ def build_fmu(out_dir, scene=None):
     raise RuntimeError(f"no .fmu reported by the packager:\n{stdout}")
 
 
-def reference(csv_path, accel=0.0, steps=None):
-    """The core's own run of the default experiment (flexrod::Simulation, no FMI), at the
-    communication points: dict name -> array, with "time"."""
-    args = ["run", "--release", "-q", "-p", "fmu", "--", "--no-package", "--csv", str(csv_path)]
+def reference(csv_path, accel=0.0, steps=None, scene=None):
+    """The core's own run of the scene's default experiment (flexrod::Simulation, no FMI), at
+    the communication points: dict name -> array, with "time"."""
+    args = ["run", "--release", "-q", "-p", "fmu", "--"]
+    if scene is not None:
+        args.append(str(scene))
+    args += ["--no-package", "--csv", str(csv_path)]
     if accel:
         args += ["--accel", repr(accel)]
     if steps:

@@ -19,8 +19,8 @@ REV = 2 * math.pi / 150.0  # one revolution at 150 rad/s
 
 
 @pytest.fixture(scope="module")
-def bank(fmu_path, unzipdir):
-    b = eng_mod.Bank(fmu_path, unzipdir=unzipdir)
+def bank(default_fmu, default_unzipdir):
+    b = eng_mod.Bank(default_fmu, unzipdir=default_unzipdir)
     yield b
     b.free()
 

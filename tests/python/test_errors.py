@@ -133,10 +133,10 @@ def test_failed_initialization_leaves_no_stale_outputs(slave):
     slave.fmu.setupExperiment(startTime=0.0)
     slave.fmu.enterInitializationMode()
     assert slave.get("rod.deflection") == [0.0]  # built and started here
-    slave.fmu.setInteger([slave.vr["rod.modes"]], [1000])
-    expect_error(slave, slave.fmu.exitInitializationMode, "rod.modes")
+    slave.fmu.setReal([slave.vr["crank.length"]], [0.5])
+    expect_error(slave, slave.fmu.exitInitializationMode, "crank.length")
     for name in ["rod.deflection", "pinB.force_x", "rod.frequency[1]"]:
-        expect_error(slave, lambda: slave.get(name), "not available", "rod.modes")
+        expect_error(slave, lambda: slave.get(name), "not available", "crank.length")
     assert slave.get("crank.speed", "rod.length") == [150.0, 0.3048]
     expect_error(slave, lambda: slave.fmu.getRealStatus(2), "fmi2GetRealStatus", "Error")
 
@@ -155,7 +155,9 @@ def test_impossible_parameters_name_the_parameter(slave, name, value):
     expect_error(slave, slave.fmu.exitInitializationMode, name)
 
 
-def test_too_many_modes(slave):
+def test_too_many_modes(slave, model):
+    if model != "ffr":
+        pytest.skip("rod.modes applies to the FFR rod only")
     slave.fmu.setupExperiment(startTime=0.0)
     slave.fmu.setInteger([slave.vr["rod.modes"]], [1000])
     slave.fmu.enterInitializationMode()
@@ -448,15 +450,20 @@ def test_guid_mismatch_and_model_exchange(unzipdir):
     s.free()
 
 
-def test_missing_or_foreign_resources(fmu_path, tmp_path):
+def test_missing_or_foreign_resources(fmu_path, tmp_path, model):
     d = tmp_path / "fmu"
     extract(str(fmu_path), str(d))
-    # Without resources/scene.toml the compiled-in default scene serves (same GUID).
     (d / "resources" / "scene.toml").unlink()
-    s = Slave(d, logging_on=True)
-    s.init()
-    s.fmu.doStep(0.0, 1e-4)
-    s.free()
+    if model == "ffr":
+        # Without resources/scene.toml the compiled-in default scene serves (same GUID).
+        s = Slave(d, logging_on=True)
+        s.init()
+        s.fmu.doStep(0.0, 1e-4)
+        s.free()
+    else:
+        # Another scene's FMU cannot fall back on the default scene: its GUID differs.
+        with pytest.raises(Exception, match="Failed to instantiate"):
+            Slave(d)
     # A different scene under the same description: GUID mismatch, instantiation fails.
     scene = (ROOT / "scenes" / "benchmark.toml").read_text()
     (d / "resources" / "scene.toml").write_text(scene.replace("length = 0.3048", "length = 0.31"))
