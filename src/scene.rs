@@ -31,6 +31,28 @@ pub struct Scene {
     pub outputs: OutputSpec,
     #[serde(default)]
     pub experiment: ExperimentSpec,
+    #[serde(default)]
+    pub start: StartSpec,
+}
+
+/// The rod's state at the start time.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum StartDeflection {
+    /// Undeformed, moving rigidly with the crank (physics.md, "Initial state").
+    #[default]
+    Undeformed,
+    /// Deflected by the inertia loads of the start motion, with no elastic velocity or
+    /// acceleration (FFR rod): no start transient at constant speed.
+    QuasiStatic,
+}
+
+/// How the simulation starts.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct StartSpec {
+    #[serde(default)]
+    pub deflection: StartDeflection,
 }
 
 /// The crank A-B (massless; its motion is an input).

@@ -231,6 +231,10 @@ impl RodBody for FfrRod {
         v[2] = omega;
     }
 
+    fn elastic_coordinates(&self) -> Option<std::ops::Range<usize>> {
+        Some(3..3 + self.n)
+    }
+
     fn mass(&self, q: &[f64], mut m: MatMut<'_, f64>) {
         let n = self.n;
         let ig = &self.integrals;

@@ -35,6 +35,11 @@ pub trait RodBody: Send {
         q: &mut [f64],
         v: &mut [f64],
     );
+    /// The coordinates that carry the elastic deformation alone (modal coordinates of the FFR
+    /// rod), if the model has such a split; the quasi-static start needs it.
+    fn elastic_coordinates(&self) -> Option<std::ops::Range<usize>> {
+        None
+    }
     /// Mass matrix (n x n) into `m`.
     fn mass(&self, q: &[f64], m: MatMut<'_, f64>);
     /// Generalized forces: quadratic velocity terms, elastic and damping forces, and the

@@ -20,7 +20,7 @@ use crate::integrator::dense_lu::DenseLu;
 use crate::integrator::generalized_alpha::DaeState;
 use crate::integrator::{DaeSystem, GeneralizedAlpha};
 use crate::modal::{ComponentModes, ModeSelection, ReferenceConditions};
-use crate::scene::{RodModelKind, Scene};
+use crate::scene::{RodModelKind, Scene, StartDeflection};
 use crate::simulation::CrankInput;
 
 /// |v_mid| / L above which the small-deformation assumption is flagged.
@@ -243,6 +243,9 @@ impl Mechanism {
             ..Default::default()
         };
         let mut work = self.output_workspace();
+        if self.scene.start.deflection == StartDeflection::QuasiStatic {
+            self.quasi_static_start(&mut state, &mut work)?;
+        }
         // The stiffening forces depend on q'' and lambda: a few fixed-point passes.
         for _ in 0..4 {
             let (qdd, lambda) = work.consistent_accelerations(self, &state, false)?;
@@ -252,6 +255,158 @@ impl Mechanism {
         state.dae.acc.copy_from_slice(&state.dae.qdd);
         state.outputs = self.compute_outputs(&mut work, &state)?;
         Ok(state)
+    }
+
+    /// Quasi-static start: the elastic coordinates follow the quasi-static deflection `p_qs(t)`
+    /// of the start motion, `p = p_qs(t0)`, `p' = (p_qs(t0 + d) - p_qs(t0 - d)) / 2d`; the rigid
+    /// coordinates and velocities satisfy the constraints.
+    fn quasi_static_start(
+        &self,
+        state: &mut MechanismState,
+        work: &mut OutputWork,
+    ) -> Result<(), ModelError> {
+        let elastic = self.rod.elastic_coordinates().ok_or_else(|| ModelError::InvalidParameter {
+            name: "start.deflection",
+            value: 1.0,
+            allowed: "\"undeformed\" with rod.model = segments (\"quasi_static\" needs the elastic coordinates of the FFR rod)".into(),
+        })?;
+        let t0 = state.time;
+        let delta = 1e-6;
+        let mut rate = vec![0.0; elastic.len()];
+        for (sign, t) in [(-1.0, t0 - delta), (1.0, t0 + delta)] {
+            let mut probe = state.clone();
+            probe.time = t;
+            probe.dae.t = t;
+            self.quasi_static_deflection(&mut probe, work, &[])?;
+            for (i, r) in rate.iter_mut().enumerate() {
+                *r += sign * probe.dae.q[elastic.start + i] / (2.0 * delta);
+            }
+        }
+        self.quasi_static_deflection(state, work, &rate)
+    }
+
+    /// Deflect the rod quasi-statically at `state.time`: elastic velocities `elastic_rate` (zero
+    /// if empty), elastic accelerations driven to zero by `K_e dp = M_ee p''` (fixed point; `K_e`
+    /// the elastic tangent stiffness including the centrifugal softening), with the rigid
+    /// coordinates re-solved on the constraints `Phi(q, t) = 0` and their velocities on
+    /// `Phi_q q' = -Phi_t` at each pass.
+    fn quasi_static_deflection(
+        &self,
+        state: &mut MechanismState,
+        work: &mut OutputWork,
+        elastic_rate: &[f64],
+    ) -> Result<(), ModelError> {
+        let sys = self.system(state);
+        let n = sys.n_coordinates();
+        let t0 = state.time;
+        let elastic = self.rod.elastic_coordinates().unwrap_or(0..0);
+        let rigid: Vec<usize> = (0..n).filter(|i| !elastic.contains(i)).collect();
+        debug_assert_eq!(rigid.len(), 4);
+        let ne = elastic.len();
+        let mut jac = faer::Mat::<f64>::zeros(4, n);
+        let mut mass = faer::Mat::<f64>::zeros(n, n);
+        let mut tangent = faer::Mat::<f64>::zeros(n, n);
+        let mut phi = [0.0; 4];
+        let scale = self.rod.length();
+        for pass in 0..60 {
+            // Rigid coordinates on the position constraints (Newton on the 4 x 4 block).
+            for _ in 0..20 {
+                sys.constraints(t0, &state.dae.q, &mut phi);
+                if phi.iter().all(|x| x.abs() < 1e-15 * scale) {
+                    break;
+                }
+                sys.constraint_jacobian(&state.dae.q, jac.as_mut());
+                let a = nalgebra::Matrix4::from_fn(|i, j| jac[(i, rigid[j])]);
+                let d = a.lu().solve(&nalgebra::Vector4::from(phi)).ok_or_else(|| {
+                    ModelError::StepFailed {
+                        time: t0,
+                        step: 0.0,
+                        reason: "quasi-static start: the constraint Jacobian is singular".into(),
+                    }
+                })?;
+                for (k, &i) in rigid.iter().enumerate() {
+                    state.dae.q[i] -= d[k];
+                }
+            }
+            // Velocities: elastic ones given, rigid ones on the velocity constraints.
+            sys.constraint_jacobian(&state.dae.q, jac.as_mut());
+            let mut rate = [0.0; 4];
+            sys.constraint_rate(t0, &state.dae.q, &mut rate);
+            state.dae.v.iter_mut().for_each(|x| *x = 0.0);
+            for (i, &r) in elastic_rate.iter().enumerate() {
+                state.dae.v[elastic.start + i] = r;
+            }
+            for (k, r) in rate.iter_mut().enumerate() {
+                for i in elastic.clone() {
+                    *r += jac[(k, i)] * state.dae.v[i];
+                }
+            }
+            let a = nalgebra::Matrix4::from_fn(|i, j| jac[(i, rigid[j])]);
+            let vr = a
+                .lu()
+                .solve(&-nalgebra::Vector4::from(rate))
+                .ok_or_else(|| ModelError::StepFailed {
+                    time: t0,
+                    step: 0.0,
+                    reason: "quasi-static start: the constraint Jacobian is singular".into(),
+                })?;
+            for (k, &i) in rigid.iter().enumerate() {
+                state.dae.v[i] = vr[k];
+            }
+            // Accelerations and multipliers (stiffening needs them: two passes).
+            for _ in 0..2 {
+                let (qdd, lambda) = work.consistent_accelerations(self, state, false)?;
+                state.dae.qdd.copy_from_slice(qdd);
+                state.dae.lambda.copy_from_slice(&lambda);
+            }
+            // K_e dp = M_ee p''.
+            sys.mass(&state.dae.q, mass.as_mut());
+            tangent.fill(0.0);
+            sys.add_tangent(
+                &state.dae.q,
+                &state.dae.v,
+                &state.dae.lambda,
+                1.0,
+                0.0,
+                tangent.as_mut(),
+            );
+            let mut k = nalgebra::DMatrix::from_fn(ne, ne, |i, j| {
+                tangent[(elastic.start + i, elastic.start + j)]
+            });
+            let rhs = nalgebra::DVector::from_fn(ne, |i, _| {
+                (0..ne)
+                    .map(|j| {
+                        mass[(elastic.start + i, elastic.start + j)]
+                            * state.dae.qdd[elastic.start + j]
+                    })
+                    .sum::<f64>()
+            });
+            k.iter_mut()
+                .for_each(|x| *x = if x.is_finite() { *x } else { 0.0 });
+            let dp = k.lu().solve(&rhs).ok_or_else(|| ModelError::StepFailed {
+                time: t0,
+                step: 0.0,
+                reason:
+                    "quasi-static start: the elastic stiffness is singular (at or above buckling)"
+                        .into(),
+            })?;
+            let mut change: f64 = 0.0;
+            for i in 0..ne {
+                state.dae.q[elastic.start + i] += dp[i];
+                change = change.max((dp[i] / self.rod.coordinate_scale(elastic.start + i)).abs());
+            }
+            if change < 1e-13 {
+                return Ok(());
+            }
+            if pass == 59 || !change.is_finite() {
+                return Err(ModelError::StepFailed {
+                    time: t0,
+                    step: 0.0,
+                    reason: format!("quasi-static start did not converge (last correction {change:e}); the loads may be at or above buckling"),
+                });
+            }
+        }
+        Ok(())
     }
 
     fn output_workspace(&self) -> OutputWork {

@@ -1,0 +1,104 @@
+//! The quasi-static deflected start (`[start] deflection = "quasi_static"`, issue 3): the rod
+//! starts deflected by the inertia loads of its motion, without the start transient.
+
+use flexrod::scene::{RodModelKind, StartDeflection};
+use flexrod::{CrankInput, Scene, Simulation};
+
+const W: f64 = 150.0;
+const THETA0: f64 = std::f64::consts::FRAC_PI_2;
+
+fn input(t: f64) -> CrankInput {
+    CrankInput {
+        angle: THETA0 + W * t,
+        speed: W,
+        acceleration: 0.0,
+    }
+}
+
+/// v_mid/L at every communication point over `revolutions`, from a start at THETA0.
+fn run(scene: &Scene, revolutions: f64, dt: f64) -> (Vec<f64>, Simulation) {
+    let mut sim = Simulation::new(scene).unwrap();
+    sim.start(0.0, input(0.0), 0.0).unwrap();
+    let n = (revolutions * 2.0 * std::f64::consts::PI / W / dt).round() as usize;
+    let mut v = vec![sim.outputs().deflection_rel];
+    for k in 0..n {
+        sim.set_input(input(k as f64 * dt)).unwrap();
+        sim.advance(dt).unwrap();
+        v.push(sim.outputs().deflection_rel);
+    }
+    (v, sim)
+}
+
+#[test]
+fn quasi_static_start_removes_the_start_transient() {
+    let dt = 1e-4;
+    let per_rev = (2.0 * std::f64::consts::PI / W / dt).round() as usize;
+    let mut damped = Scene::benchmark();
+    damped.rod.damping_ratio = 0.1;
+    // The periodic steady state: 8 revolutions with 10 % modal damping, the last one kept.
+    let (steady_all, _) = run(&damped, 8.0, dt);
+    let steady = &steady_all[steady_all.len() - per_rev - 1..];
+    let peak = steady.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let mut errors = Vec::new();
+    for deflection in [StartDeflection::Undeformed, StartDeflection::QuasiStatic] {
+        let mut s = damped.clone();
+        s.start.deflection = deflection;
+        let sim = Simulation::new(&s).unwrap();
+        let mut sim0 = sim;
+        sim0.start(0.0, input(0.0), 0.0).unwrap();
+        let st = sim0.state();
+        let elastic_acc = st.dae.qdd[3..3 + s.rod.modes]
+            .iter()
+            .fold(0.0f64, |m, x| m.max(x.abs()));
+        let (first, _) = run(&s, 1.0, dt);
+        // The steady state's revolution starts at the same crank angle (THETA0 + 2 pi k).
+        let err = first
+            .iter()
+            .zip(steady)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max)
+            / peak;
+        println!(
+            "{deflection:?} start: v_mid/L(0) = {:.4e} (steady state {:.4e}), max |elastic p''| at start {elastic_acc:.3e}, first revolution against the steady state {:.2} % of its peak",
+            first[0], steady[0], 100.0 * err
+        );
+        errors.push((first[0], err, elastic_acc));
+    }
+    let (undeformed, quasi) = (errors[0], errors[1]);
+    // Starts deflected, close to the steady state's deflection at that angle.
+    assert!(
+        (quasi.0 - steady[0]).abs() < 0.05 * peak,
+        "{} vs {}",
+        quasi.0,
+        steady[0]
+    );
+    // No elastic acceleration at the start (against the undeformed start's).
+    assert!(
+        quasi.2 < 1e-6 * undeformed.2,
+        "{} vs {}",
+        quasi.2,
+        undeformed.2
+    );
+    // The start transient is gone: 5 x closer to the steady state over the first revolution.
+    assert!(
+        quasi.1 < 0.2 * undeformed.1,
+        "{} vs {}",
+        quasi.1,
+        undeformed.1
+    );
+}
+
+#[test]
+fn quasi_static_start_needs_the_ffr_rod() {
+    let mut s = Scene::benchmark();
+    s.rod.model = RodModelKind::Segments;
+    s.start.deflection = StartDeflection::QuasiStatic;
+    // The start state is built with the model: the error comes at once.
+    let e = Simulation::new(&s)
+        .err()
+        .expect("quasi_static with segments is rejected");
+    assert!(
+        e.to_string().contains("start.deflection") && e.to_string().contains("segments"),
+        "{e}"
+    );
+}
