@@ -54,8 +54,14 @@ impl ComponentModes {
         let (k, m) = mesh.assemble(mass_kind);
         let basis = reference.basis(&mesh, &k, &m)?;
         let b = &basis.b_r;
-        let k_rr = b.transpose() * &k * b;
-        let m_rr = b.transpose() * &m * b;
+        let (k_rr, m_rr) = match &basis.selection {
+            // B_r selects coordinates: the reduced matrices are submatrices.
+            Some(kept) => (
+                Mat::from_fn(kept.len(), kept.len(), |i, j| k[(kept[i], kept[j])]),
+                Mat::from_fn(kept.len(), kept.len(), |i, j| m[(kept[i], kept[j])]),
+            ),
+            None => (b.transpose() * &k * b, b.transpose() * &m * b),
+        };
         let eig = generalized_symmetric_eigen(&k_rr, &m_rr)?;
         if let Some(&lowest) = eig.values.first() {
             let top = eig.values.last().copied().unwrap_or(1.0).abs();
@@ -74,7 +80,18 @@ impl ComponentModes {
         let phi = Mat::from_fn(eig.vectors.nrows(), retained.len(), |i, j| {
             eig.vectors[(i, retained[j])]
         });
-        let shapes = b * &phi;
+        let shapes = match &basis.selection {
+            Some(kept) => {
+                let mut full = Mat::zeros(b.nrows(), phi.ncols());
+                for (i, &row) in kept.iter().enumerate() {
+                    for j in 0..phi.ncols() {
+                        full[(row, j)] = phi[(i, j)];
+                    }
+                }
+                full
+            }
+            None => b * &phi,
+        };
         let omega2 = retained.iter().map(|&i| eig.values[i].max(0.0)).collect();
         Ok(ComponentModes {
             mesh,

@@ -30,6 +30,9 @@ pub enum ReferenceConditions {
 pub struct ReferenceBasis {
     /// `B_r`, n_full x n_reduced.
     pub b_r: Mat<f64>,
+    /// When `B_r` only selects coordinates (constrained-coordinate reference conditions): the
+    /// kept coordinates, so that `B_r^T K B_r` is a submatrix (no products needed).
+    pub selection: Option<Vec<usize>>,
     /// Body-frame x of the B end.
     pub x_b: f64,
 }
@@ -114,7 +117,11 @@ impl ReferenceConditions {
                 check_constraint_set(mesh, &fixed)?;
                 let free: Vec<usize> = (0..n).filter(|i| !fixed.contains(i)).collect();
                 let b_r = Mat::from_fn(n, free.len(), |i, j| if free[j] == i { 1.0 } else { 0.0 });
-                Ok(ReferenceBasis { b_r, x_b })
+                Ok(ReferenceBasis {
+                    b_r,
+                    selection: Some(free),
+                    x_b,
+                })
             }
             None => {
                 // Mean axis: the elastic modes of the free-free rod span the M-orthogonal
@@ -137,7 +144,11 @@ impl ReferenceConditions {
                     }
                 }
                 let b_r = eig.vectors.subcols(3, n - 3).to_owned();
-                Ok(ReferenceBasis { b_r, x_b })
+                Ok(ReferenceBasis {
+                    b_r,
+                    selection: None,
+                    x_b,
+                })
             }
         }
     }
