@@ -129,6 +129,8 @@ pub struct GeneralizedAlpha {
     phi: Vec<f64>,
     rhs: Vec<f64>,
     trial: DaeState,
+    /// The step size the current factorization was made for (reused across steps).
+    factored_for: Option<f64>,
 }
 
 impl GeneralizedAlpha {
@@ -160,7 +162,14 @@ impl GeneralizedAlpha {
                 acc: vec![0.0; n],
                 lambda: vec![0.0; m],
             },
+            factored_for: None,
         }
+    }
+
+    /// Forget the kept factorization. Called at every communication step, so that the result
+    /// of a step depends on the state alone (a restored state replays bit for bit).
+    pub fn forget_factorization(&mut self) {
+        self.factored_for = None;
     }
 
     /// Advance `state` by `h`. On success returns the Newton iterations used and overwrites
@@ -199,7 +208,9 @@ impl GeneralizedAlpha {
         }
         tr.lambda.copy_from_slice(&state.lambda);
 
-        let mut factored = false;
+        // Modified Newton: the factorization of an earlier step with the same h is reused; it
+        // is refreshed when the contraction is poor.
+        let mut factored = self.factored_for == Some(h);
         let mut previous = f64::INFINITY;
         for iteration in 0..self.max_iterations {
             let tr = &mut self.trial;
@@ -245,9 +256,11 @@ impl GeneralizedAlpha {
                     }
                 }
                 if !self.lu.factor() {
+                    self.factored_for = None;
                     return Err(StepFailure::SingularMatrix);
                 }
                 factored = true;
+                self.factored_for = Some(h);
             }
             self.lu.solve(&mut self.rhs);
             let mut err: f64 = 0.0;
@@ -262,6 +275,7 @@ impl GeneralizedAlpha {
                 tr.lambda[k] += self.rhs[n + k] / s;
             }
             if !err.is_finite() {
+                self.factored_for = None;
                 return Err(StepFailure::NonFinite);
             }
             // Converged, or stagnating at round-off within 100 x the tolerance (large
@@ -290,6 +304,7 @@ impl GeneralizedAlpha {
             }
             previous = err;
             if iteration + 1 == self.max_iterations {
+                self.factored_for = None;
                 return Err(StepFailure::NewtonDiverged {
                     iterations: self.max_iterations,
                     last_correction: err,

@@ -416,6 +416,7 @@ impl Mechanism {
     /// Integrate `state` over `[t, t + h]`; on failure `state` is restored and the error says why.
     pub fn advance(&mut self, state: &mut MechanismState, h: f64) -> Result<(), ModelError> {
         self.backup.clone_from(&state.dae);
+        self.integrator.forget_factorization();
         let backup_stats = state.stats;
         let t_start = state.time;
         let t_end = t_start + h;
