@@ -35,6 +35,28 @@ impl DenseLu {
         self.n
     }
 
+    /// Write the saddle-point matrix `[c M, J^T; J, 0]` (`M` n x n, `J` m x n) into `matrix`,
+    /// ready for [`Self::factor`]; `n + m` must be this workspace's size.
+    pub fn set_saddle_point(&mut self, mass: &Mat<f64>, mass_factor: f64, jac: &Mat<f64>) {
+        let (n, m) = (mass.nrows(), jac.nrows());
+        debug_assert_eq!(n + m, self.n);
+        let a = &mut self.matrix;
+        for i in 0..n {
+            for j in 0..n {
+                a[(i, j)] = mass_factor * mass[(i, j)];
+            }
+        }
+        for k in 0..m {
+            for j in 0..n {
+                a[(n + k, j)] = jac[(k, j)];
+                a[(j, n + k)] = jac[(k, j)];
+            }
+            for l in 0..m {
+                a[(n + k, n + l)] = 0.0;
+            }
+        }
+    }
+
     /// Factor `matrix` in place. Returns false if a pivot is zero or not finite.
     pub fn factor(&mut self) -> bool {
         let stack = MemStack::new(&mut self.scratch);

@@ -232,29 +232,15 @@ impl GeneralizedAlpha {
                 self.rhs[n + k] = -self.phi[k];
             }
             if !factored {
-                let a = &mut self.lu.matrix;
-                for i in 0..n {
-                    for j in 0..n {
-                        a[(i, j)] = mass_factor * self.mass[(i, j)];
-                    }
-                }
+                self.lu.set_saddle_point(&self.mass, mass_factor, &self.jac);
                 system.add_tangent(
                     &tr.q,
                     &tr.v,
                     &tr.lambda,
                     s,
                     gamma * h,
-                    a.as_mut().submatrix_mut(0, 0, n, n),
+                    self.lu.matrix.as_mut().submatrix_mut(0, 0, n, n),
                 );
-                for k in 0..m {
-                    for j in 0..n {
-                        a[(n + k, j)] = self.jac[(k, j)];
-                        a[(j, n + k)] = self.jac[(k, j)];
-                    }
-                    for l in 0..m {
-                        a[(n + k, n + l)] = 0.0;
-                    }
-                }
                 if !self.lu.factor() {
                     self.factored_for = None;
                     return Err(StepFailure::SingularMatrix);

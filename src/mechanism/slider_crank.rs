@@ -108,6 +108,25 @@ pub fn build_rod(scene: &Scene, props: RodProperties) -> Result<Box<dyn RodBody>
     }
 }
 
+/// The DAE evaluation context of `state`: the rod, the crank law in force, the slider.
+fn dae_context<'a>(
+    rod: &'a dyn RodBody,
+    crank_length: f64,
+    slider_mass: f64,
+    state: &MechanismState,
+) -> SliderCrankDae<'a> {
+    SliderCrankDae {
+        rod,
+        crank: CrankLaw {
+            length: crank_length,
+            t_k: state.input_time,
+            input: state.input,
+        },
+        slider_mass,
+        slider_force: state.slider_force,
+    }
+}
+
 /// FNV-1a 64 of the model-defining part of the scene.
 fn fingerprint(scene: &Scene) -> u64 {
     let mut s = scene.clone();
@@ -185,16 +204,12 @@ impl Mechanism {
     }
 
     fn system(&self, state: &MechanismState) -> SliderCrankDae<'_> {
-        SliderCrankDae {
-            rod: self.rod.as_ref(),
-            crank: CrankLaw {
-                length: self.crank_length,
-                t_k: state.input_time,
-                input: state.input,
-            },
-            slider_mass: self.slider_mass,
-            slider_force: state.slider_force,
-        }
+        dae_context(
+            self.rod.as_ref(),
+            self.crank_length,
+            self.slider_mass,
+            state,
+        )
     }
 
     /// The crank law in force in `state`.
@@ -479,16 +494,12 @@ impl Mechanism {
         depth: usize,
     ) -> Result<(), (f64, f64, String)> {
         let h = target - state.dae.t;
-        let sys = SliderCrankDae {
-            rod: self.rod.as_ref(),
-            crank: CrankLaw {
-                length: self.crank_length,
-                t_k: state.input_time,
-                input: state.input,
-            },
-            slider_mass: self.slider_mass,
-            slider_force: state.slider_force,
-        };
+        let sys = dae_context(
+            self.rod.as_ref(),
+            self.crank_length,
+            self.slider_mass,
+            state,
+        );
         match self.integrator.step(&sys, &mut state.dae, h) {
             Ok(iterations) => {
                 state.dae.t = target;
@@ -605,21 +616,7 @@ impl OutputWork {
         let (q, t) = (&state.dae.q, state.time);
         sys.mass(q, self.mass.as_mut());
         sys.constraint_jacobian(q, self.jac.as_mut());
-        let a = &mut self.lu.matrix;
-        for i in 0..n {
-            for j in 0..n {
-                a[(i, j)] = self.mass[(i, j)];
-            }
-        }
-        for k in 0..m {
-            for j in 0..n {
-                a[(n + k, j)] = self.jac[(k, j)];
-                a[(j, n + k)] = self.jac[(k, j)];
-            }
-            for l in 0..m {
-                a[(n + k, n + l)] = 0.0;
-            }
-        }
+        self.lu.set_saddle_point(&self.mass, 1.0, &self.jac);
         if !self.lu.factor() {
             return Err(ModelError::StepFailed {
                 time: t,
