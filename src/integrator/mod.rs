@@ -5,7 +5,9 @@
 
 pub mod dense_lu;
 pub mod generalized_alpha;
+pub mod runge_kutta;
 pub mod system;
 
 pub use generalized_alpha::{GeneralizedAlpha, StepFailure};
+pub use runge_kutta::ExplicitRk4;
 pub use system::DaeSystem;

@@ -18,9 +18,9 @@ use crate::error::{require_non_negative, require_positive, ModelError};
 use crate::ffr::FfrRod;
 use crate::integrator::dense_lu::DenseLu;
 use crate::integrator::generalized_alpha::DaeState;
-use crate::integrator::{DaeSystem, GeneralizedAlpha};
+use crate::integrator::{DaeSystem, ExplicitRk4, GeneralizedAlpha};
 use crate::modal::{ComponentModes, ModeSelection, ReferenceConditions};
-use crate::scene::{RodModelKind, Scene, StartDeflection};
+use crate::scene::{RodModelKind, Scene, SolverMethod, StartDeflection};
 use crate::simulation::CrankInput;
 
 /// |v_mid| / L above which the small-deformation assumption is flagged.
@@ -35,6 +35,8 @@ pub struct Mechanism {
     max_step: f64,
     max_halvings: usize,
     integrator: GeneralizedAlpha,
+    /// The explicit path, when the scene asks for it (`solver.method = "rk4"`).
+    explicit: Option<ExplicitRk4>,
     fingerprint: u64,
     /// Workspace of the output solve (taken out while in use).
     output_work: Option<OutputWork>,
@@ -161,13 +163,21 @@ impl Mechanism {
                 slider_mass: scene.slider.mass,
                 slider_force: 0.0,
             };
-            GeneralizedAlpha::new(
-                &probe,
-                scene.solver.rho_inf,
-                scene.solver.newton_tolerance,
-                scene.solver.max_newton_iterations,
+            let explicit = match scene.solver.method {
+                SolverMethod::Rk4 => Some(ExplicitRk4::new(&probe)),
+                SolverMethod::GeneralizedAlpha => None,
+            };
+            (
+                GeneralizedAlpha::new(
+                    &probe,
+                    scene.solver.rho_inf,
+                    scene.solver.newton_tolerance,
+                    scene.solver.max_newton_iterations,
+                ),
+                explicit,
             )
         };
+        let (integrator, explicit) = integrator;
         Ok(Mechanism {
             fingerprint: fingerprint(scene),
             scene: scene.clone(),
@@ -176,6 +186,7 @@ impl Mechanism {
             max_step: scene.solver.step,
             max_halvings: scene.solver.max_halvings,
             integrator,
+            explicit,
             output_work: Some(OutputWork::new(n)),
             backup: DaeState {
                 t: 0.0,
@@ -500,7 +511,11 @@ impl Mechanism {
             self.slider_mass,
             state,
         );
-        match self.integrator.step(&sys, &mut state.dae, h) {
+        let result = match self.explicit.as_mut() {
+            Some(rk4) => rk4.step(&sys, &mut state.dae, h),
+            None => self.integrator.step(&sys, &mut state.dae, h),
+        };
+        match result {
             Ok(iterations) => {
                 state.dae.t = target;
                 state.stats.steps += 1;

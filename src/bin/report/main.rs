@@ -36,7 +36,7 @@ use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use flexrod::scene::{ReferenceKind, RodModelKind};
+use flexrod::scene::{ReferenceKind, RodModelKind, SolverMethod};
 use flexrod::{CrankInput, ModelError, Scene, Simulation, StepStats};
 
 // ------------------------------------------------------------------ cases
@@ -132,6 +132,8 @@ enum Model {
     FfrLinear,
     FfrStiffened,
     Segments,
+    /// FFR with axial stiffening, explicit RK4 with projection (`solver.method = "rk4"`).
+    FfrRk4,
 }
 
 impl Model {
@@ -140,6 +142,7 @@ impl Model {
             Model::FfrLinear => "ffr_linear",
             Model::FfrStiffened => "ffr_stiffened",
             Model::Segments => "segments",
+            Model::FfrRk4 => "ffr_stiffened_rk4",
         }
     }
     fn index(self) -> usize {
@@ -181,6 +184,12 @@ impl Setting {
             rho_inf: 0.8,
         }
     }
+    fn rk4(elements: usize, modes: usize, h: f64) -> Setting {
+        Setting {
+            model: Model::FfrRk4,
+            ..Setting::ffr(true, elements, modes, h)
+        }
+    }
     fn seg(n: usize, h: f64) -> Setting {
         Setting {
             model: Model::Segments,
@@ -213,15 +222,23 @@ impl Setting {
                     ReferenceKind::BodyFixedMid => "fixed-mid",
                     ReferenceKind::Cantilever => "cantilever",
                 };
-                let kind = if m == Model::FfrLinear {
-                    "FFR linear"
-                } else {
-                    "FFR stiffened"
-                };
-                format!(
-                    "{kind} {}el/{}m {r} h={:.0e} rho={}",
-                    self.elements, self.modes, self.h, self.rho_inf
-                )
+                match m {
+                    Model::FfrRk4 => format!(
+                        "FFR stiffened RK4 {}el/{}m {r} h={:.1e}",
+                        self.elements, self.modes, self.h
+                    ),
+                    _ => {
+                        let kind = if m == Model::FfrLinear {
+                            "FFR linear"
+                        } else {
+                            "FFR stiffened"
+                        };
+                        format!(
+                            "{kind} {}el/{}m {r} h={:.0e} rho={}",
+                            self.elements, self.modes, self.h, self.rho_inf
+                        )
+                    }
+                }
             }
         }
     }
@@ -239,7 +256,10 @@ impl Setting {
                 s.rod.model = RodModelKind::Ffr;
                 s.rod.modes = self.modes;
                 s.rod.reference = self.reference;
-                s.rod.axial_stiffening = m == Model::FfrStiffened;
+                s.rod.axial_stiffening = m != Model::FfrLinear;
+                if m == Model::FfrRk4 {
+                    s.solver.method = SolverMethod::Rk4;
+                }
             }
         }
         s
@@ -263,6 +283,7 @@ fn matrix(quick: bool) -> Vec<Setting> {
         v.push(Setting::ffr(true, 8, 3, 3e-4));
         v.push(Setting::ffr(true, 8, 4, 1e-4));
         v.push(Setting::seg(16, 1e-4));
+        v.push(Setting::rk4(8, 3, 3e-4));
         v.push(reference_setting(true));
         return v;
     }
@@ -287,6 +308,17 @@ fn matrix(quick: bool) -> Vec<Setting> {
         v.push(Setting::ffr(true, 8, 3, 3e-4).rho(rho));
         v.push(Setting::ffr(true, 8, 4, 1e-4).rho(rho));
     }
+    // The explicit path: RK4 with projection, up to its stability limit (w_max h < 2.78).
+    for (modes, steps) in [
+        (2, &[2e-4, 3e-4, 4e-4, 5e-4, 6e-4, 7e-4][..]),
+        (3, &[1e-4, 2e-4, 2.5e-4, 3e-4, 3.5e-4][..]),
+        (4, &[5e-5, 1e-4, 1.5e-4][..]),
+    ] {
+        for &h in steps {
+            v.push(Setting::rk4(8, modes, h));
+        }
+    }
+    v.push(Setting::rk4(4, 3, 3e-4));
     // Linear FFR modes (1985).
     for (el, modes) in [(8, 3), (8, 4)] {
         for h in [1e-4, 3e-4] {

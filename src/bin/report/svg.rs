@@ -18,8 +18,13 @@ pub struct Panel {
     pub points: Vec<Point>,
 }
 
-const MODEL_NAMES: [&str; 3] = ["FFR linear", "FFR stiffened", "segments"];
-const COLOURS: [&str; 3] = ["#d62728", "#1f77b4", "#2ca02c"];
+const MODEL_NAMES: [&str; 4] = [
+    "FFR linear",
+    "FFR stiffened",
+    "segments",
+    "FFR stiffened, RK4",
+];
+const COLOURS: [&str; 4] = ["#d62728", "#1f77b4", "#2ca02c", "#9467bd"];
 
 fn marker(model: usize, x: f64, y: f64) -> String {
     let c = COLOURS[model];
@@ -29,6 +34,10 @@ fn marker(model: usize, x: f64, y: f64) -> String {
             x, y - 5.0, x - 4.5, y + 3.5, x + 4.5, y + 3.5
         ),
         1 => format!("<circle cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"3.8\" fill=\"none\" stroke=\"{c}\" stroke-width=\"1.4\"/>"),
+        3 => format!(
+            "<polygon points=\"{:.1},{:.1} {:.1},{:.1} {:.1},{:.1} {:.1},{:.1}\" fill=\"none\" stroke=\"{c}\" stroke-width=\"1.4\"/>",
+            x, y - 5.0, x + 5.0, y, x, y + 5.0, x - 5.0, y
+        ),
         _ => format!(
             "<rect x=\"{:.1}\" y=\"{:.1}\" width=\"7\" height=\"7\" fill=\"none\" stroke=\"{c}\" stroke-width=\"1.4\"/>",
             x - 3.5,
@@ -57,8 +66,8 @@ pub fn error_vs_runtime(title: &str, panels: &[Panel]) -> String {
         w / 2.0
     );
     // Legend.
-    for m in 0..3 {
-        let x = 20.0 + 150.0 * m as f64;
+    for m in 0..4 {
+        let x = 20.0 + 140.0 * m as f64;
         s += &marker(m, x, 40.0);
         s += &format!(
             "<text x=\"{}\" y=\"44\">{}</text>\n",
@@ -66,7 +75,7 @@ pub fn error_vs_runtime(title: &str, panels: &[Panel]) -> String {
             MODEL_NAMES[m]
         );
     }
-    s += "<line x1=\"470\" x2=\"500\" y1=\"40\" y2=\"40\" stroke=\"black\" stroke-dasharray=\"4 2\"/><text x=\"505\" y=\"44\">Pareto front</text>\n";
+    s += "<line x1=\"600\" x2=\"630\" y1=\"40\" y2=\"40\" stroke=\"black\" stroke-dasharray=\"4 2\"/><text x=\"635\" y=\"44\">Pareto front</text>\n";
     for (i, panel) in panels.iter().enumerate() {
         let ox = pw * (i % cols) as f64;
         let oy = 60.0 + ph * (i / cols) as f64;
