@@ -96,3 +96,50 @@ fn rk4_agrees_with_generalized_alpha() {
     );
     assert!(d < 2e-3, "{d}");
 }
+
+/// With many modes the explicit step is capped at its stability limit (2.5 / w_max of the
+/// highest retained mode): all 24 modes of 8 elements (to 73 kHz) with a scene step of 3e-4 s
+/// run stably, without a single step halving.
+#[test]
+fn rk4_caps_its_step_at_the_stability_limit() {
+    let mut s = rk4(3e-4);
+    s.rod.modes = 24;
+    let mut sim = Simulation::new(&s).unwrap();
+    let f_max = sim.mechanism().rod.highest_frequency_hz();
+    sim.start(
+        0.0,
+        CrankInput {
+            angle: 0.0,
+            speed: W,
+            acceleration: 0.0,
+        },
+        0.0,
+    )
+    .unwrap();
+    let dt = 1e-3;
+    let mut peak: f64 = 0.0;
+    for k in 0..20 {
+        sim.set_input(CrankInput {
+            angle: W * k as f64 * dt,
+            speed: W,
+            acceleration: 0.0,
+        })
+        .unwrap();
+        sim.advance(dt).unwrap();
+        peak = peak.max(sim.outputs().deflection_rel.abs());
+    }
+    let st = sim.stats();
+    println!(
+        "24 modes (to {f_max:.0} Hz): {} steps in 20 ms, {} halvings, peak |v/L| {peak:.4e}",
+        st.steps, st.halvings
+    );
+    assert_eq!(st.halvings, 0);
+    assert!(peak.is_finite() && peak < 0.02 && peak > 0.005, "{peak}");
+    // The cap: 2.5 / (2 pi f_max) per step.
+    let expected = (0.02 / (2.5 / (2.0 * std::f64::consts::PI * f_max))).ceil() as u64;
+    assert!(
+        st.steps >= expected && st.steps <= expected + 20,
+        "{} vs {expected}",
+        st.steps
+    );
+}

@@ -445,4 +445,12 @@ impl RodBody for FfrRod {
     fn length(&self) -> f64 {
         self.length
     }
+
+    fn highest_frequency_hz(&self) -> f64 {
+        self.modes
+            .omega2
+            .iter()
+            .map(|w2| w2.sqrt() / (2.0 * std::f64::consts::PI))
+            .fold(0.0, f64::max)
+    }
 }

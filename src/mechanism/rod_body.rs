@@ -73,4 +73,9 @@ pub trait RodBody: Send {
     fn frequencies_hz(&self) -> &[f64];
     /// Rod length L, m.
     fn length(&self) -> f64;
+    /// The highest natural frequency the model carries, Hz (the explicit integrator's step
+    /// limit follows from it). By default the highest of `frequencies_hz`.
+    fn highest_frequency_hz(&self) -> f64 {
+        self.frequencies_hz().iter().cloned().fold(0.0, f64::max)
+    }
 }

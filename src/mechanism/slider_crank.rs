@@ -183,7 +183,13 @@ impl Mechanism {
             scene: scene.clone(),
             crank_length: scene.crank.length,
             slider_mass: scene.slider.mass,
-            max_step: scene.solver.step,
+            max_step: match scene.solver.method {
+                // RK4 is stable for w h < 2.78: cap the step at 2.5 / w_max of the highest mode.
+                SolverMethod::Rk4 => scene.solver.step.min(
+                    2.5 / (2.0 * std::f64::consts::PI * rod.highest_frequency_hz()).max(1e-300),
+                ),
+                SolverMethod::GeneralizedAlpha => scene.solver.step,
+            },
             max_halvings: scene.solver.max_halvings,
             integrator,
             explicit,
