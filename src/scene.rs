@@ -156,8 +156,12 @@ pub enum SolverMethod {
     #[default]
     GeneralizedAlpha,
     /// Explicit fourth-order Runge-Kutta with coordinate projection (non-stiff scenes only:
-    /// `2 pi f_max h < 2.78` for the highest retained frequency).
+    /// `2 pi f_max h < 2.78` for the highest retained frequency; the step is capped there).
     Rk4,
+    /// RK4 if the scene's step is within its stability limit (`2 pi f_max h <= 2.5`), else
+    /// generalized-alpha: the explicit path where it is stable, the implicit one when the rod is
+    /// made stiff (more modes, the segment chain, a stiffer material).
+    Auto,
 }
 
 /// Settings of the integrator (generalized-alpha, Arnold and Bruls 2007, or explicit RK4).

@@ -152,6 +152,19 @@ impl Mechanism {
         let nr = rod.n_coordinates();
         let n = nr + 1;
         let m = 4;
+        // RK4 is stable for w h < 2.78: its step is capped at 2.5 / w_max of the highest mode;
+        // `auto` takes RK4 only where the scene's step is within that limit.
+        let explicit_limit =
+            2.5 / (2.0 * std::f64::consts::PI * rod.highest_frequency_hz()).max(1e-300);
+        let method = match scene.solver.method {
+            SolverMethod::Auto if scene.solver.step <= explicit_limit => SolverMethod::Rk4,
+            SolverMethod::Auto => SolverMethod::GeneralizedAlpha,
+            m => m,
+        };
+        let max_step = match method {
+            SolverMethod::Rk4 => scene.solver.step.min(explicit_limit),
+            _ => scene.solver.step,
+        };
         let integrator = {
             let probe = SliderCrankDae {
                 rod: rod.as_ref(),
@@ -163,9 +176,9 @@ impl Mechanism {
                 slider_mass: scene.slider.mass,
                 slider_force: 0.0,
             };
-            let explicit = match scene.solver.method {
+            let explicit = match method {
                 SolverMethod::Rk4 => Some(ExplicitRk4::new(&probe)),
-                SolverMethod::GeneralizedAlpha => None,
+                _ => None,
             };
             (
                 GeneralizedAlpha::new(
@@ -183,13 +196,7 @@ impl Mechanism {
             scene: scene.clone(),
             crank_length: scene.crank.length,
             slider_mass: scene.slider.mass,
-            max_step: match scene.solver.method {
-                // RK4 is stable for w h < 2.78: cap the step at 2.5 / w_max of the highest mode.
-                SolverMethod::Rk4 => scene.solver.step.min(
-                    2.5 / (2.0 * std::f64::consts::PI * rod.highest_frequency_hz()).max(1e-300),
-                ),
-                SolverMethod::GeneralizedAlpha => scene.solver.step,
-            },
+            max_step,
             max_halvings: scene.solver.max_halvings,
             integrator,
             explicit,

@@ -481,6 +481,8 @@ def test_discard_keeps_the_state(fmu_path, tmp_path):
         "rho_inf = 0.8",
         "rho_inf = 0.8\nnewton_tolerance = 1e-300\nmax_newton_iterations = 1\nmax_halvings = 0",
     )
+    # The implicit integrator (its Newton iteration is what fails here).
+    text = text.replace('method = "auto"', 'method = "generalized_alpha"')
     text = text.replace('name = "FlexibleSliderCrank"', 'name = "StiffSliderCrank"')
     scene = tmp_path / "stiff.toml"
     scene.write_text(text)
