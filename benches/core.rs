@@ -6,7 +6,7 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use flexrod::beam::RodProperties;
 use flexrod::ffr::FfrRod;
 use flexrod::modal::{ComponentModes, ModeSelection, ReferenceConditions};
-use flexrod::scene::MassKind;
+use flexrod::scene::{MassKind, SolverMethod};
 use flexrod::{CrankInput, Scene, Simulation};
 use std::hint::black_box;
 
@@ -57,25 +57,36 @@ fn two_revolutions(c: &mut Criterion, name: &str, scene: Scene, comm_step: f64) 
 }
 
 fn revolutions(c: &mut Criterion) {
-    let mut fast = Scene::benchmark();
-    fast.rod.modes = 3;
-    fast.solver.step = 3e-4;
+    let with = |method: SolverMethod, h: f64| {
+        let mut s = Scene::benchmark();
+        s.solver.method = method;
+        s.rod.modes = 3;
+        s.solver.step = h;
+        s
+    };
+    let fast = with(SolverMethod::GeneralizedAlpha, 3e-4);
     two_revolutions(
         c,
-        "2 revolutions at 150 rad/s, 8 el, 3 modes, h 3e-4 (peak within 0.4 %)",
+        "2 revolutions at 150 rad/s, generalized-alpha, 8 el, 3 modes, h 3e-4 (peak 0.3 %, pointwise 9 %)",
         fast.clone(),
         3e-4,
     );
     two_revolutions(
         c,
-        "2 revolutions at 150 rad/s, outputs only at the end",
+        "2 revolutions at 150 rad/s, same, outputs only at the end",
         fast,
         4.0 * std::f64::consts::PI / 150.0,
     );
     two_revolutions(
         c,
-        "2 revolutions at 150 rad/s, default scene (8 el, 3 modes, h 5e-5, 0.35 % pointwise)",
+        "2 revolutions at 150 rad/s, default scene: RK4, 8 el, 3 modes, h 3e-4 (pointwise 0.16 %)",
         Scene::benchmark(),
+        3e-4,
+    );
+    two_revolutions(
+        c,
+        "2 revolutions at 150 rad/s, generalized-alpha, 8 el, 3 modes, h 5e-5 (pointwise 0.35 %)",
+        with(SolverMethod::GeneralizedAlpha, 5e-5),
         1e-4,
     );
 }

@@ -47,9 +47,10 @@ fn one_step(c: &mut Criterion) {
     let mut fast = Scene::benchmark();
     fast.rod.modes = 3;
     fast.solver.step = 3e-4;
+    fast.solver.method = flexrod::scene::SolverMethod::GeneralizedAlpha;
     let mut sim = started(&fast);
     c.bench_function(
-        "advance by one internal step (8 el, 3 modes, h 3e-4)",
+        "advance by one internal step (generalized-alpha, 8 el, 3 modes, h 3e-4)",
         |b| {
             b.iter(|| {
                 sim.advance(black_box(3e-4)).unwrap();

@@ -81,15 +81,9 @@ fn body_equations_are_consistent() {
         assert!((p.x - mv[0]).abs() + (p.y - mv[1]).abs() < 1e-12 * p.norm());
         // Quadratic velocity vector against Lagrange: Q_v = dT/dq - (dM/dq . v) v.
         let mut f = vec![0.0; n];
-        rod.forces(&q, &v, &vec![0.0; n], Vector2::zeros(), &mut f);
+        rod.forces(&q, &v, &mut f);
         let mut elastic = vec![0.0; n];
-        rod.forces(
-            &q,
-            &vec![0.0; n],
-            &vec![0.0; n],
-            Vector2::zeros(),
-            &mut elastic,
-        );
+        rod.forces(&q, &vec![0.0; n], &mut elastic);
         let h = 1e-6;
         let mut mdot = Mat::<f64>::zeros(n, n);
         let mut dtdq = vec![0.0; n];
@@ -402,9 +396,8 @@ fn spinning_chain(rod: &SegmentRod, root_spring: Option<f64>) -> SpinningChain {
         for k in 0..n_seg {
             v0[rod.theta_index(k)] = omega;
         }
-        let a0 = vec![0.0; n];
         let mut f = vec![0.0; n];
-        rod.forces(&q0, &v0, &a0, Vector2::zeros(), &mut f);
+        rod.forces(&q0, &v0, &mut f);
         for &i in &free {
             assert!(
                 f[i].abs() < 1e-9 * (1.0 + omega * omega),
@@ -420,8 +413,8 @@ fn spinning_chain(rod: &SegmentRod, root_spring: Option<f64>) -> SpinningChain {
             let (mut qp, mut qm) = (q0.clone(), q0.clone());
             qp[j] += h;
             qm[j] -= h;
-            rod.forces(&qp, &v0, &a0, Vector2::zeros(), &mut fp);
-            rod.forces(&qm, &v0, &a0, Vector2::zeros(), &mut fm);
+            rod.forces(&qp, &v0, &mut fp);
+            rod.forces(&qm, &v0, &mut fm);
             for (ii, &i) in free.iter().enumerate() {
                 k[(ii, jj)] = -(fp[i] - fm[i]) / (2.0 * h);
             }
@@ -429,8 +422,8 @@ fn spinning_chain(rod: &SegmentRod, root_spring: Option<f64>) -> SpinningChain {
             let (mut vp, mut vm) = (v0.clone(), v0.clone());
             vp[j] += hv;
             vm[j] -= hv;
-            rod.forces(&q0, &vp, &a0, Vector2::zeros(), &mut fp);
-            rod.forces(&q0, &vm, &a0, Vector2::zeros(), &mut fm);
+            rod.forces(&q0, &vp, &mut fp);
+            rod.forces(&q0, &vm, &mut fm);
             for (ii, &i) in free.iter().enumerate() {
                 g[(ii, jj)] = -(fp[i] - fm[i]) / (2.0 * hv);
             }

@@ -90,7 +90,12 @@ impl ExplicitRk4 {
     fn solve_accelerations(&mut self, system: &dyn DaeSystem, t: f64) -> Result<(), StepFailure> {
         let (n, m) = (self.n, self.m);
         system.constraint_acceleration_rhs(t, &self.q, &self.v, &mut self.gamma);
-        for _ in 0..8 {
+        let passes = if system.forces_depend_on_accelerations() {
+            8
+        } else {
+            1
+        };
+        for _ in 0..passes {
             system.forces(
                 t,
                 &self.q,

@@ -16,6 +16,10 @@ pub trait DaeSystem {
     fn coordinate_scale(&self, i: usize) -> f64;
     /// `M(q)` into `m` (n x n, fully written).
     fn mass(&self, q: &[f64], m: MatMut<'_, f64>);
+    /// Whether `Q` depends on `q''` or `lambda` (then explicit methods iterate their solve).
+    fn forces_depend_on_accelerations(&self) -> bool {
+        true
+    }
     /// Applied and inertial-velocity forces `Q(t, q, q', q'', lambda)` into `f` (n).
     fn forces(&self, t: f64, q: &[f64], v: &[f64], a: &[f64], lambda: &[f64], f: &mut [f64]);
     /// Constraint residual `Phi(q, t)` into `phi` (m).

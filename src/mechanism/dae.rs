@@ -53,10 +53,13 @@ impl DaeSystem for SliderCrankDae<'_> {
         m[(nr, nr)] = self.slider_mass;
     }
 
-    fn forces(&self, _t: f64, q: &[f64], v: &[f64], a: &[f64], lambda: &[f64], f: &mut [f64]) {
+    fn forces_depend_on_accelerations(&self) -> bool {
+        false
+    }
+
+    fn forces(&self, _t: f64, q: &[f64], v: &[f64], _a: &[f64], _lambda: &[f64], f: &mut [f64]) {
         let nr = self.nr();
-        let slider_on_rod = -Vector2::new(lambda[2], lambda[3]);
-        self.rod.forces(q, v, a, slider_on_rod, &mut f[..nr]);
+        self.rod.forces(q, v, &mut f[..nr]);
         f[nr] = self.slider_force;
     }
 

@@ -43,9 +43,8 @@ pub trait RodBody: Send {
     /// Mass matrix (n x n) into `m`.
     fn mass(&self, q: &[f64], m: MatMut<'_, f64>);
     /// Generalized forces: quadratic velocity terms, elastic and damping forces, and the
-    /// axial-force (geometric) stiffening given the current accelerations `a` and the force
-    /// `end_force_c` that the slider exerts on the rod at C (global, N).
-    fn forces(&self, q: &[f64], v: &[f64], a: &[f64], end_force_c: Vector2<f64>, f: &mut [f64]);
+    /// velocity part of the axial-force (geometric) stiffening.
+    fn forces(&self, q: &[f64], v: &[f64], f: &mut [f64]);
     /// Add `c_k K_t + c_d C_t` (approximate `-dQ/dq`, `-dQ/dq'`) into `out` (n x n).
     fn add_tangent(&self, q: &[f64], v: &[f64], c_k: f64, c_d: f64, out: MatMut<'_, f64>);
     /// Global position of a material point.

@@ -435,7 +435,7 @@ impl RodBody for SegmentRod {
         }
     }
 
-    fn forces(&self, q: &[f64], v: &[f64], _a: &[f64], _end_force_c: Vector2<f64>, f: &mut [f64]) {
+    fn forces(&self, q: &[f64], v: &[f64], f: &mut [f64]) {
         let n = self.n_seg;
         let m = self.seg_mass;
         let half = 0.5 * self.seg_len;
