@@ -250,6 +250,8 @@ impl Setting {
         s.rod.elements = self.elements;
         s.solver.step = self.h;
         s.solver.rho_inf = self.rho_inf;
+        // Each setting names its integrator (the benchmark scene's own is `auto`).
+        s.solver.method = SolverMethod::GeneralizedAlpha;
         match self.model {
             Model::Segments => s.rod.model = RodModelKind::Segments,
             m => {
