@@ -26,7 +26,8 @@ pub struct CrankInput {
 pub struct StepStats {
     /// Internal steps taken (accepted).
     pub steps: u64,
-    /// Newton iterations over all accepted and rejected steps.
+    /// Newton iterations over all accepted and rejected steps (generalized-alpha), or matrix
+    /// factorizations (explicit RK4).
     pub newton_iterations: u64,
     /// Steps that failed and were retried with half the step.
     pub halvings: u64,

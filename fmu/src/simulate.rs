@@ -30,6 +30,8 @@ pub struct Run {
     pub stats: StepStats,
     pub wall_seconds: f64,
     pub frequencies_hz: Vec<f64>,
+    /// The integrator used and what its iteration counter counts.
+    pub integrator: (&'static str, &'static str),
 }
 
 fn isclose(a: f64, b: f64) -> bool {
@@ -87,6 +89,7 @@ pub fn run(scene: &Scene, options: &Options) -> Result<Run, String> {
         stats: simulation.stats(),
         wall_seconds: clock.elapsed().as_secs_f64(),
         frequencies_hz: simulation.frequencies_hz().to_vec(),
+        integrator: simulation.mechanism().integrator_name(),
     })
 }
 
@@ -155,9 +158,11 @@ pub fn print_summary(scene: &Scene, run: &Run, fmu: Option<&Path>) {
         peak(&|o| o.crank_torque)
     );
     println!(
-        "  integrator: {} steps, {} Newton iterations ({:.2} per step), {} halvings",
+        "  integrator: {}, {} steps, {} {} ({:.2} per step), {} halvings",
+        run.integrator.0,
         run.stats.steps,
         run.stats.newton_iterations,
+        run.integrator.1,
         run.stats.newton_iterations as f64 / (run.stats.steps.max(1)) as f64,
         run.stats.halvings
     );

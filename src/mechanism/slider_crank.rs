@@ -218,6 +218,15 @@ impl Mechanism {
         self.rod.frequencies_hz()
     }
 
+    /// The integrator in use (after `auto` resolved it), and what its iteration counter counts.
+    pub fn integrator_name(&self) -> (&'static str, &'static str) {
+        if self.explicit.is_some() {
+            ("RK4 (explicit, projected)", "factorizations")
+        } else {
+            ("generalized-alpha", "Newton iterations")
+        }
+    }
+
     /// Identifies the model (for serialized states).
     pub fn fingerprint(&self) -> u64 {
         self.fingerprint

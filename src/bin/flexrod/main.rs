@@ -256,7 +256,8 @@ fn simulate(args: &[String]) -> Result<(), String> {
         "scene {}: {:?} rod, {} elements, {} modes, {:?}",
         scene.name, scene.rod.model, scene.rod.elements, scene.rod.modes, scene.rod.reference
     );
-    println!("simulated {:.4} s ({:.2} revolutions) in {:.2} ms wall: {} steps, {} Newton iterations, {} halvings", stop - t0, (stop - t0) * speed / (2.0 * std::f64::consts::PI), elapsed * 1e3, stats.steps, stats.newton_iterations, stats.halvings);
+    let (integrator, counted) = sim.mechanism().integrator_name();
+    println!("simulated {:.4} s ({:.2} revolutions) in {:.2} ms wall with {integrator}: {} steps, {} {counted}, {} halvings", stop - t0, (stop - t0) * speed / (2.0 * std::f64::consts::PI), elapsed * 1e3, stats.steps, stats.newton_iterations, stats.halvings);
     println!("peak |v_mid/L| = {peak:.5e}, peak |F_B| = {peak_b:.2} N, peak |F_C| = {peak_c:.2} N");
     if let Some(path) = flag(&flags, "out") {
         let mut out = std::fs::File::create(path).map_err(|e| format!("{path}: {e}"))?;
