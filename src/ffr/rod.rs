@@ -64,6 +64,8 @@ pub struct FfrRod {
     stiffness: Vec<f64>,
     damping: Vec<f64>,
     axial_stiffening: bool,
+    /// `G_1 - L G_0`: the geometric stiffness per unit `rho A e.R''` (computed once).
+    acceleration_stiffness: DMatrix<f64>,
     length: f64,
     rho_a: f64,
     mass: f64,
@@ -80,7 +82,9 @@ impl FfrRod {
             .map(|w2| 2.0 * damping_ratio * w2.sqrt())
             .collect();
         let section = modes.mesh.section;
+        let acceleration_stiffness = &integrals.g[1] - &integrals.g[0] * section.length;
         FfrRod {
+            acceleration_stiffness,
             n: modes.n_modes(),
             integrals,
             stiffness,
@@ -186,13 +190,11 @@ impl FfrRod {
     /// bending: `-(rho A e.R'') (G_1 - L G_0) p` in `Q_p`, linear in `R''`, so it is moved to the
     /// left-hand side as `M_pR += rho A ((G_1 - L G_0) p) e^T` (no iteration on accelerations).
     fn add_stiffening_coupling(&self, q: &[f64], mut m: MatMut<'_, f64>) {
-        let ig = &self.integrals;
         let (c, s) = rot(q[2]);
-        let l = self.length;
         for i in 0..self.n {
             let mut h = 0.0;
             for j in 0..self.n {
-                h += (ig.g[1][(i, j)] - l * ig.g[0][(i, j)]) * q[3 + j];
+                h += self.acceleration_stiffness[(i, j)] * q[3 + j];
             }
             m[(3 + i, 0)] += self.rho_a * h * c;
             m[(3 + i, 1)] += self.rho_a * h * s;

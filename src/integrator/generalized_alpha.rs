@@ -34,6 +34,27 @@ pub struct DaeState {
     pub lambda: Vec<f64>,
 }
 
+impl DaeState {
+    /// Accept a completed step: the state at `t` becomes `(q, v, qdd, acc, lambda)` (no
+    /// allocation; the sizes match).
+    pub fn accept(
+        &mut self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        qdd: &[f64],
+        acc: &[f64],
+        lambda: &[f64],
+    ) {
+        self.t = t;
+        self.q.copy_from_slice(q);
+        self.v.copy_from_slice(v);
+        self.qdd.copy_from_slice(qdd);
+        self.acc.copy_from_slice(acc);
+        self.lambda.copy_from_slice(lambda);
+    }
+}
+
 impl Clone for DaeState {
     fn clone(&self) -> Self {
         DaeState {
@@ -276,12 +297,7 @@ impl GeneralizedAlpha {
                 if tr.lambda.iter().any(|x| !x.is_finite()) {
                     return Err(StepFailure::NonFinite);
                 }
-                state.t = t1;
-                state.q.copy_from_slice(&tr.q);
-                state.v.copy_from_slice(&tr.v);
-                state.qdd.copy_from_slice(&tr.qdd);
-                state.acc.copy_from_slice(&tr.acc);
-                state.lambda.copy_from_slice(&tr.lambda);
+                state.accept(t1, &tr.q, &tr.v, &tr.qdd, &tr.acc, &tr.lambda);
                 return Ok(iteration + 1);
             }
             // Refactor when the contraction is poor.

@@ -208,12 +208,15 @@ impl ExplicitRk4 {
         if self.q.iter().chain(&self.v).any(|x| !x.is_finite()) {
             return Err(StepFailure::NonFinite);
         }
-        state.t = t1;
-        state.q.copy_from_slice(&self.q);
-        state.v.copy_from_slice(&self.v);
-        state.qdd.copy_from_slice(&self.stage_a);
-        state.acc.copy_from_slice(&self.stage_a);
-        state.lambda.copy_from_slice(&self.stage_lambda);
+        // RK4 keeps no algorithmic acceleration: `acc` is the true one.
+        state.accept(
+            t1,
+            &self.q,
+            &self.v,
+            &self.stage_a,
+            &self.stage_a,
+            &self.stage_lambda,
+        );
         Ok(factorizations)
     }
 }
