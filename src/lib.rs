@@ -15,11 +15,14 @@
 
 // Index loops are the natural notation for the matrix formulas of the papers.
 #![allow(clippy::needless_range_loop)]
+// `unsafe` lives in one file, the C boundary (`fmi/ffi.rs`, allowed there alone).
+#![deny(unsafe_code)]
 
 pub mod beam;
 pub mod error;
 pub mod ffr;
 pub mod fmi;
+pub mod hash;
 pub mod integrator;
 pub mod mechanism;
 pub mod modal;

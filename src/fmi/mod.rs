@@ -17,6 +17,7 @@
 //! their byte form: `fmu_state`.
 
 pub mod description;
+#[allow(unsafe_code)]
 pub mod ffi;
 mod fmu_state;
 mod guard;

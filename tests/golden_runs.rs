@@ -1,0 +1,183 @@
+//! Reference runs pinned to their outputs and their step and Newton counts, so that a change
+//! in results or in efficiency shows (after diffsol's snapshot tests of solver statistics).
+//!
+//! Each case drives the simulation at constant crank speed (or a ramp) and records every output
+//! at every communication point as the hexadecimal bits of the f64, and the cumulative counters
+//! (steps, Newton iterations or factorizations, halvings). `tests/data/golden_runs.txt` holds
+//! them. The test compares within 1e-12 of each output's peak (CPU-dependent SIMD paths in the
+//! linear algebra may change the last bits across machines) and the counters exactly;
+//! `FLEXROD_GOLDEN_EXACT=1` demands bit-identical outputs (for refactorings on one machine),
+//! `FLEXROD_GOLDEN_BLESS=1` rewrites the file (after a change that is meant to alter results:
+//! say why in the commit).
+
+use flexrod::scene::{RodModelKind, Scene, SolverMethod, StartDeflection};
+use flexrod::{CrankInput, Outputs, Simulation};
+use std::fmt::Write as _;
+
+const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/golden_runs.txt");
+
+struct Case {
+    name: &'static str,
+    scene: Scene,
+    /// Crank speed at the start, rad/s, and the crank acceleration, rad/s^2.
+    speed: f64,
+    acceleration: f64,
+    slider_force: f64,
+    dt: f64,
+    steps: usize,
+}
+
+fn cases() -> Vec<Case> {
+    let base = Scene::benchmark;
+    let mut ga = base();
+    ga.solver.method = SolverMethod::GeneralizedAlpha;
+    ga.solver.step = 5e-5;
+    let mut seg = base();
+    seg.rod.model = RodModelKind::Segments;
+    seg.rod.elements = 16;
+    seg.rod.damping_ratio = 0.02;
+    seg.solver.step = 2e-5;
+    let mut qs = base();
+    qs.start.deflection = StartDeflection::QuasiStatic;
+    qs.slider.mass = 0.05;
+    let mut ga_slider = ga.clone();
+    ga_slider.slider.mass = 0.1;
+    ga_slider.rod.damping_ratio = 0.01;
+    let two_revolutions = (4.0 * std::f64::consts::PI / 150.0 / 1e-4).round() as usize;
+    vec![
+        Case {
+            name: "default scene, 150 rad/s, dt 1e-4, two revolutions",
+            scene: base(),
+            speed: 150.0,
+            acceleration: 0.0,
+            slider_force: 0.0,
+            dt: 1e-4,
+            steps: two_revolutions,
+        },
+        Case {
+            name: "generalized-alpha h 5e-5, 150 rad/s, dt 1e-4",
+            scene: ga,
+            speed: 150.0,
+            acceleration: 0.0,
+            slider_force: 0.0,
+            dt: 1e-4,
+            steps: 420,
+        },
+        Case {
+            name: "segments N 16, damping 0.02, h 2e-5, 150 rad/s, dt 2e-4",
+            scene: seg,
+            speed: 150.0,
+            acceleration: 0.0,
+            slider_force: 0.0,
+            dt: 2e-4,
+            steps: 210,
+        },
+        Case {
+            name: "quasi-static start, slider 0.05 kg, 150 rad/s, dt 1e-4",
+            scene: qs,
+            speed: 150.0,
+            acceleration: 0.0,
+            slider_force: 0.0,
+            dt: 1e-4,
+            steps: 420,
+        },
+        Case {
+            name: "generalized-alpha, slider 0.1 kg, force -200 N, ramp 50 rad/s + 2000 rad/s^2",
+            scene: ga_slider,
+            speed: 50.0,
+            acceleration: 2000.0,
+            slider_force: -200.0,
+            dt: 2.5e-4,
+            steps: 200,
+        },
+    ]
+}
+
+fn output_values(o: &Outputs) -> [f64; 9] {
+    [
+        o.deflection,
+        o.deflection_rel,
+        o.pin_b_force[0],
+        o.pin_b_force[1],
+        o.pin_c_force[0],
+        o.pin_c_force[1],
+        o.crank_torque,
+        o.slider_position,
+        o.slider_velocity,
+    ]
+}
+
+/// Run a case: returns the text block of the data file.
+fn run(case: &Case) -> String {
+    let law = |t: f64| CrankInput {
+        angle: case.speed * t + 0.5 * case.acceleration * t * t,
+        speed: case.speed + case.acceleration * t,
+        acceleration: case.acceleration,
+    };
+    let mut sim = Simulation::new(&case.scene).unwrap();
+    sim.start(0.0, law(0.0), case.slider_force).unwrap();
+    let mut text = format!("case {}\n", case.name);
+    let mut record = |sim: &Simulation, text: &mut String| {
+        for x in output_values(&sim.outputs()) {
+            write!(text, "{:016x} ", x.to_bits()).unwrap();
+        }
+        text.push('\n');
+    };
+    record(&sim, &mut text);
+    for k in 0..case.steps {
+        sim.set_input(law(k as f64 * case.dt)).unwrap();
+        sim.advance((k + 1) as f64 * case.dt - sim.time()).unwrap();
+        record(&sim, &mut text);
+    }
+    let s = sim.stats();
+    writeln!(
+        text,
+        "counts steps {} iterations {} halvings {}",
+        s.steps, s.newton_iterations, s.halvings
+    )
+    .unwrap();
+    text
+}
+
+fn parse_row(line: &str) -> Vec<f64> {
+    line.split_whitespace()
+        .map(|h| f64::from_bits(u64::from_str_radix(h, 16).unwrap()))
+        .collect()
+}
+
+#[test]
+fn reference_runs_are_unchanged() {
+    let blocks: Vec<String> = cases().iter().map(run).collect();
+    if std::env::var_os("FLEXROD_GOLDEN_BLESS").is_some() {
+        std::fs::write(DATA, blocks.concat()).unwrap();
+        return;
+    }
+    let exact = std::env::var_os("FLEXROD_GOLDEN_EXACT").is_some();
+    let stored = std::fs::read_to_string(DATA).expect("tests/data/golden_runs.txt");
+    let stored_blocks: Vec<&str> = stored.split("case ").filter(|b| !b.is_empty()).collect();
+    assert_eq!(stored_blocks.len(), blocks.len(), "number of cases");
+    for (new, old) in blocks.iter().zip(stored_blocks) {
+        let new: Vec<&str> = new.trim_start_matches("case ").lines().collect();
+        let old: Vec<&str> = old.lines().collect();
+        let name = new[0];
+        assert_eq!(name, old[0], "case order");
+        assert_eq!(new.len(), old.len(), "{name}: number of communication points");
+        let rows = |lines: &[&str]| -> Vec<Vec<f64>> {
+            lines[1..lines.len() - 1].iter().map(|l| parse_row(l)).collect()
+        };
+        let (a, b) = (rows(&new), rows(&old));
+        let mut worst: f64 = 0.0;
+        for j in 0..9 {
+            let peak = b.iter().map(|r| r[j].abs()).fold(0.0, f64::max).max(1e-300);
+            for (ra, rb) in a.iter().zip(&b) {
+                worst = worst.max((ra[j] - rb[j]).abs() / peak);
+                if exact {
+                    assert_eq!(ra[j].to_bits(), rb[j].to_bits(), "{name}: output {j} not bit-identical");
+                }
+            }
+        }
+        println!("{name}: largest change {worst:.2e} of peak; {}", new[new.len() - 1]);
+        assert!(worst <= 1e-12, "{name}: outputs changed by {worst:e} of their peak");
+        assert_eq!(new[new.len() - 1], old[old.len() - 1], "{name}: step and iteration counts");
+    }
+}
