@@ -4,8 +4,8 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use flexrod::beam::RodProperties;
-use flexrod::ffr::FfrRod;
 use flexrod::modal::{ComponentModes, ModeSelection, ReferenceConditions};
+use flexrod::rod::ffr::FfrRod;
 use flexrod::scene::{MassKind, SolverMethod};
 use flexrod::{CrankInput, Scene, Simulation};
 use std::hint::black_box;

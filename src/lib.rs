@@ -20,14 +20,13 @@
 
 pub mod beam;
 pub mod error;
-pub mod ffr;
 pub mod fmi;
 pub mod hash;
 pub mod integrator;
 pub mod mechanism;
 pub mod modal;
+pub mod rod;
 pub mod scene;
-pub mod segments;
 pub mod simulation;
 
 pub use error::ModelError;

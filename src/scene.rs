@@ -12,6 +12,13 @@ use std::path::Path;
 
 use crate::error::ModelError;
 
+pub use crate::beam::MassKind;
+pub use crate::mechanism::spec::{
+    CrankSpec, MechanismSpec, SliderSpec, SolverMethod, SolverSpec, StartDeflection, StartSpec,
+};
+pub use crate::modal::ReferenceKind;
+pub use crate::rod::{RodModelKind, RodSpec};
+
 /// The whole scene.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -33,172 +40,6 @@ pub struct Scene {
     pub experiment: ExperimentSpec,
     #[serde(default)]
     pub start: StartSpec,
-}
-
-/// The rod's state at the start time.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
-#[serde(rename_all = "snake_case")]
-pub enum StartDeflection {
-    /// Undeformed, moving rigidly with the crank (physics.md, "Initial state").
-    #[default]
-    Undeformed,
-    /// Deflected by the inertia loads of the start motion, with no elastic velocity or
-    /// acceleration (FFR rod): no start transient at constant speed.
-    QuasiStatic,
-}
-
-/// How the simulation starts.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, Default)]
-#[serde(deny_unknown_fields)]
-pub struct StartSpec {
-    #[serde(default)]
-    pub deflection: StartDeflection,
-}
-
-/// The crank A-B (massless; its motion is an input).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct CrankSpec {
-    /// Crank length r, m.
-    pub length: f64,
-}
-
-/// Which rod model computes the connecting rod.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum RodModelKind {
-    /// Floating frame of reference with component modes (seeds 000 and 001).
-    Ffr,
-    /// Rigid segments joined by rotational springs (seed 002).
-    Segments,
-}
-
-/// Reference conditions of the FFR rod (physics.md, "Rod model 1").
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum ReferenceKind {
-    /// `u = v = 0` at B, `v = 0` at C; frame at B, x axis through C.
-    SimplySupported,
-    /// Free-free modes with the rigid-body modes removed; frame at the centre of mass.
-    MeanAxis,
-    /// All three coordinates of the middle node zero (needs an even number of elements).
-    BodyFixedMid,
-    /// All three coordinates of the B node zero (a cantilever from B).
-    Cantilever,
-}
-
-/// Mass matrix of the beam element.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
-#[serde(rename_all = "snake_case")]
-pub enum MassKind {
-    #[default]
-    Consistent,
-    Lumped,
-}
-
-/// The connecting rod B-C.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RodSpec {
-    pub model: RodModelKind,
-    /// Rod length L, m.
-    pub length: f64,
-    /// Young's modulus E, Pa.
-    pub youngs_modulus: f64,
-    /// Density rho, kg/m^3.
-    pub density: f64,
-    /// Cross-section area A, m^2.
-    pub area: f64,
-    /// Second moment of area I, m^4.
-    pub area_moment: f64,
-    /// Modal damping ratio (FFR) or joint damping ratio of the first bending mode (segments); 0 = undamped.
-    #[serde(default)]
-    pub damping_ratio: f64,
-    /// Beam elements (FFR) or rigid segments (segments).
-    pub elements: usize,
-    /// Reference conditions (FFR only).
-    #[serde(default = "default_reference")]
-    pub reference: ReferenceKind,
-    /// Retained modes (FFR only), lowest first.
-    #[serde(default = "default_modes")]
-    pub modes: usize,
-    /// Consistent or lumped element mass (FFR only).
-    #[serde(default)]
-    pub mass: MassKind,
-    /// Axial force acting on bending (geometric stiffness); physics.md, "What linear modes miss".
-    #[serde(default = "default_true")]
-    pub axial_stiffening: bool,
-    /// Segments only: keep the axial springs E A / l (prismatic joints) between segments.
-    #[serde(default)]
-    pub axial_springs: bool,
-}
-
-/// The slider at C.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SliderSpec {
-    /// Slider mass m_s, kg (0 allowed).
-    #[serde(default)]
-    pub mass: f64,
-}
-
-impl Default for SliderSpec {
-    fn default() -> Self {
-        SliderSpec { mass: 0.0 }
-    }
-}
-
-/// The time integrator.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
-#[serde(rename_all = "snake_case")]
-pub enum SolverMethod {
-    /// Implicit generalized-alpha on the index-3 DAE (stiff modes allowed).
-    #[default]
-    GeneralizedAlpha,
-    /// Explicit fourth-order Runge-Kutta with coordinate projection (non-stiff scenes only:
-    /// `2 pi f_max h < 2.78` for the highest retained frequency; the step is capped there).
-    Rk4,
-    /// RK4 if the scene's step is within its stability limit (`2 pi f_max h <= 2.5`), else
-    /// generalized-alpha: the explicit path where it is stable, the implicit one when the rod is
-    /// made stiff (more modes, the segment chain, a stiffer material).
-    Auto,
-}
-
-/// Settings of the integrator (generalized-alpha, Arnold and Bruls 2007, or explicit RK4).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SolverSpec {
-    /// The integrator.
-    #[serde(default)]
-    pub method: SolverMethod,
-    /// Largest internal step, s. Communication steps are split into equal sub-steps no larger than this.
-    #[serde(default = "default_step")]
-    pub step: f64,
-    /// Spectral radius at infinity, in [0, 1]: 1 = no numerical damping, 0 = asymptotic annihilation.
-    #[serde(default = "default_rho_inf")]
-    pub rho_inf: f64,
-    /// Newton tolerance on the scaled correction.
-    #[serde(default = "default_newton_tol")]
-    pub newton_tolerance: f64,
-    /// Newton iterations before a step counts as failed.
-    #[serde(default = "default_newton_iter")]
-    pub max_newton_iterations: usize,
-    /// How many times a failed step is halved before the step is reported as failed.
-    #[serde(default = "default_halvings")]
-    pub max_halvings: usize,
-}
-
-impl Default for SolverSpec {
-    fn default() -> Self {
-        SolverSpec {
-            method: SolverMethod::GeneralizedAlpha,
-            step: default_step(),
-            rho_inf: default_rho_inf(),
-            newton_tolerance: default_newton_tol(),
-            max_newton_iterations: default_newton_iter(),
-            max_halvings: default_halvings(),
-        }
-    }
 }
 
 /// Which optional variables the exported FMU declares.
@@ -257,29 +98,8 @@ impl Default for ExperimentSpec {
     }
 }
 
-fn default_reference() -> ReferenceKind {
-    ReferenceKind::SimplySupported
-}
-fn default_modes() -> usize {
-    4
-}
 fn default_true() -> bool {
     true
-}
-fn default_step() -> f64 {
-    1e-4
-}
-fn default_rho_inf() -> f64 {
-    0.8
-}
-fn default_newton_tol() -> f64 {
-    1e-9
-}
-fn default_newton_iter() -> usize {
-    8
-}
-fn default_halvings() -> usize {
-    6
 }
 fn default_frequencies() -> usize {
     6
@@ -310,6 +130,28 @@ impl Scene {
     pub fn benchmark() -> Scene {
         Scene::from_toml_str(DEFAULT_SCENE_TOML, "scenes/benchmark.toml")
             .expect("the compiled-in default scene parses")
+    }
+
+    /// The mechanism this scene describes (what [`crate::mechanism::Mechanism::new`] takes).
+    pub fn mechanism_spec(&self) -> MechanismSpec {
+        MechanismSpec {
+            crank: self.crank.clone(),
+            rod: self.rod.clone(),
+            slider: self.slider.clone(),
+            solver: self.solver.clone(),
+            start: self.start.clone(),
+        }
+    }
+
+    /// FNV-1a 64 of the model-defining part of the scene (without name, description, outputs
+    /// and experiment): identifies the model of a serialized state.
+    pub fn fingerprint(&self) -> u64 {
+        let mut s = self.clone();
+        s.name.clear();
+        s.description.clear();
+        s.outputs = Default::default();
+        s.experiment = Default::default();
+        crate::hash::fnv1a_64(s.to_toml().as_bytes())
     }
 
     /// Write the scene back as TOML (the FMU ships its scene in `resources/scene.toml`).

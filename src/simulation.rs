@@ -7,31 +7,9 @@
 //! `theta(t_k + s) = theta_k + omega_k s + alpha_k s^2 / 2`, `omega(t_k + s) = omega_k + alpha_k s`.
 
 use crate::error::ModelError;
+pub use crate::mechanism::{CrankInput, StepStats};
 use crate::mechanism::{Mechanism, MechanismState, Outputs};
 use crate::scene::Scene;
-
-/// Crank input at a communication point.
-#[derive(Clone, Copy, Debug, PartialEq, Default)]
-pub struct CrankInput {
-    /// theta_k, rad.
-    pub angle: f64,
-    /// omega_k, rad/s.
-    pub speed: f64,
-    /// alpha_k, rad/s^2 (from fmi2SetRealInputDerivatives; 0 otherwise).
-    pub acceleration: f64,
-}
-
-/// Counters of the integrator, cumulative since the start.
-#[derive(Clone, Copy, Debug, PartialEq, Default)]
-pub struct StepStats {
-    /// Internal steps taken (accepted).
-    pub steps: u64,
-    /// Newton iterations over all accepted and rejected steps (generalized-alpha), or matrix
-    /// factorizations (explicit RK4).
-    pub newton_iterations: u64,
-    /// Steps that failed and were retried with half the step.
-    pub halvings: u64,
-}
 
 /// A saved state: restoring it and replaying the same calls gives bit-identical outputs.
 #[derive(Clone, Debug, PartialEq)]
@@ -42,6 +20,8 @@ pub struct Snapshot {
 /// One slider-crank simulation.
 pub struct Simulation {
     mechanism: Mechanism,
+    /// Identifies the model in serialized states ([`Scene::fingerprint`]).
+    fingerprint: u64,
     state: MechanismState,
 }
 
@@ -53,9 +33,13 @@ impl Simulation {
     /// Build the model of `scene`: validate the parameters, preprocess the rod (modes,
     /// shape integrals). Errors name the parameter and its allowed range.
     pub fn new(scene: &Scene) -> Result<Simulation, ModelError> {
-        let mechanism = Mechanism::new(scene)?;
+        let mechanism = Mechanism::new(&scene.mechanism_spec())?;
         let state = mechanism.initial_state(0.0, CrankInput::default(), 0.0)?;
-        Ok(Simulation { mechanism, state })
+        Ok(Simulation {
+            mechanism,
+            fingerprint: scene.fingerprint(),
+            state,
+        })
     }
 
     /// Natural frequencies of the rod under its reference conditions, Hz, lowest first
@@ -154,7 +138,7 @@ impl Simulation {
         let mut out = Vec::new();
         out.extend_from_slice(SNAPSHOT_MAGIC);
         out.extend_from_slice(&SNAPSHOT_VERSION.to_le_bytes());
-        out.extend_from_slice(&self.mechanism.fingerprint().to_le_bytes());
+        out.extend_from_slice(&self.fingerprint.to_le_bytes());
         self.state.write_bytes(&mut out);
         out
     }
@@ -177,7 +161,7 @@ impl Simulation {
             )));
         }
         let fingerprint = u64::from_le_bytes(bytes[12..20].try_into().unwrap());
-        if fingerprint != self.mechanism.fingerprint() {
+        if fingerprint != self.fingerprint {
             return Err(bad(
                 "it was saved by a model with other parameters or another scene",
             ));

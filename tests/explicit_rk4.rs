@@ -1,7 +1,7 @@
 //! The explicit path (`solver.method = "rk4"`, issue 6): fourth order in the step, constraints
 //! held by projection, the same answer as generalized-alpha.
 
-use flexrod::mechanism::RodPoint;
+use flexrod::rod::RodPoint;
 use flexrod::scene::SolverMethod;
 use flexrod::{CrankInput, Scene, Simulation};
 

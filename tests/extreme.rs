@@ -5,7 +5,7 @@
 //!
 //! Run: `cargo test --release --test extreme -- --nocapture`.
 
-use flexrod::mechanism::RodPoint;
+use flexrod::rod::RodPoint;
 use flexrod::scene::RodModelKind;
 use flexrod::{CrankInput, ModelError, Outputs, Scene, Simulation};
 

@@ -117,7 +117,7 @@ fn run(case: &Case) -> String {
     let mut sim = Simulation::new(&case.scene).unwrap();
     sim.start(0.0, law(0.0), case.slider_force).unwrap();
     let mut text = format!("case {}\n", case.name);
-    let mut record = |sim: &Simulation, text: &mut String| {
+    let record = |sim: &Simulation, text: &mut String| {
         for x in output_values(&sim.outputs()) {
             write!(text, "{:016x} ", x.to_bits()).unwrap();
         }
@@ -161,9 +161,16 @@ fn reference_runs_are_unchanged() {
         let old: Vec<&str> = old.lines().collect();
         let name = new[0];
         assert_eq!(name, old[0], "case order");
-        assert_eq!(new.len(), old.len(), "{name}: number of communication points");
+        assert_eq!(
+            new.len(),
+            old.len(),
+            "{name}: number of communication points"
+        );
         let rows = |lines: &[&str]| -> Vec<Vec<f64>> {
-            lines[1..lines.len() - 1].iter().map(|l| parse_row(l)).collect()
+            lines[1..lines.len() - 1]
+                .iter()
+                .map(|l| parse_row(l))
+                .collect()
         };
         let (a, b) = (rows(&new), rows(&old));
         let mut worst: f64 = 0.0;
@@ -172,12 +179,26 @@ fn reference_runs_are_unchanged() {
             for (ra, rb) in a.iter().zip(&b) {
                 worst = worst.max((ra[j] - rb[j]).abs() / peak);
                 if exact {
-                    assert_eq!(ra[j].to_bits(), rb[j].to_bits(), "{name}: output {j} not bit-identical");
+                    assert_eq!(
+                        ra[j].to_bits(),
+                        rb[j].to_bits(),
+                        "{name}: output {j} not bit-identical"
+                    );
                 }
             }
         }
-        println!("{name}: largest change {worst:.2e} of peak; {}", new[new.len() - 1]);
-        assert!(worst <= 1e-12, "{name}: outputs changed by {worst:e} of their peak");
-        assert_eq!(new[new.len() - 1], old[old.len() - 1], "{name}: step and iteration counts");
+        println!(
+            "{name}: largest change {worst:.2e} of peak; {}",
+            new[new.len() - 1]
+        );
+        assert!(
+            worst <= 1e-12,
+            "{name}: outputs changed by {worst:e} of their peak"
+        );
+        assert_eq!(
+            new[new.len() - 1],
+            old[old.len() - 1],
+            "{name}: step and iteration counts"
+        );
     }
 }

@@ -2,9 +2,9 @@
 
 use flexrod::beam::{RodMesh, RodProperties};
 use flexrod::error::ModelError;
-use flexrod::ffr::FfrRod;
-use flexrod::mechanism::RodBody;
 use flexrod::modal::{ComponentModes, ModeSelection, ReferenceConditions, ShapeIntegrals};
+use flexrod::rod::ffr::FfrRod;
+use flexrod::rod::RodBody;
 use flexrod::scene::MassKind;
 use nalgebra::Vector2;
 

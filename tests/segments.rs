@@ -11,10 +11,10 @@ use std::time::Instant;
 
 use faer::Mat;
 use flexrod::beam::RodProperties;
-use flexrod::mechanism::{RodBody, RodPoint};
 use flexrod::modal::eigen::generalized_symmetric_eigen;
+use flexrod::rod::segments::{axial_chain_frequencies_hz, SegmentRod};
+use flexrod::rod::{RodBody, RodPoint};
 use flexrod::scene::RodModelKind;
-use flexrod::segments::{axial_chain_frequencies_hz, SegmentRod};
 use flexrod::{CrankInput, ModelError, Scene, Simulation};
 use nalgebra::Vector2;
 

@@ -11,7 +11,34 @@
 use nalgebra::{SMatrix, SVector};
 
 use super::section::RodProperties;
-use crate::scene::MassKind;
+use serde::{Deserialize, Serialize};
+
+/// Mass matrix of the beam element.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum MassKind {
+    #[default]
+    Consistent,
+    Lumped,
+}
+
+impl MassKind {
+    /// Every variant, in the order of the FMU's enumeration items and Integer codes (1-based).
+    pub const ALL: [MassKind; 2] = [MassKind::Consistent, MassKind::Lumped];
+
+    /// The name used in scenes, the FMU's enumeration items and messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            MassKind::Consistent => "consistent",
+            MassKind::Lumped => "lumped",
+        }
+    }
+
+    /// The variant of a name (see [`Self::name`]).
+    pub fn from_name(name: &str) -> Option<MassKind> {
+        Self::ALL.into_iter().find(|k| k.name() == name)
+    }
+}
 
 /// 6 x 6 element matrix.
 pub type ElementMatrix = SMatrix<f64, 6, 6>;

@@ -8,8 +8,8 @@ use faer::Mat;
 
 use super::element::{BeamElement, ElementMatrix};
 use super::section::RodProperties;
+use crate::beam::MassKind;
 use crate::error::ModelError;
-use crate::scene::MassKind;
 
 /// The rod's mesh.
 #[derive(Clone, Debug)]

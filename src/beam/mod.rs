@@ -7,6 +7,6 @@ pub mod mesh;
 pub mod quadrature;
 pub mod section;
 
-pub use element::BeamElement;
+pub use element::{BeamElement, MassKind};
 pub use mesh::RodMesh;
 pub use section::RodProperties;

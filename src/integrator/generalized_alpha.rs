@@ -19,96 +19,10 @@
 use faer::Mat;
 
 use super::dense_lu::DenseLu;
+use super::failure::{StepError, StepFailure};
+use super::state::DaeState;
 use super::system::DaeSystem;
-
-/// Positions, velocities, accelerations, the acceleration-like variable `a`, and multipliers.
-#[derive(Debug, PartialEq, Default)]
-pub struct DaeState {
-    pub t: f64,
-    pub q: Vec<f64>,
-    pub v: Vec<f64>,
-    /// q'' (true accelerations).
-    pub qdd: Vec<f64>,
-    /// The algorithmic acceleration `a`.
-    pub acc: Vec<f64>,
-    pub lambda: Vec<f64>,
-}
-
-impl DaeState {
-    /// Accept a completed step: the state at `t` becomes `(q, v, qdd, acc, lambda)` (no
-    /// allocation; the sizes match).
-    pub fn accept(
-        &mut self,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-        qdd: &[f64],
-        acc: &[f64],
-        lambda: &[f64],
-    ) {
-        self.t = t;
-        self.q.copy_from_slice(q);
-        self.v.copy_from_slice(v);
-        self.qdd.copy_from_slice(qdd);
-        self.acc.copy_from_slice(acc);
-        self.lambda.copy_from_slice(lambda);
-    }
-}
-
-impl Clone for DaeState {
-    fn clone(&self) -> Self {
-        DaeState {
-            t: self.t,
-            q: self.q.clone(),
-            v: self.v.clone(),
-            qdd: self.qdd.clone(),
-            acc: self.acc.clone(),
-            lambda: self.lambda.clone(),
-        }
-    }
-
-    /// Reuses the buffers: no allocation when the sizes match (the backup before each step).
-    fn clone_from(&mut self, source: &Self) {
-        self.t = source.t;
-        self.q.clone_from(&source.q);
-        self.v.clone_from(&source.v);
-        self.qdd.clone_from(&source.qdd);
-        self.acc.clone_from(&source.acc);
-        self.lambda.clone_from(&source.lambda);
-    }
-}
-
-/// Why a step failed.
-#[derive(Clone, Debug, PartialEq)]
-pub enum StepFailure {
-    /// Newton did not converge in the allowed iterations.
-    NewtonDiverged {
-        iterations: usize,
-        last_correction: f64,
-    },
-    /// The iteration matrix is singular (a lost constraint, a degenerate configuration).
-    SingularMatrix,
-    /// A value became NaN or infinite.
-    NonFinite,
-}
-
-impl std::fmt::Display for StepFailure {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            StepFailure::NewtonDiverged {
-                iterations,
-                last_correction,
-            } => write!(
-                f,
-                "Newton did not converge in {iterations} iterations (last scaled correction {last_correction:e})"
-            ),
-            StepFailure::SingularMatrix => {
-                write!(f, "the Newton matrix is singular (degenerate configuration)")
-            }
-            StepFailure::NonFinite => write!(f, "the solution became NaN or infinite"),
-        }
-    }
-}
+use super::Integrator;
 
 /// Method coefficients.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -187,19 +101,13 @@ impl GeneralizedAlpha {
         }
     }
 
-    /// Forget the kept factorization. Called at every communication step, so that the result
-    /// of a step depends on the state alone (a restored state replays bit for bit).
-    pub fn forget_factorization(&mut self) {
-        self.factored_for = None;
-    }
-
-    /// Advance `state` by `h`. On success returns the Newton iterations used and overwrites
-    /// `state`; on failure `state` is untouched.
-    pub fn step(
+    /// The step of [`Integrator::step`]; Newton iterations counted in `work`.
+    fn try_step(
         &mut self,
         system: &dyn DaeSystem,
         state: &mut DaeState,
         h: f64,
+        work: &mut usize,
     ) -> Result<usize, StepFailure> {
         let (n, m) = (self.n, self.m);
         let AlphaCoefficients {
@@ -234,9 +142,10 @@ impl GeneralizedAlpha {
         let mut factored = self.factored_for == Some(h);
         let mut previous = f64::INFINITY;
         for iteration in 0..self.max_iterations {
+            *work = iteration + 1;
             let tr = &mut self.trial;
             system.mass(&tr.q, self.mass.as_mut());
-            system.forces(t1, &tr.q, &tr.v, &tr.qdd, &tr.lambda, &mut self.force);
+            system.forces(t1, &tr.q, &tr.v, &mut self.force);
             system.constraint_jacobian(&tr.q, self.jac.as_mut());
             system.constraints(t1, &tr.q, &mut self.phi);
             for i in 0..n {
@@ -317,6 +226,33 @@ impl GeneralizedAlpha {
             iterations: self.max_iterations,
             last_correction: previous,
         })
+    }
+}
+
+impl Integrator for GeneralizedAlpha {
+    fn step(
+        &mut self,
+        system: &dyn DaeSystem,
+        state: &mut DaeState,
+        h: f64,
+    ) -> Result<usize, StepError> {
+        let mut work = 0;
+        self.try_step(system, state, h, &mut work)
+            .map_err(|failure| failure.after(work))
+    }
+
+    /// Forget the kept factorization. Called at every communication step, so that the result
+    /// of a step depends on the state alone (a restored state replays bit for bit).
+    fn forget_between_steps(&mut self) {
+        self.factored_for = None;
+    }
+
+    fn name(&self) -> &'static str {
+        "generalized-alpha"
+    }
+
+    fn work_unit(&self) -> &'static str {
+        "Newton iterations"
     }
 }
 

@@ -1,7 +1,7 @@
 //! What the integrator needs from a constrained mechanical system (after Project Chrono's
 //! `ChIntegrable`): mass, forces, constraints and their Jacobian, and an approximate tangent.
 //!
-//! The system is `M(q) q'' + Phi_q(q)^T lambda = Q(t, q, q', q'', lambda)`, `Phi(q, t) = 0`,
+//! The system is `M(q) q'' + Phi_q(q)^T lambda = Q(t, q, q')`, `Phi(q, t) = 0`,
 //! with `n` coordinates and `m` constraints. All outputs are written into caller-owned buffers
 //! (no allocation).
 
@@ -16,12 +16,8 @@ pub trait DaeSystem {
     fn coordinate_scale(&self, i: usize) -> f64;
     /// `M(q)` into `m` (n x n, fully written).
     fn mass(&self, q: &[f64], m: MatMut<'_, f64>);
-    /// Whether `Q` depends on `q''` or `lambda` (then explicit methods iterate their solve).
-    fn forces_depend_on_accelerations(&self) -> bool {
-        true
-    }
-    /// Applied and inertial-velocity forces `Q(t, q, q', q'', lambda)` into `f` (n).
-    fn forces(&self, t: f64, q: &[f64], v: &[f64], a: &[f64], lambda: &[f64], f: &mut [f64]);
+    /// Applied and inertial-velocity forces `Q(t, q, q')` into `f` (n).
+    fn forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]);
     /// Constraint residual `Phi(q, t)` into `phi` (m).
     fn constraints(&self, t: f64, q: &[f64], phi: &mut [f64]);
     /// Constraint Jacobian `Phi_q` into `jac` (m x n, fully written).

@@ -4,7 +4,16 @@
 
 use nalgebra::Vector2;
 
-use crate::simulation::CrankInput;
+/// Crank input at a communication point.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct CrankInput {
+    /// theta_k, rad.
+    pub angle: f64,
+    /// omega_k, rad/s.
+    pub speed: f64,
+    /// alpha_k, rad/s^2 (from fmi2SetRealInputDerivatives; 0 otherwise).
+    pub acceleration: f64,
+}
 
 /// Crank motion from the input at the communication point `t_k`.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -10,8 +10,8 @@ use faer::MatMut;
 use nalgebra::Vector2;
 
 use super::crank::CrankLaw;
-use super::rod_body::{RodBody, RodPoint};
 use crate::integrator::DaeSystem;
+use crate::rod::{RodBody, RodPoint};
 
 /// One evaluation context: the rod, the crank law in force, the slider.
 pub struct SliderCrankDae<'a> {
@@ -24,6 +24,9 @@ pub struct SliderCrankDae<'a> {
 }
 
 impl SliderCrankDae<'_> {
+    /// Pins B and C, two each.
+    pub const N_CONSTRAINTS: usize = 4;
+
     fn nr(&self) -> usize {
         self.rod.n_coordinates()
     }
@@ -35,7 +38,7 @@ impl DaeSystem for SliderCrankDae<'_> {
     }
 
     fn n_constraints(&self) -> usize {
-        4
+        Self::N_CONSTRAINTS
     }
 
     fn coordinate_scale(&self, i: usize) -> f64 {
@@ -53,11 +56,7 @@ impl DaeSystem for SliderCrankDae<'_> {
         m[(nr, nr)] = self.slider_mass;
     }
 
-    fn forces_depend_on_accelerations(&self) -> bool {
-        false
-    }
-
-    fn forces(&self, _t: f64, q: &[f64], v: &[f64], _a: &[f64], _lambda: &[f64], f: &mut [f64]) {
+    fn forces(&self, _t: f64, q: &[f64], v: &[f64], f: &mut [f64]) {
         let nr = self.nr();
         self.rod.forces(q, v, &mut f[..nr]);
         f[nr] = self.slider_force;

@@ -4,11 +4,15 @@
 pub mod crank;
 pub mod dae;
 pub mod outputs;
-pub mod rod_body;
 pub mod slider_crank;
+pub mod spec;
+pub mod start;
 pub mod state;
+pub mod stepping;
 
+pub use crank::{CrankInput, CrankLaw};
 pub use outputs::Outputs;
-pub use rod_body::{RodBody, RodPoint};
 pub use slider_crank::Mechanism;
-pub use state::MechanismState;
+pub use spec::MechanismSpec;
+pub use state::{MechanismState, StepStats};
+pub use stepping::LARGE_DEFLECTION_WARNING;

@@ -19,3 +19,78 @@ pub struct Outputs {
     /// Slider velocity, m/s.
     pub slider_velocity: f64,
 }
+
+use super::slider_crank::{Mechanism, OutputSolve};
+use super::state::MechanismState;
+use crate::error::ModelError;
+use crate::integrator::{DaeSystem, StepFailure};
+use crate::rod::RodPoint;
+
+impl Mechanism {
+    /// Factor the saddle-point matrix at `state`'s positions, project the velocities on the
+    /// constraints if `project` (into `work.v`; else `work.v` = the state's velocities), and
+    /// solve for the accelerations and multipliers (into `work.solve`).
+    pub(super) fn consistent_accelerations(
+        &self,
+        work: &mut OutputSolve,
+        state: &MechanismState,
+        project: bool,
+    ) -> Result<(), ModelError> {
+        let sys = self.system(state);
+        let (q, t) = (&state.dae.q, state.time);
+        let failed = |failure: StepFailure| ModelError::StepFailed {
+            time: t,
+            step: 0.0,
+            reason: match failure {
+                StepFailure::SingularMatrix => {
+                    "the constraint Jacobian is singular (degenerate configuration)".into()
+                }
+                _ => "the joint forces are not finite".into(),
+            },
+        };
+        work.solve.factor(&sys, q).map_err(failed)?;
+        work.v.copy_from_slice(&state.dae.v);
+        if project {
+            work.solve
+                .project_velocities_direct(&sys, t, q, &mut work.v);
+        }
+        work.solve
+            .accelerations(&sys, t, q, &work.v)
+            .map_err(failed)?;
+        debug_assert_eq!(sys.n_constraints(), 4);
+        Ok(())
+    }
+
+    /// Outputs at the state's time (docs/physics.md, "Outputs"), from the index-1 solve at
+    /// the state with its velocities projected on the constraints, so that the joint forces
+    /// are consistent with the state to round-off.
+    pub(super) fn compute_outputs(
+        &self,
+        work: &mut OutputSolve,
+        state: &MechanismState,
+    ) -> Result<Outputs, ModelError> {
+        self.consistent_accelerations(work, state, true)?;
+        let lambda = &work.solve.lambda;
+        let nr = self.rod.n_coordinates();
+        let q = &state.dae.q;
+        let rb = self.rod.point(RodPoint::B, q);
+        let rc = self.rod.point(RodPoint::C, q);
+        let rm = self.rod.point(RodPoint::Mid, q);
+        let chord = rc - rb;
+        let d = rm - rb;
+        let deflection = (chord.x * d.y - chord.y * d.x) / chord.norm();
+        let fb = [lambda[0], lambda[1]];
+        let fc = [lambda[2], lambda[3]];
+        let (pin, _, _) = self.crank_law(state).pin(state.time);
+        let torque = -(pin.x * fb[1] - pin.y * fb[0]);
+        Ok(Outputs {
+            deflection,
+            deflection_rel: deflection / self.rod.length(),
+            pin_b_force: fb,
+            pin_c_force: fc,
+            crank_torque: torque,
+            slider_position: q[nr],
+            slider_velocity: work.v[nr],
+        })
+    }
+}

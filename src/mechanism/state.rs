@@ -1,8 +1,20 @@
 //! The mechanism's state: everything a snapshot must hold to replay bit for bit.
 
+use super::crank::CrankInput;
 use super::outputs::Outputs;
-use crate::integrator::generalized_alpha::DaeState;
-use crate::simulation::{CrankInput, StepStats};
+use crate::integrator::DaeState;
+
+/// Counters of the integrator, cumulative since the start.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct StepStats {
+    /// Internal steps taken (accepted).
+    pub steps: u64,
+    /// Newton iterations over all accepted and rejected steps (generalized-alpha), or matrix
+    /// factorizations (explicit RK4).
+    pub newton_iterations: u64,
+    /// Steps that failed and were retried with half the step.
+    pub halvings: u64,
+}
 
 /// Dynamic state of the slider-crank plus its inputs and cached outputs.
 #[derive(Clone, Debug, PartialEq, Default)]

@@ -8,9 +8,9 @@ use faer::Mat;
 use super::eigen::generalized_symmetric_eigen;
 use super::reference::ReferenceConditions;
 use super::selection::ModeSelection;
+use crate::beam::MassKind;
 use crate::beam::{RodMesh, RodProperties};
 use crate::error::ModelError;
-use crate::scene::MassKind;
 
 /// Retained modes of the rod and the spectrum they come from.
 #[derive(Clone, Debug)]

@@ -10,6 +10,6 @@ pub mod selection;
 pub mod shape_integrals;
 
 pub use component_modes::ComponentModes;
-pub use reference::ReferenceConditions;
+pub use reference::{ReferenceConditions, ReferenceKind};
 pub use selection::ModeSelection;
 pub use shape_integrals::ShapeIntegrals;

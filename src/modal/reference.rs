@@ -7,7 +7,46 @@ use faer::Mat;
 use super::eigen::generalized_symmetric_eigen;
 use crate::beam::RodMesh;
 use crate::error::ModelError;
-use crate::scene::ReferenceKind;
+use serde::{Deserialize, Serialize};
+
+/// Reference conditions of the FFR rod (physics.md, "Rod model 1").
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ReferenceKind {
+    /// `u = v = 0` at B, `v = 0` at C; frame at B, x axis through C.
+    SimplySupported,
+    /// Free-free modes with the rigid-body modes removed; frame at the centre of mass.
+    MeanAxis,
+    /// All three coordinates of the middle node zero (needs an even number of elements).
+    BodyFixedMid,
+    /// All three coordinates of the B node zero (a cantilever from B).
+    Cantilever,
+}
+
+impl ReferenceKind {
+    /// Every variant, in the order of the FMU's enumeration items and Integer codes (1-based).
+    pub const ALL: [ReferenceKind; 4] = [
+        ReferenceKind::SimplySupported,
+        ReferenceKind::MeanAxis,
+        ReferenceKind::BodyFixedMid,
+        ReferenceKind::Cantilever,
+    ];
+
+    /// The name used in scenes, the FMU's enumeration items and messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            ReferenceKind::SimplySupported => "simply_supported",
+            ReferenceKind::MeanAxis => "mean_axis",
+            ReferenceKind::BodyFixedMid => "body_fixed_mid",
+            ReferenceKind::Cantilever => "cantilever",
+        }
+    }
+
+    /// The variant of a name (see [`Self::name`]).
+    pub fn from_name(name: &str) -> Option<ReferenceKind> {
+        Self::ALL.into_iter().find(|k| k.name() == name)
+    }
+}
 
 /// The supported reference conditions.
 #[derive(Clone, Debug, PartialEq)]
@@ -62,19 +101,13 @@ impl ReferenceConditions {
     /// Parse a name as used in scenes: `simply_supported`, `mean_axis`, `body_fixed_mid`,
     /// `cantilever`.
     pub fn parse(name: &str, n_elements: usize) -> Result<Self, ModelError> {
-        let kind = match name {
-            "simply_supported" => ReferenceKind::SimplySupported,
-            "mean_axis" => ReferenceKind::MeanAxis,
-            "body_fixed_mid" => ReferenceKind::BodyFixedMid,
-            "cantilever" => ReferenceKind::Cantilever,
-            other => {
-                return Err(ModelError::ReferenceConditions {
-                    message: format!(
-                        "unknown reference condition '{other}': allowed simply_supported, mean_axis, body_fixed_mid, cantilever"
-                    ),
-                })
-            }
-        };
+        let kind =
+            ReferenceKind::from_name(name).ok_or_else(|| ModelError::ReferenceConditions {
+                message: format!(
+                    "unknown reference condition '{name}': allowed {}",
+                    ReferenceKind::ALL.map(ReferenceKind::name).join(", ")
+                ),
+            })?;
         Self::from_kind(kind, n_elements)
     }
 

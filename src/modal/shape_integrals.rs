@@ -22,7 +22,7 @@ use nalgebra::{DMatrix, DVector, Vector2};
 
 use super::component_modes::ComponentModes;
 use crate::beam::quadrature::GAUSS4;
-use crate::scene::MassKind;
+use crate::beam::MassKind;
 
 /// The shape integrals of one rod with its retained modes.
 #[derive(Clone, Debug)]

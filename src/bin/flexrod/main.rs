@@ -75,8 +75,9 @@ fn modes(args: &[String]) -> Result<(), String> {
         }
         return Ok(());
     }
-    let props =
-        flexrod::mechanism::slider_crank::validate_scene(&scene).map_err(|e| e.to_string())?;
+    let spec = scene.mechanism_spec();
+    spec.validate().map_err(|e| e.to_string())?;
+    let props = spec.rod.properties();
     let reference = ReferenceConditions::from_kind(scene.rod.reference, scene.rod.elements)
         .map_err(|e| e.to_string())?;
     let all = ComponentModes::new(

@@ -96,7 +96,7 @@ use super::linear::LinearizedChain;
 use super::validate_segments;
 use crate::beam::RodProperties;
 use crate::error::{require_non_negative, ModelError};
-use crate::mechanism::rod_body::{RodBody, RodPoint};
+use crate::rod::body::{RodBody, RodPoint};
 
 /// Unit vectors `(e, n)` of angle `theta`: along the segment and 90 degrees to its left.
 #[inline]

@@ -35,8 +35,8 @@ use faer::reborrow::ReborrowMut;
 use faer::MatMut;
 use nalgebra::{DMatrix, Vector2};
 
-use crate::mechanism::rod_body::{RodBody, RodPoint};
 use crate::modal::{ComponentModes, ShapeIntegrals};
+use crate::rod::body::{RodBody, RodPoint};
 
 /// Rotation matrix entries (cos, sin).
 #[inline]

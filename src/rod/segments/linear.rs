@@ -23,8 +23,8 @@ use faer::Mat;
 use super::rod::SegmentRod;
 use crate::beam::RodProperties;
 use crate::error::ModelError;
-use crate::mechanism::RodBody;
 use crate::modal::eigen::generalized_symmetric_eigen;
+use crate::rod::RodBody;
 
 /// `M_0` and the spring constants of a chain.
 pub(crate) struct LinearizedChain {

@@ -14,10 +14,7 @@ pub mod rod;
 pub use linear::axial_chain_frequencies_hz;
 pub use rod::SegmentRod;
 
-use crate::beam::RodProperties;
 use crate::error::ModelError;
-use crate::mechanism::RodBody;
-use crate::scene::Scene;
 
 /// Smallest and largest number of segments (`rod.elements`) the segment rod accepts.
 pub const SEGMENT_RANGE: (usize, usize) = (1, 512);
@@ -34,18 +31,4 @@ pub fn validate_segments(n: usize) -> Result<(), ModelError> {
             allowed: format!("{lo}..={hi} rigid segments (rod.model = \"segments\")"),
         })
     }
-}
-
-/// Build the segment rod of a scene: `rod.elements` segments, `rod.damping_ratio` for the
-/// joint dampers, `rod.axial_springs` for the prismatic joints. `rod.reference`, `rod.modes`,
-/// `rod.mass` and `rod.axial_stiffening` do not apply (the chain is geometrically exact, so
-/// the axial force acts on bending without a separate geometric stiffness).
-pub fn build(scene: &Scene, props: RodProperties) -> Result<Box<dyn RodBody>, ModelError> {
-    let rod = &scene.rod;
-    Ok(Box::new(SegmentRod::new(
-        props,
-        rod.elements,
-        rod.damping_ratio,
-        rod.axial_springs,
-    )?))
 }

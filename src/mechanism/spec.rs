@@ -1,0 +1,169 @@
+//! What a scene says about the mechanism around the rod: the crank, the slider, the start and
+//! the integrator settings.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{require_non_negative, require_positive, ModelError};
+
+/// The crank A-B (massless; its motion is an input).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CrankSpec {
+    /// Crank length r, m.
+    pub length: f64,
+}
+
+/// The slider at C.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SliderSpec {
+    /// Slider mass m_s, kg (0 allowed).
+    #[serde(default)]
+    pub mass: f64,
+}
+
+impl Default for SliderSpec {
+    fn default() -> Self {
+        SliderSpec { mass: 0.0 }
+    }
+}
+
+/// The rod's state at the start time.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum StartDeflection {
+    /// Undeformed, moving rigidly with the crank (physics.md, "Initial state").
+    #[default]
+    Undeformed,
+    /// Deflected by the inertia loads of the start motion, with no elastic velocity or
+    /// acceleration (FFR rod): no start transient at constant speed.
+    QuasiStatic,
+}
+
+/// How the simulation starts.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct StartSpec {
+    #[serde(default)]
+    pub deflection: StartDeflection,
+}
+
+/// The time integrator.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum SolverMethod {
+    /// Implicit generalized-alpha on the index-3 DAE (stiff modes allowed).
+    #[default]
+    GeneralizedAlpha,
+    /// Explicit fourth-order Runge-Kutta with coordinate projection (non-stiff scenes only:
+    /// `2 pi f_max h < 2.78` for the highest retained frequency; the step is capped there).
+    Rk4,
+    /// RK4 if the scene's step is within its stability limit (`2 pi f_max h <= 2.5`), else
+    /// generalized-alpha: the explicit path where it is stable, the implicit one when the rod is
+    /// made stiff (more modes, the segment chain, a stiffer material).
+    Auto,
+}
+
+/// Settings of the integrator (generalized-alpha, Arnold and Bruls 2007, or explicit RK4).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSpec {
+    /// The integrator.
+    #[serde(default)]
+    pub method: SolverMethod,
+    /// Largest internal step, s. Communication steps are split into equal sub-steps no larger than this.
+    #[serde(default = "default_step")]
+    pub step: f64,
+    /// Spectral radius at infinity, in [0, 1]: 1 = no numerical damping, 0 = asymptotic annihilation.
+    #[serde(default = "default_rho_inf")]
+    pub rho_inf: f64,
+    /// Newton tolerance on the scaled correction.
+    #[serde(default = "default_newton_tol")]
+    pub newton_tolerance: f64,
+    /// Newton iterations before a step counts as failed.
+    #[serde(default = "default_newton_iter")]
+    pub max_newton_iterations: usize,
+    /// How many times a failed step is halved before the step is reported as failed.
+    #[serde(default = "default_halvings")]
+    pub max_halvings: usize,
+}
+
+impl Default for SolverSpec {
+    fn default() -> Self {
+        SolverSpec {
+            method: SolverMethod::GeneralizedAlpha,
+            step: default_step(),
+            rho_inf: default_rho_inf(),
+            newton_tolerance: default_newton_tol(),
+            max_newton_iterations: default_newton_iter(),
+            max_halvings: default_halvings(),
+        }
+    }
+}
+
+fn default_step() -> f64 {
+    1e-4
+}
+fn default_rho_inf() -> f64 {
+    0.8
+}
+fn default_newton_tol() -> f64 {
+    1e-9
+}
+fn default_newton_iter() -> usize {
+    8
+}
+fn default_halvings() -> usize {
+    6
+}
+
+/// Everything that defines the mechanism: the parts of a scene below the FMU's concerns.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MechanismSpec {
+    pub crank: CrankSpec,
+    pub rod: crate::rod::RodSpec,
+    pub slider: SliderSpec,
+    pub solver: SolverSpec,
+    pub start: StartSpec,
+}
+
+impl MechanismSpec {
+    /// Check the parameters the rod models do not check themselves (each error names the
+    /// parameter and its allowed range): crank shorter than the rod, damping and slider mass
+    /// not negative, solver settings in range.
+    pub fn validate(&self) -> Result<(), ModelError> {
+        let rod = &self.rod;
+        rod.properties().validate()?;
+        require_positive("crank.length", self.crank.length)?;
+        if self.crank.length >= rod.length {
+            return Err(ModelError::InvalidParameter {
+                name: "crank.length",
+                value: self.crank.length,
+                allowed: format!(
+                    "0 < crank.length < rod.length = {} m (a longer crank cannot turn the mechanism)",
+                    rod.length
+                ),
+            });
+        }
+        require_non_negative("rod.damping_ratio", rod.damping_ratio)?;
+        require_non_negative("slider.mass", self.slider.mass)?;
+        require_positive("solver.step", self.solver.step)?;
+        let rho = self.solver.rho_inf;
+        if !(rho.is_finite() && (0.0..=1.0).contains(&rho)) {
+            return Err(ModelError::InvalidParameter {
+                name: "solver.rho_inf",
+                value: rho,
+                allowed: "[0, 1]".into(),
+            });
+        }
+        require_positive("solver.newton_tolerance", self.solver.newton_tolerance)?;
+        if self.solver.max_newton_iterations == 0 {
+            return Err(ModelError::InvalidParameter {
+                name: "solver.max_newton_iterations",
+                value: 0.0,
+                allowed: ">= 1".into(),
+            });
+        }
+        Ok(())
+    }
+}

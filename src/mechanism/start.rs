@@ -1,0 +1,210 @@
+//! Starting the slider-crank (physics.md of the docs, "Initial state"): the rod undeformed
+//! and moving rigidly with the crank, or deflected quasi-statically by the inertia loads of the
+//! start motion; positions, velocities, accelerations and joint forces consistent.
+
+use nalgebra::{DMatrix, DVector, Matrix4, Vector2, Vector4};
+
+use super::crank::CrankInput;
+use super::slider_crank::{Mechanism, OutputSolve};
+use super::spec::StartDeflection;
+use super::state::MechanismState;
+use crate::error::ModelError;
+use crate::integrator::{DaeState, DaeSystem};
+
+impl Mechanism {
+    /// Consistent start: undeformed rod on the crank at angle `input.angle`, rigid velocities
+    /// from the crank speed, accelerations and multipliers from the index-1 solve; with
+    /// `start.deflection = "quasi_static"`, deflected as [`Mechanism::quasi_static_start`] says.
+    pub fn initial_state(
+        &self,
+        t0: f64,
+        input: CrankInput,
+        slider_force: f64,
+    ) -> Result<MechanismState, ModelError> {
+        let nr = self.rod.n_coordinates();
+        let n = nr + 1;
+        let r = self.crank_length;
+        let l = self.rod.length();
+        // Rigid slider-crank: B on the crank, C on the slider line y = 0, |C - B| = L.
+        let (s, c) = input.angle.sin_cos();
+        let b = Vector2::new(r * c, r * s);
+        let dx = (l * l - r * r * s * s).sqrt();
+        let cpt = Vector2::new(b.x + dx, 0.0);
+        let vb = Vector2::new(-r * s, r * c) * input.speed;
+        let omega = -vb.y / dx;
+        let vc_x = vb.x - omega * (cpt.y - b.y);
+        let mut q = vec![0.0; n];
+        let mut v = vec![0.0; n];
+        self.rod
+            .place_undeformed(b, cpt, vb, omega, &mut q[..nr], &mut v[..nr]);
+        q[nr] = cpt.x;
+        v[nr] = vc_x;
+        let mut state = MechanismState {
+            time: t0,
+            dae: DaeState {
+                t: t0,
+                q,
+                v,
+                qdd: vec![0.0; n],
+                acc: vec![0.0; n],
+                lambda: vec![0.0; 4],
+            },
+            input,
+            input_time: t0,
+            slider_force,
+            ..Default::default()
+        };
+        let mut work = OutputSolve::new(n);
+        if self.spec.start.deflection == StartDeflection::QuasiStatic {
+            self.quasi_static_start(&mut state, &mut work)?;
+        }
+        self.consistent_accelerations(&mut work, &state, false)?;
+        state.dae.qdd.copy_from_slice(&work.solve.qdd);
+        state.dae.lambda.copy_from_slice(&work.solve.lambda);
+        state.dae.acc.copy_from_slice(&state.dae.qdd);
+        state.outputs = self.compute_outputs(&mut work, &state)?;
+        Ok(state)
+    }
+
+    /// Quasi-static start: the elastic coordinates follow the quasi-static deflection `p_qs(t)`
+    /// of the start motion, `p = p_qs(t0)`, `p' = (p_qs(t0 + d) - p_qs(t0 - d)) / 2d`; the rigid
+    /// coordinates and velocities satisfy the constraints.
+    fn quasi_static_start(
+        &self,
+        state: &mut MechanismState,
+        work: &mut OutputSolve,
+    ) -> Result<(), ModelError> {
+        let elastic = self.rod.elastic_coordinates().ok_or_else(|| ModelError::InvalidParameter {
+            name: "start.deflection",
+            value: 1.0,
+            allowed: "\"undeformed\" with rod.model = segments (\"quasi_static\" needs the elastic coordinates of the FFR rod)".into(),
+        })?;
+        let t0 = state.time;
+        let delta = 1e-6;
+        let mut rate = vec![0.0; elastic.len()];
+        for (sign, t) in [(-1.0, t0 - delta), (1.0, t0 + delta)] {
+            let mut probe = state.clone();
+            probe.time = t;
+            probe.dae.t = t;
+            self.quasi_static_deflection(&mut probe, work, &[])?;
+            for (i, r) in rate.iter_mut().enumerate() {
+                *r += sign * probe.dae.q[elastic.start + i] / (2.0 * delta);
+            }
+        }
+        self.quasi_static_deflection(state, work, &rate)
+    }
+
+    /// Deflect the rod quasi-statically at `state.time`: elastic velocities `elastic_rate` (zero
+    /// if empty), elastic accelerations driven to zero by `K_e dp = M_ee p''` (fixed point; `K_e`
+    /// the elastic tangent stiffness including the centrifugal softening), with the rigid
+    /// coordinates re-solved on the constraints `Phi(q, t) = 0` and their velocities on
+    /// `Phi_q q' = -Phi_t` at each pass.
+    fn quasi_static_deflection(
+        &self,
+        state: &mut MechanismState,
+        work: &mut OutputSolve,
+        elastic_rate: &[f64],
+    ) -> Result<(), ModelError> {
+        let sys = self.system(state);
+        let n = sys.n_coordinates();
+        let t0 = state.time;
+        let elastic = self.rod.elastic_coordinates().unwrap_or(0..0);
+        let rigid: Vec<usize> = (0..n).filter(|i| !elastic.contains(i)).collect();
+        debug_assert_eq!(rigid.len(), 4);
+        let ne = elastic.len();
+        let mut jac = faer::Mat::<f64>::zeros(4, n);
+        let mut mass = faer::Mat::<f64>::zeros(n, n);
+        let mut tangent = faer::Mat::<f64>::zeros(n, n);
+        let mut phi = [0.0; 4];
+        let scale = self.rod.length();
+        let singular = || ModelError::StepFailed {
+            time: t0,
+            step: 0.0,
+            reason: "quasi-static start: the constraint Jacobian is singular".into(),
+        };
+        for pass in 0..60 {
+            // Rigid coordinates on the position constraints (Newton on the 4 x 4 block).
+            for _ in 0..20 {
+                sys.constraints(t0, &state.dae.q, &mut phi);
+                if phi.iter().all(|x| x.abs() < 1e-15 * scale) {
+                    break;
+                }
+                sys.constraint_jacobian(&state.dae.q, jac.as_mut());
+                let a = Matrix4::from_fn(|i, j| jac[(i, rigid[j])]);
+                let d = a.lu().solve(&Vector4::from(phi)).ok_or_else(singular)?;
+                for (k, &i) in rigid.iter().enumerate() {
+                    state.dae.q[i] -= d[k];
+                }
+            }
+            // Velocities: elastic ones given, rigid ones on the velocity constraints.
+            sys.constraint_jacobian(&state.dae.q, jac.as_mut());
+            let mut rate = [0.0; 4];
+            sys.constraint_rate(t0, &state.dae.q, &mut rate);
+            state.dae.v.iter_mut().for_each(|x| *x = 0.0);
+            for (i, &r) in elastic_rate.iter().enumerate() {
+                state.dae.v[elastic.start + i] = r;
+            }
+            for (k, r) in rate.iter_mut().enumerate() {
+                for i in elastic.clone() {
+                    *r += jac[(k, i)] * state.dae.v[i];
+                }
+            }
+            let a = Matrix4::from_fn(|i, j| jac[(i, rigid[j])]);
+            let vr = a.lu().solve(&-Vector4::from(rate)).ok_or_else(singular)?;
+            for (k, &i) in rigid.iter().enumerate() {
+                state.dae.v[i] = vr[k];
+            }
+            // Accelerations and multipliers.
+            self.consistent_accelerations(work, state, false)?;
+            state.dae.qdd.copy_from_slice(&work.solve.qdd);
+            state.dae.lambda.copy_from_slice(&work.solve.lambda);
+            // K_e dp = M_ee p''.
+            sys.mass(&state.dae.q, mass.as_mut());
+            tangent.fill(0.0);
+            sys.add_tangent(
+                &state.dae.q,
+                &state.dae.v,
+                &state.dae.lambda,
+                1.0,
+                0.0,
+                tangent.as_mut(),
+            );
+            let mut k = DMatrix::from_fn(ne, ne, |i, j| {
+                tangent[(elastic.start + i, elastic.start + j)]
+            });
+            let rhs = DVector::from_fn(ne, |i, _| {
+                (0..ne)
+                    .map(|j| {
+                        mass[(elastic.start + i, elastic.start + j)]
+                            * state.dae.qdd[elastic.start + j]
+                    })
+                    .sum::<f64>()
+            });
+            k.iter_mut()
+                .for_each(|x| *x = if x.is_finite() { *x } else { 0.0 });
+            let dp = k.lu().solve(&rhs).ok_or_else(|| ModelError::StepFailed {
+                time: t0,
+                step: 0.0,
+                reason:
+                    "quasi-static start: the elastic stiffness is singular (at or above buckling)"
+                        .into(),
+            })?;
+            let mut change: f64 = 0.0;
+            for i in 0..ne {
+                state.dae.q[elastic.start + i] += dp[i];
+                change = change.max((dp[i] / self.rod.coordinate_scale(elastic.start + i)).abs());
+            }
+            if change < 1e-13 {
+                return Ok(());
+            }
+            if pass == 59 || !change.is_finite() {
+                return Err(ModelError::StepFailed {
+                    time: t0,
+                    step: 0.0,
+                    reason: format!("quasi-static start did not converge (last correction {change:e}); the loads may be at or above buckling"),
+                });
+            }
+        }
+        Ok(())
+    }
+}

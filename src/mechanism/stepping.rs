@@ -1,0 +1,117 @@
+//! Advancing the slider-crank over one communication step: equal sub-steps no larger than the
+//! solver step, each halved on failure up to `solver.max_halvings` times, then a typed error
+//! with the state from before the communication step restored.
+
+use super::slider_crank::{dae_context, Mechanism, OutputSolve};
+use super::state::MechanismState;
+use crate::error::ModelError;
+
+/// |v_mid| / L above which the small-deformation assumption is flagged.
+pub const LARGE_DEFLECTION_WARNING: f64 = 0.05;
+
+impl Mechanism {
+    /// Integrate `state` over `[t, t + h]`; on failure `state` is restored and the error says why.
+    pub fn advance(&mut self, state: &mut MechanismState, h: f64) -> Result<(), ModelError> {
+        self.backup.clone_from(&state.dae);
+        self.integrator.forget_between_steps();
+        let backup_stats = state.stats;
+        let t_start = state.time;
+        let t_end = t_start + h;
+        let n_sub = ((h / self.max_step) * (1.0 - 1e-12)).ceil().max(1.0) as usize;
+        let result = (|| {
+            for k in 0..n_sub {
+                let target = if k + 1 == n_sub {
+                    t_end
+                } else {
+                    t_start + h * (k + 1) as f64 / n_sub as f64
+                };
+                self.step_with_halving(state, target, 0)?;
+            }
+            Ok(())
+        })();
+        let restore = |mech: &Mechanism, state: &mut MechanismState| {
+            state.dae.clone_from(&mech.backup);
+            state.time = t_start;
+            state.stats = backup_stats;
+        };
+        match result {
+            Ok(()) => {
+                state.time = t_end;
+                state.dae.t = t_end;
+                let mut work = self
+                    .output_solve
+                    .take()
+                    .unwrap_or_else(|| OutputSolve::new(self.rod.n_coordinates() + 1));
+                let outputs = self.compute_outputs(&mut work, state);
+                self.output_solve = Some(work);
+                match outputs {
+                    Ok(o) => {
+                        state.outputs = o;
+                        self.check_large_deflection(state);
+                        Ok(())
+                    }
+                    Err(e) => {
+                        restore(self, state);
+                        Err(e)
+                    }
+                }
+            }
+            Err((t_fail, h_fail, reason)) => {
+                restore(self, state);
+                Err(ModelError::StepFailed {
+                    time: t_fail,
+                    step: h_fail,
+                    reason: format!(
+                        "{reason} (after {} step halvings; the communication step started at t = {t_start} s)",
+                        self.max_halvings
+                    ),
+                })
+            }
+        }
+    }
+
+    /// One internal step to `target`, split in halves on failure (recursively, `depth` deep).
+    fn step_with_halving(
+        &mut self,
+        state: &mut MechanismState,
+        target: f64,
+        depth: usize,
+    ) -> Result<(), (f64, f64, String)> {
+        let h = target - state.dae.t;
+        let sys = dae_context(
+            self.rod.as_ref(),
+            self.crank_length,
+            self.slider_mass,
+            state,
+        );
+        match self.integrator.step(&sys, &mut state.dae, h) {
+            Ok(work) => {
+                state.dae.t = target;
+                state.stats.steps += 1;
+                state.stats.newton_iterations += work as u64;
+                Ok(())
+            }
+            Err(error) => {
+                state.stats.newton_iterations += error.work as u64;
+                if depth >= self.max_halvings {
+                    return Err((state.dae.t, h, error.failure.to_string()));
+                }
+                state.stats.halvings += 1;
+                let mid = state.dae.t + 0.5 * h;
+                self.step_with_halving(state, mid, depth + 1)?;
+                self.step_with_halving(state, target, depth + 1)
+            }
+        }
+    }
+
+    fn check_large_deflection(&self, state: &mut MechanismState) {
+        let d = state.outputs.deflection_rel.abs();
+        if d > LARGE_DEFLECTION_WARNING && !state.large_deflection_warned {
+            state.large_deflection_warned = true;
+            state.warnings.push(format!(
+                "rod deflection |v_mid/L| = {d:.3e} at t = {} s exceeds {LARGE_DEFLECTION_WARNING} (the small-deformation range of the rod model); results beyond it are not accurate",
+                state.time
+            ));
+        }
+    }
+}

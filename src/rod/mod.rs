@@ -1,0 +1,49 @@
+//! The connecting rod as a body of the mechanism: the interface the slider-crank needs
+//! ([`RodBody`]), and the two models behind it.
+//!
+//! - [`body`]: the [`RodBody`] trait and the rod's material points;
+//! - [`ffr`]: the floating-frame-of-reference rod on component modes (seeds 000, 001);
+//! - [`segments`]: the finite segment chain (seed 002);
+//! - [`spec`]: what a scene says about the rod ([`RodSpec`], [`RodModelKind`]);
+//! - [`build`]: the rod a spec describes.
+
+pub mod body;
+pub mod ffr;
+pub mod segments;
+pub mod spec;
+
+pub use body::{RodBody, RodPoint};
+pub use spec::{RodModelKind, RodSpec};
+
+use crate::error::ModelError;
+use crate::modal::{ComponentModes, ModeSelection, ReferenceConditions};
+
+/// Build the rod model `spec` asks for: validates the section, preprocesses the modes (FFR)
+/// or the chain (segments).
+pub fn build(spec: &RodSpec) -> Result<Box<dyn RodBody>, ModelError> {
+    let props = spec.properties();
+    props.validate()?;
+    match spec.model {
+        RodModelKind::Ffr => {
+            let reference = ReferenceConditions::from_kind(spec.reference, spec.elements)?;
+            let modes = ComponentModes::new(
+                props,
+                spec.elements,
+                reference,
+                spec.mass,
+                &ModeSelection::Count(spec.modes),
+            )?;
+            Ok(Box::new(ffr::FfrRod::new(
+                modes,
+                spec.damping_ratio,
+                spec.axial_stiffening,
+            )))
+        }
+        RodModelKind::Segments => Ok(Box::new(segments::SegmentRod::new(
+            props,
+            spec.elements,
+            spec.damping_ratio,
+            spec.axial_springs,
+        )?)),
+    }
+}
