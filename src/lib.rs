@@ -19,6 +19,7 @@
 #![deny(unsafe_code)]
 
 pub mod beam;
+pub mod drive;
 pub mod error;
 pub mod fmi;
 pub mod hash;

@@ -10,8 +10,9 @@
 //! `FLEXROD_GOLDEN_BLESS=1` rewrites the file (after a change that is meant to alter results:
 //! say why in the commit).
 
+use flexrod::drive::{self, communication_grid, CrankDrive};
 use flexrod::scene::{RodModelKind, Scene, SolverMethod, StartDeflection};
-use flexrod::{CrankInput, Outputs, Simulation};
+use flexrod::{Outputs, Simulation};
 use std::fmt::Write as _;
 
 const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/golden_runs.txt");
@@ -109,27 +110,21 @@ fn output_values(o: &Outputs) -> [f64; 9] {
 
 /// Run a case: returns the text block of the data file.
 fn run(case: &Case) -> String {
-    let law = |t: f64| CrankInput {
-        angle: case.speed * t + 0.5 * case.acceleration * t * t,
-        speed: case.speed + case.acceleration * t,
+    let drive = CrankDrive::UniformAcceleration {
+        speed: case.speed,
         acceleration: case.acceleration,
     };
     let mut sim = Simulation::new(&case.scene).unwrap();
-    sim.start(0.0, law(0.0), case.slider_force).unwrap();
+    let grid = communication_grid(0.0, case.dt, case.steps);
+    let record = drive::run(&mut sim, &drive, case.slider_force, &grid).unwrap();
     let mut text = format!("case {}\n", case.name);
-    let record = |sim: &Simulation, text: &mut String| {
-        for x in output_values(&sim.outputs()) {
+    for o in &record.outputs {
+        for x in output_values(o) {
             write!(text, "{:016x} ", x.to_bits()).unwrap();
         }
         text.push('\n');
-    };
-    record(&sim, &mut text);
-    for k in 0..case.steps {
-        sim.set_input(law(k as f64 * case.dt)).unwrap();
-        sim.advance((k + 1) as f64 * case.dt - sim.time()).unwrap();
-        record(&sim, &mut text);
     }
-    let s = sim.stats();
+    let s = record.stats;
     writeln!(
         text,
         "counts steps {} iterations {} halvings {}",
