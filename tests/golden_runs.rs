@@ -94,6 +94,18 @@ fn cases() -> Vec<Case> {
     ]
 }
 
+const OUTPUT_NAMES: [&str; 9] = [
+    "rod.deflection",
+    "rod.deflection_rel",
+    "pinB.force_x",
+    "pinB.force_y",
+    "pinC.force_x",
+    "pinC.force_y",
+    "crank.torque",
+    "slider.position",
+    "slider.velocity",
+];
+
 fn output_values(o: &Outputs) -> [f64; 9] {
     [
         o.deflection,
@@ -169,10 +181,15 @@ fn reference_runs_are_unchanged() {
         };
         let (a, b) = (rows(&new), rows(&old));
         let mut worst: f64 = 0.0;
+        let mut worst_output = 0;
         for j in 0..9 {
             let peak = b.iter().map(|r| r[j].abs()).fold(0.0, f64::max).max(1e-300);
             for (ra, rb) in a.iter().zip(&b) {
-                worst = worst.max((ra[j] - rb[j]).abs() / peak);
+                let change = (ra[j] - rb[j]).abs() / peak;
+                if change > worst {
+                    worst = change;
+                    worst_output = j;
+                }
                 if exact {
                     assert_eq!(
                         ra[j].to_bits(),
@@ -183,7 +200,8 @@ fn reference_runs_are_unchanged() {
             }
         }
         println!(
-            "{name}: largest change {worst:.2e} of peak; {}",
+            "{name}: largest change {worst:.2e} of peak (output {}); {}",
+            OUTPUT_NAMES[worst_output],
             new[new.len() - 1]
         );
         assert!(

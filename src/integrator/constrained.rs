@@ -109,24 +109,6 @@ impl ConstrainedSolve {
         }
     }
 
-    pub fn project_velocities_direct(
-        &mut self,
-        system: &dyn DaeSystem,
-        t: f64,
-        q: &[f64],
-        v: &mut [f64],
-    ) {
-        let (n, m) = (self.n, self.m);
-        for i in 0..n {
-            self.rhs[i] = (0..n).map(|j| self.mass[(i, j)] * v[j]).sum();
-        }
-        system.constraint_rate(t, q, &mut self.phi);
-        for k in 0..m {
-            self.rhs[n + k] = -self.phi[k];
-        }
-        self.lu.solve(&mut self.rhs);
-        v.copy_from_slice(&self.rhs[..n]);
-    }
     /// Move `q` onto `Phi(q, t) = 0` (M-weighted least change, simplified Newton refactored at
     /// each pass) until every residual is within `tolerance`, at most `max_passes` passes.
     /// Returns the factorizations used.

@@ -51,8 +51,7 @@ impl Mechanism {
         work.solve.factor(&sys, q).map_err(failed)?;
         work.v.copy_from_slice(&state.dae.v);
         if project {
-            work.solve
-                .project_velocities_direct(&sys, t, q, &mut work.v);
+            work.solve.project_velocities(&sys, t, q, &mut work.v);
         }
         work.solve
             .accelerations(&sys, t, q, &work.v)
