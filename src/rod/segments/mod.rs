@@ -8,6 +8,8 @@
 //!   bending and axial frequencies, and the free-free axial chain of seed 002's convergence
 //!   table ([`axial_chain_frequencies_hz`]).
 
+pub mod body;
+pub mod kinematics;
 pub mod linear;
 pub mod rod;
 
