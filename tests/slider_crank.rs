@@ -48,7 +48,7 @@ fn peak(rows: &[(f64, Outputs)]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// Largest pointwise |delta v_mid/L| relative to the reference's peak (physics.md, "How error is measured").
+/// Largest pointwise |delta v_mid/L| relative to the reference's peak (docs/physics.md, "How error is measured").
 fn deflection_error(rows: &[(f64, Outputs)], reference: &[(f64, Outputs)]) -> f64 {
     assert_eq!(rows.len(), reference.len());
     let d = rows

@@ -1,5 +1,5 @@
 //! The finite segment rod body (seed 002, `002_e6c2c81d944c25fc.txt`, "Flexibility effects"
-//! and "Illustrations/convergence"; physics.md, "Rod model 2: finite segments").
+//! and "Illustrations/convergence"; docs/physics.md, "Rod model 2: finite segments").
 //!
 //! # Model
 //! The rod of length `L` (m) is cut into `N` rigid segments `k = 0..N-1` (0-based here; seed
@@ -62,7 +62,7 @@
 //! `U = sum_j (k_r (theta_{j+1} - theta_j)^2 + k_a s_j^2) / 2`.
 //!
 //! # Spring and damper constants
-//! `k_r = E I / l` (physics.md): the joint rotation `theta_{j+1} - theta_j` is the curvature
+//! `k_r = E I / l` (docs/physics.md): the joint rotation `theta_{j+1} - theta_j` is the curvature
 //! integrated over the length `l` a joint stands for, so `k_r (Delta theta)^2 / 2 =
 //! E I (Delta theta / l)^2 l / 2` is the beam's bending energy of that length. With the joint
 //! deflections `w_j`, the joint rotations are the central second difference of `w` times `l`,
