@@ -27,7 +27,7 @@ pub struct Simulation {
 
 /// Magic bytes and version of serialized snapshots.
 const SNAPSHOT_MAGIC: &[u8; 8] = b"FLEXROD\0";
-const SNAPSHOT_VERSION: u32 = 1;
+const SNAPSHOT_VERSION: u32 = 2;
 
 impl Simulation {
     /// Build the model of `scene`: validate the parameters, preprocess the rod (modes,

@@ -50,9 +50,24 @@ impl AlphaCoefficients {
     }
 }
 
+/// Settings of the error control of the adaptive generalized-alpha method.
+#[derive(Clone, Debug)]
+pub struct AlphaErrorControl {
+    /// Local tolerance per unit amplitude.
+    pub tolerance: f64,
+    /// Floor `A_min` of the amplitude scale (dimensionless, like `v_mid / L`).
+    pub amplitude_floor: f64,
+    /// First step when the state has no proposal yet, s.
+    pub initial_step: f64,
+    /// Rejected tries of one step before it counts as failed.
+    pub max_rejections: usize,
+}
+
 /// The integrator and its workspace (sized once for one system).
 pub struct GeneralizedAlpha {
     pub coefficients: AlphaCoefficients,
+    /// Error control (adaptive steps), or fixed steps when `None`.
+    pub adaptive: Option<AlphaErrorControl>,
     pub tolerance: f64,
     pub max_iterations: usize,
     n: usize,
@@ -96,12 +111,94 @@ impl GeneralizedAlpha {
                 qdd: vec![0.0; n],
                 acc: vec![0.0; n],
                 lambda: vec![0.0; m],
+                ..Default::default()
             },
             factored_for: None,
+            adaptive: None,
         }
     }
 
-    /// The step of [`Integrator::step`]; Newton iterations counted in `work`.
+    /// The local error estimate of the accepted try in `self.trial` against `state`, scaled:
+    /// `e = (beta - 1/6) h^2 (a_{n+1} - a_n)` (the Newmark truncation error, Zienkiewicz and Xie
+    /// 1991, "A simple error estimator and adaptive time stepping procedure for dynamic
+    /// analysis", Earthquake Eng. Struct. Dyn. 20, eq. 10, with the algorithmic accelerations),
+    /// over `tol max(A, A_min) s_i` per coordinate (see [`AlphaErrorControl`]).
+    fn error_norm(&self, system: &dyn DaeSystem, state: &DaeState, h: f64) -> f64 {
+        let control = self.adaptive.as_ref().expect("adaptive");
+        let c = (self.coefficients.beta - 1.0 / 6.0).abs() * h * h;
+        // Not below what the Newton iteration resolves (its tolerance on the scaled correction).
+        let tol = (control.tolerance * state.amplitude.max(control.amplitude_floor))
+            .max(10.0 * self.tolerance);
+        let mut err: f64 = 0.0;
+        for i in 0..self.n {
+            let e = c * (self.trial.acc[i] - state.acc[i]);
+            err = err.max(e.abs() / (tol * system.coordinate_scale(i)));
+        }
+        err
+    }
+
+    /// Adaptive step: tries of the state's proposed step (stretched to `h_max` within 25 %),
+    /// shrunk on a failed Newton iteration or a local error above the tolerance.
+    fn adaptive_step(
+        &mut self,
+        system: &dyn DaeSystem,
+        state: &mut DaeState,
+        h_max: f64,
+    ) -> Result<usize, StepError> {
+        let control = self.adaptive.clone().expect("adaptive");
+        let proposal = if state.step_hint > 0.0 {
+            state.step_hint
+        } else {
+            control.initial_step
+        };
+        let mut h = if h_max <= 1.25 * proposal {
+            h_max
+        } else {
+            proposal
+        };
+        let mut work = 0;
+        let mut last = StepFailure::NonFinite;
+        let mut rejected = false;
+        for _ in 0..=control.max_rejections {
+            let mut iterations = 0;
+            let err = match self.try_step(system, state, h, &mut iterations) {
+                Ok(_) => self.error_norm(system, state, h),
+                Err(failure) => {
+                    last = failure;
+                    f64::INFINITY
+                }
+            };
+            work += iterations;
+            if err <= 1.0 {
+                let grow = if err == 0.0 {
+                    2.0
+                } else {
+                    (0.9 * err.powf(-1.0 / 3.0)).clamp(0.3, 2.0)
+                };
+                let mut next = h * if rejected { grow.min(1.0) } else { grow };
+                if h == h_max && h < proposal {
+                    next = next.max(proposal);
+                }
+                let tr = &self.trial;
+                state.accept(state.t + h, &tr.q, &tr.v, &tr.qdd, &tr.acc, &tr.lambda);
+                state.step_hint = next;
+                return Ok(work);
+            }
+            rejected = true;
+            h *= if err.is_finite() {
+                (0.9 * err.powf(-1.0 / 3.0)).clamp(0.2, 0.9)
+            } else {
+                0.5
+            };
+            if h < 1e-14 * (1.0 + state.t.abs()) {
+                break;
+            }
+        }
+        Err(last.after(work))
+    }
+
+    /// One try of the step of [`Integrator::step`] into `self.trial` (the state untouched);
+    /// Newton iterations counted in `work`.
     fn try_step(
         &mut self,
         system: &dyn DaeSystem,
@@ -206,7 +303,6 @@ impl GeneralizedAlpha {
                 if tr.lambda.iter().any(|x| !x.is_finite()) {
                     return Err(StepFailure::NonFinite);
                 }
-                state.accept(t1, &tr.q, &tr.v, &tr.qdd, &tr.acc, &tr.lambda);
                 return Ok(iteration + 1);
             }
             // Refactor when the contraction is poor.
@@ -236,9 +332,19 @@ impl Integrator for GeneralizedAlpha {
         state: &mut DaeState,
         h: f64,
     ) -> Result<usize, StepError> {
+        if self.adaptive.is_some() {
+            return self.adaptive_step(system, state, h);
+        }
         let mut work = 0;
         self.try_step(system, state, h, &mut work)
-            .map_err(|failure| failure.after(work))
+            .map_err(|failure| failure.after(work))?;
+        let tr = &self.trial;
+        state.accept(state.t + h, &tr.q, &tr.v, &tr.qdd, &tr.acc, &tr.lambda);
+        Ok(work)
+    }
+
+    fn is_adaptive(&self) -> bool {
+        self.adaptive.is_some()
     }
 
     /// Forget the kept factorization. Called at every communication step, so that the result

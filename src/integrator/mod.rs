@@ -5,6 +5,9 @@
 //!   of the generalized-alpha scheme for constrained mechanical systems", Multibody System
 //!   Dynamics 18), with the scaled Newton iteration of Bottasso, Dopico and Trainelli (2008);
 //! - [`ExplicitRk4`]: classic Runge-Kutta on the index-1 form with coordinate projection;
+//! - [`Dopri5`]: the Dormand-Prince 5(4) pair with error control on the independent
+//!   coordinates of a partitioned system ([`PartitionedRhs`]: the mechanism's own degrees of
+//!   freedom), with small dense kernels ([`SmallLu`]);
 //! - [`ConstrainedSolve`]: the saddle-point solve both use, and the joint-force solve of the
 //!   outputs: accelerations and multipliers, projections on the constraints;
 //! - [`DenseLu`]: the dense factorization behind it, on buffers sized once.
@@ -13,17 +16,23 @@
 
 pub mod constrained;
 pub mod dense_lu;
+pub mod dopri5;
 pub mod failure;
 pub mod generalized_alpha;
+pub mod partitioned;
 pub mod runge_kutta;
+pub mod small_lu;
 pub mod state;
 pub mod system;
 
 pub use constrained::ConstrainedSolve;
 pub use dense_lu::DenseLu;
+pub use dopri5::{Dopri5, ErrorControl};
 pub use failure::{StepError, StepFailure};
 pub use generalized_alpha::GeneralizedAlpha;
+pub use partitioned::PartitionedRhs;
 pub use runge_kutta::ExplicitRk4;
+pub use small_lu::SmallLu;
 pub use state::DaeState;
 pub use system::DaeSystem;
 
@@ -48,4 +57,18 @@ pub trait Integrator: Send {
 
     /// What the work counter of [`Integrator::step`] counts.
     fn work_unit(&self) -> &'static str;
+
+    /// Whether the method chooses its own steps: then [`Integrator::step`] takes one accepted
+    /// step of at most `h` (and the driver calls it until the communication point), else
+    /// exactly `h`.
+    fn is_adaptive(&self) -> bool {
+        false
+    }
+
+    /// Whether an accepted step leaves the state's velocities on the velocity constraints and
+    /// its accelerations and multipliers consistent with them, so that the outputs need no
+    /// solve of their own.
+    fn consistent_outputs(&self) -> bool {
+        false
+    }
 }

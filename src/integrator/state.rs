@@ -11,6 +11,11 @@ pub struct DaeState {
     /// The algorithmic acceleration `a`.
     pub acc: Vec<f64>,
     pub lambda: Vec<f64>,
+    /// The step an adaptive integrator proposes next, s (0: none yet).
+    pub step_hint: f64,
+    /// The amplitude of the motion the error control's accuracy refers to (the mechanism keeps
+    /// the largest `|v_mid / L|` so far here; 0 at the start).
+    pub amplitude: f64,
 }
 
 impl DaeState {
@@ -43,6 +48,8 @@ impl Clone for DaeState {
             qdd: self.qdd.clone(),
             acc: self.acc.clone(),
             lambda: self.lambda.clone(),
+            step_hint: self.step_hint,
+            amplitude: self.amplitude,
         }
     }
 
@@ -54,5 +61,7 @@ impl Clone for DaeState {
         self.qdd.clone_from(&source.qdd);
         self.acc.clone_from(&source.acc);
         self.lambda.clone_from(&source.lambda);
+        self.step_hint = source.step_hint;
+        self.amplitude = source.amplitude;
     }
 }

@@ -68,7 +68,15 @@ impl Mechanism {
         work: &mut OutputSolve,
         state: &MechanismState,
     ) -> Result<Outputs, ModelError> {
-        self.consistent_accelerations(work, state, true)?;
+        // After a step of an integrator that leaves the state consistent (velocities on the
+        // constraints, multipliers from the same solve), the outputs need no solve of their own.
+        let reuse = self.integrator.consistent_outputs() && state.stats.steps > 0;
+        if reuse {
+            work.v.copy_from_slice(&state.dae.v);
+            work.solve.lambda.copy_from_slice(&state.dae.lambda);
+        } else {
+            self.consistent_accelerations(work, state, true)?;
+        }
         let lambda = &work.solve.lambda;
         let nr = self.rod.n_coordinates();
         let q = &state.dae.q;

@@ -7,10 +7,30 @@ use super::dae::SliderCrankDae;
 use super::spec::{MechanismSpec, SolverMethod};
 use super::state::MechanismState;
 use crate::error::ModelError;
+use crate::integrator::generalized_alpha::AlphaErrorControl;
 use crate::integrator::{
-    ConstrainedSolve, DaeState, DaeSystem, ExplicitRk4, GeneralizedAlpha, Integrator,
+    ConstrainedSolve, DaeState, DaeSystem, Dopri5, ErrorControl, ExplicitRk4, GeneralizedAlpha,
+    Integrator,
 };
 use crate::rod::RodBody;
+
+/// Local error tolerance of the adaptive explicit pair per unit of `solver.tolerance`: the
+/// local errors of a run's steps add up, so each step aims below the stated global accuracy
+/// (calibrated by `tests/error_control.rs` over random parameter sets: the global error is
+/// proportional to the local tolerance).
+pub const LOCAL_TOLERANCE_FACTOR: f64 = 0.01;
+
+/// The same for the adaptive generalized-alpha method (second order: its global error goes
+/// with the local tolerance to the power 2/3).
+pub const LOCAL_TOLERANCE_FACTOR_IMPLICIT: f64 = 0.0025;
+
+/// Smallest deflection amplitude `|v_mid / L|` the error control refers to (before the motion
+/// has built up, and for rods that hardly deflect).
+pub const AMPLITUDE_FLOOR: f64 = 1e-5;
+
+/// `auto` takes the explicit pair when its stability limit `2.5 / w_max` of the highest
+/// retained mode is at least this step, s (modes up to about 20 kHz).
+pub const AUTO_EXPLICIT_MIN_STEP: f64 = 2e-5;
 
 /// The slider-crank and its preprocessed rod.
 pub struct Mechanism {
@@ -74,10 +94,15 @@ impl Mechanism {
         // RK4 is stable for w h < 2.78: its step is capped at 2.5 / w_max of the highest mode.
         let explicit_limit =
             2.5 / (2.0 * std::f64::consts::PI * rod.highest_frequency_hz()).max(1e-300);
-        let method = match spec.solver.method {
-            SolverMethod::Auto if spec.solver.step <= explicit_limit => SolverMethod::Rk4,
-            SolverMethod::Auto => SolverMethod::GeneralizedAlpha,
-            m => m,
+        // `auto`: error-controlled steps; the explicit pair on the modal coordinates where
+        // its stability limit leaves a useful step, else the implicit method (the segment
+        // chain, many or very stiff modes).
+        let auto_explicit =
+            rod.elastic_coordinates().is_some() && explicit_limit >= AUTO_EXPLICIT_MIN_STEP;
+        let (method, adaptive_alpha) = match spec.solver.method {
+            SolverMethod::Auto if auto_explicit => (SolverMethod::Dopri5, false),
+            SolverMethod::Auto => (SolverMethod::GeneralizedAlpha, true),
+            m => (m, false),
         };
         let probe = SliderCrankDae {
             rod: rod.as_ref(),
@@ -90,19 +115,51 @@ impl Mechanism {
             slider_force: 0.0,
         };
         let (integrator, max_step): (Box<dyn Integrator>, f64) = match method {
+            SolverMethod::Dopri5 => {
+                let (Some(elastic), Some(omega)) = (
+                    rod.elastic_coordinates(),
+                    rod.elastic_circular_frequencies(),
+                ) else {
+                    return Err(ModelError::InvalidParameter {
+                        name: "solver.method",
+                        value: 0.0,
+                        allowed: "generalized_alpha, rk4 or auto with rod.model = segments (dopri5 integrates the FFR rod's modal coordinates)".into(),
+                    });
+                };
+                let control = ErrorControl {
+                    tolerance: spec.solver.tolerance * LOCAL_TOLERANCE_FACTOR,
+                    amplitude_floor: AMPLITUDE_FLOOR,
+                    scales: elastic.clone().map(|i| rod.coordinate_scale(i)).collect(),
+                    rate_weights: omega.iter().map(|w| w.max(1.0)).collect(),
+                    initial_step: spec.solver.step,
+                    max_rejections: 40,
+                };
+                (
+                    Box::new(Dopri5::new(&probe, elastic.collect(), control)),
+                    f64::INFINITY,
+                )
+            }
             SolverMethod::Rk4 => (
                 Box::new(ExplicitRk4::new(&probe)),
                 spec.solver.step.min(explicit_limit),
             ),
-            _ => (
-                Box::new(GeneralizedAlpha::new(
+            _ => {
+                let mut alpha = GeneralizedAlpha::new(
                     &probe,
                     spec.solver.rho_inf,
                     spec.solver.newton_tolerance,
                     spec.solver.max_newton_iterations,
-                )),
-                spec.solver.step,
-            ),
+                );
+                if adaptive_alpha {
+                    alpha.adaptive = Some(AlphaErrorControl {
+                        tolerance: spec.solver.tolerance * LOCAL_TOLERANCE_FACTOR_IMPLICIT,
+                        amplitude_floor: AMPLITUDE_FLOOR,
+                        initial_step: spec.solver.step,
+                        max_rejections: 40,
+                    });
+                }
+                (Box::new(alpha), spec.solver.step)
+            }
         };
         let m = probe.n_constraints();
         Ok(Mechanism {
@@ -120,6 +177,7 @@ impl Mechanism {
                 qdd: vec![0.0; n],
                 acc: vec![0.0; n],
                 lambda: vec![0.0; m],
+                ..Default::default()
             },
             rod,
         })

@@ -58,6 +58,10 @@ pub enum SolverMethod {
     /// Explicit fourth-order Runge-Kutta with coordinate projection (non-stiff scenes only:
     /// `2 pi f_max h < 2.78` for the highest retained frequency; the step is capped there).
     Rk4,
+    /// Dormand-Prince 5(4) with error control on the mechanism's own degrees of freedom (the
+    /// FFR rod's modal coordinates; frame and slider follow from the constraints): the
+    /// internal step is chosen by `solver.tolerance`, independent of the communication step.
+    Dopri5,
     /// RK4 if the scene's step is within its stability limit (`2 pi f_max h <= 2.5`), else
     /// generalized-alpha: the explicit path where it is stable, the implicit one when the rod is
     /// made stiff (more modes, the segment chain, a stiffer material).
@@ -86,6 +90,10 @@ pub struct SolverSpec {
     /// How many times a failed step is halved before the step is reported as failed.
     #[serde(default = "default_halvings")]
     pub max_halvings: usize,
+    /// Accuracy the error control aims at (`dopri5`): the pointwise error of the rod's
+    /// deflection, relative to its peak, over a run. In (0, 0.1].
+    #[serde(default = "default_tolerance")]
+    pub tolerance: f64,
 }
 
 impl Default for SolverSpec {
@@ -97,6 +105,7 @@ impl Default for SolverSpec {
             newton_tolerance: default_newton_tol(),
             max_newton_iterations: default_newton_iter(),
             max_halvings: default_halvings(),
+            tolerance: default_tolerance(),
         }
     }
 }
@@ -112,6 +121,9 @@ fn default_newton_tol() -> f64 {
 }
 fn default_newton_iter() -> usize {
     8
+}
+fn default_tolerance() -> f64 {
+    1e-3
 }
 fn default_halvings() -> usize {
     6
@@ -157,6 +169,14 @@ impl MechanismSpec {
             });
         }
         require_positive("solver.newton_tolerance", self.solver.newton_tolerance)?;
+        let tol = self.solver.tolerance;
+        if !(tol.is_finite() && tol > 0.0 && tol <= 0.1) {
+            return Err(ModelError::InvalidParameter {
+                name: "solver.tolerance",
+                value: tol,
+                allowed: "(0, 0.1]: the pointwise deflection error relative to its peak".into(),
+            });
+        }
         if self.solver.max_newton_iterations == 0 {
             return Err(ModelError::InvalidParameter {
                 name: "solver.max_newton_iterations",

@@ -48,6 +48,7 @@ impl Mechanism {
                 qdd: vec![0.0; n],
                 acc: vec![0.0; n],
                 lambda: vec![0.0; 4],
+                ..Default::default()
             },
             input,
             input_time: t0,

@@ -62,6 +62,8 @@ impl MechanismState {
             put(x);
         }
         put(self.dae.t);
+        put(self.dae.step_hint);
+        put(self.dae.amplitude);
         for v in [
             &self.dae.q,
             &self.dae.v,
@@ -87,7 +89,7 @@ impl MechanismState {
     pub fn read_bytes(&mut self, bytes: &[u8]) -> Result<(), String> {
         let n = self.dae.q.len();
         let m = self.dae.lambda.len();
-        let expected = 8 * (16 + 4 * n + m) + 8 * 3 + 1;
+        let expected = 8 * (18 + 4 * n + m) + 8 * 3 + 1;
         if bytes.len() != expected {
             return Err(format!(
                 "{} bytes of state, this model needs {expected} (truncated or from another model)",
@@ -115,6 +117,8 @@ impl MechanismState {
         o.slider_position = get();
         o.slider_velocity = get();
         self.dae.t = get();
+        self.dae.step_hint = get();
+        self.dae.amplitude = get();
         for v in [
             &mut self.dae.q,
             &mut self.dae.v,
@@ -139,6 +143,9 @@ impl MechanismState {
         self.stats.halvings = count();
         self.large_deflection_warned = bytes[expected - 1] != 0;
         let finite = self.time.is_finite()
+            && self.dae.step_hint.is_finite()
+            && self.dae.step_hint >= 0.0
+            && self.dae.amplitude.is_finite()
             && self
                 .dae
                 .q

@@ -18,7 +18,11 @@ impl Mechanism {
         let t_start = state.time;
         let t_end = t_start + h;
         let n_sub = ((h / self.max_step) * (1.0 - 1e-12)).ceil().max(1.0) as usize;
+        let adaptive = self.integrator.is_adaptive();
         let result = (|| {
+            if adaptive {
+                return self.adaptive_steps(state, t_end);
+            }
             for k in 0..n_sub {
                 let target = if k + 1 == n_sub {
                     t_end
@@ -47,6 +51,7 @@ impl Mechanism {
                 match outputs {
                     Ok(o) => {
                         state.outputs = o;
+                        state.dae.amplitude = state.dae.amplitude.max(o.deflection_rel.abs());
                         self.check_large_deflection(state);
                         Ok(())
                     }
@@ -58,16 +63,51 @@ impl Mechanism {
             }
             Err((t_fail, h_fail, reason)) => {
                 restore(self, state);
+                let tries = if adaptive {
+                    "the error control found no acceptable step".to_string()
+                } else {
+                    format!("after {} step halvings", self.max_halvings)
+                };
                 Err(ModelError::StepFailed {
                     time: t_fail,
                     step: h_fail,
                     reason: format!(
-                        "{reason} (after {} step halvings; the communication step started at t = {t_start} s)",
-                        self.max_halvings
+                        "{reason} ({tries}; the communication step started at t = {t_start} s)"
                     ),
                 })
             }
         }
+    }
+
+    /// Accepted steps of an adaptive integrator until `t_end` (the last one lands on it).
+    fn adaptive_steps(
+        &mut self,
+        state: &mut MechanismState,
+        t_end: f64,
+    ) -> Result<(), (f64, f64, String)> {
+        while state.dae.t < t_end {
+            let h_max = t_end - state.dae.t;
+            let sys = dae_context(
+                self.rod.as_ref(),
+                self.crank_length,
+                self.slider_mass,
+                state,
+            );
+            match self.integrator.step(&sys, &mut state.dae, h_max) {
+                Ok(work) => {
+                    state.stats.steps += 1;
+                    state.stats.newton_iterations += work as u64;
+                    if state.dae.t >= t_end - 1e-12 * h_max {
+                        state.dae.t = t_end;
+                    }
+                }
+                Err(error) => {
+                    state.stats.newton_iterations += error.work as u64;
+                    return Err((state.dae.t, h_max, error.failure.to_string()));
+                }
+            }
+        }
+        Ok(())
     }
 
     /// One internal step to `target`, split in halves on failure (recursively, `depth` deep).

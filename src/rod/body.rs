@@ -40,6 +40,11 @@ pub trait RodBody: Send {
     fn elastic_coordinates(&self) -> Option<std::ops::Range<usize>> {
         None
     }
+    /// Circular frequencies (rad/s) of the elastic coordinates, in their order, where the
+    /// model has them (the retained modes of the FFR rod).
+    fn elastic_circular_frequencies(&self) -> Option<Vec<f64>> {
+        None
+    }
     /// Mass matrix (n x n) into `m`.
     fn mass(&self, q: &[f64], m: MatMut<'_, f64>);
     /// Generalized forces: quadratic velocity terms, elastic and damping forces, and the

@@ -155,6 +155,10 @@ impl RodBody for FfrRod {
         v[2] = omega;
     }
 
+    fn elastic_circular_frequencies(&self) -> Option<Vec<f64>> {
+        Some(self.stiffness.iter().map(|w2| w2.sqrt()).collect())
+    }
+
     fn elastic_coordinates(&self) -> Option<std::ops::Range<usize>> {
         Some(3..3 + self.n)
     }

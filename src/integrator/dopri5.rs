@@ -1,0 +1,275 @@
+//! The Dormand-Prince 5(4) embedded Runge-Kutta pair (Dormand and Prince 1980; Hairer,
+//! Norsett and Wanner, *Solving ODEs I*, 2nd ed., table II.5.2 and section II.4) on the
+//! mechanism's independent coordinates ([`PartitionedRhs`]): `y = (z, z')`, `y' = (z', z'')`.
+//!
+//! One step of size h: seven stages (the last one at `t + h` on the new solution, reused as the
+//! first stage of the next step: "first same as last"), the fifth-order solution propagated and
+//! the difference to the embedded fourth-order one as the local error estimate `e`. Error norm
+//! (maximum norm, so the control is pointwise):
+//! `err = max_i |e_i| / sc_i`, `sc_z = tol max(A, A_min) s`, `sc_z' = w sc_z`,
+//! with `A` the amplitude of the motion the accuracy is stated for (the mechanism keeps the
+//! largest `|v_mid / L|` so far in [`DaeState::amplitude`]), `A_min` a floor, `s` the
+//! coordinate's scale (its value for a deflection of the rod's length) and `w` the mode's
+//! circular frequency. The step is accepted when `err <= 1`; the next one is
+//! `h min(5, max(0.2, 0.9 err^(-1/5)))` (after a rejection, at most h). The step proposal is
+//! part of the state ([`DaeState::step_hint`]), so a restored state replays bit for bit.
+
+use super::failure::{StepError, StepFailure};
+use super::partitioned::PartitionedRhs;
+use super::state::DaeState;
+use super::system::DaeSystem;
+use super::Integrator;
+
+const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
+const A: [[f64; 6]; 7] = [
+    [0.0; 6],
+    [0.2, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
+    [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
+    [
+        19372.0 / 6561.0,
+        -25360.0 / 2187.0,
+        64448.0 / 6561.0,
+        -212.0 / 729.0,
+        0.0,
+        0.0,
+    ],
+    [
+        9017.0 / 3168.0,
+        -355.0 / 33.0,
+        46732.0 / 5247.0,
+        49.0 / 176.0,
+        -5103.0 / 18656.0,
+        0.0,
+    ],
+    [
+        35.0 / 384.0,
+        0.0,
+        500.0 / 1113.0,
+        125.0 / 192.0,
+        -2187.0 / 6784.0,
+        11.0 / 84.0,
+    ],
+];
+/// `b - b_hat`: fifth-order weights minus the embedded fourth-order ones.
+const E: [f64; 7] = [
+    71.0 / 57600.0,
+    0.0,
+    -71.0 / 16695.0,
+    71.0 / 1920.0,
+    -17253.0 / 339200.0,
+    22.0 / 525.0,
+    -1.0 / 40.0,
+];
+
+/// Settings of the error control.
+#[derive(Clone, Debug)]
+pub struct ErrorControl {
+    /// Local tolerance (relative to the amplitude scale).
+    pub tolerance: f64,
+    /// Floor `A_min` of the amplitude scale (dimensionless, like `v_mid / L`).
+    pub amplitude_floor: f64,
+    /// Scale `s` of each independent coordinate (its value for a deflection of one rod length).
+    pub scales: Vec<f64>,
+    /// Weight `w` of each independent coordinate's rate (its circular frequency, rad/s).
+    pub rate_weights: Vec<f64>,
+    /// First step when the state has no proposal yet, s.
+    pub initial_step: f64,
+    /// Rejected tries of one step before it counts as failed.
+    pub max_rejections: usize,
+}
+
+/// The integrator and its workspace.
+pub struct Dopri5 {
+    rhs: PartitionedRhs,
+    control: ErrorControl,
+    k: usize,
+    /// Stage derivatives: `kz[s]` = z' and `kv[s]` = z'' at stage s (k each).
+    kz: [Vec<f64>; 7],
+    kv: [Vec<f64>; 7],
+    z0: Vec<f64>,
+    zd0: Vec<f64>,
+    z: Vec<f64>,
+    zd: Vec<f64>,
+    q0: Vec<f64>,
+    /// The first stage must be evaluated (the inputs may have changed at this communication
+    /// point), not taken from the state's accelerations.
+    fresh: bool,
+}
+
+impl Dopri5 {
+    pub fn new(system: &dyn DaeSystem, independent: Vec<usize>, control: ErrorControl) -> Dopri5 {
+        let rhs = PartitionedRhs::new(system, independent);
+        let k = rhs.k();
+        assert_eq!(control.rate_weights.len(), k);
+        let stage = || std::array::from_fn(|_| vec![0.0; k]);
+        Dopri5 {
+            q0: vec![0.0; system.n_coordinates()],
+            rhs,
+            control,
+            k,
+            kz: stage(),
+            kv: stage(),
+            z0: vec![0.0; k],
+            zd0: vec![0.0; k],
+            z: vec![0.0; k],
+            zd: vec![0.0; k],
+            fresh: true,
+        }
+    }
+
+    /// One try of size h from `state`; returns the error norm (the solution of the try is left
+    /// in `self.z`, `self.zd` and the evaluation workspace).
+    fn attempt(
+        &mut self,
+        system: &dyn DaeSystem,
+        state: &DaeState,
+        h: f64,
+        work: &mut usize,
+    ) -> Result<f64, StepFailure> {
+        let k = self.k;
+        // Start every try from the state alone (the dependent positions too): replay is exact.
+        self.rhs.q.copy_from_slice(&self.q0);
+        for s in 1..7 {
+            for a in 0..k {
+                let mut dz = 0.0;
+                let mut dv = 0.0;
+                for j in 0..s {
+                    dz += A[s][j] * self.kz[j][a];
+                    dv += A[s][j] * self.kv[j][a];
+                }
+                self.z[a] = self.z0[a] + h * dz;
+                self.zd[a] = self.zd0[a] + h * dv;
+            }
+            let t = if s == 6 {
+                state.t + h
+            } else {
+                state.t + C[s] * h
+            };
+            let (kz, kv) = (&mut self.kz, &mut self.kv);
+            kz[s].copy_from_slice(&self.zd);
+            self.rhs
+                .evaluate(system, t, &self.z, &self.zd, &mut kv[s])?;
+            *work += 1;
+        }
+        let tol = self.control.tolerance * state.amplitude.max(self.control.amplitude_floor);
+        let mut err: f64 = 0.0;
+        for a in 0..k {
+            let mut ez = 0.0;
+            let mut ev = 0.0;
+            for s in 0..7 {
+                ez += E[s] * self.kz[s][a];
+                ev += E[s] * self.kv[s][a];
+            }
+            let sc_z = tol * self.control.scales[a];
+            let sc_v = self.control.rate_weights[a] * sc_z;
+            err = err.max((h * ez).abs() / sc_z).max((h * ev).abs() / sc_v);
+        }
+        if !err.is_finite() {
+            return Err(StepFailure::NonFinite);
+        }
+        Ok(err)
+    }
+}
+
+impl Integrator for Dopri5 {
+    /// Takes one accepted step of at most `h` (the rest of the communication step): the
+    /// state's proposal, stretched to `h` when within 25 % of it.
+    fn step(
+        &mut self,
+        system: &dyn DaeSystem,
+        state: &mut DaeState,
+        h_max: f64,
+    ) -> Result<usize, StepError> {
+        let mut work = 0;
+        for (a, &i) in self.rhs.independent.iter().enumerate() {
+            self.z0[a] = state.q[i];
+            self.zd0[a] = state.v[i];
+            // First same as last: the state's accelerations are the first stage.
+            self.kz[0][a] = state.v[i];
+            self.kv[0][a] = state.qdd[i];
+        }
+        self.q0.copy_from_slice(&state.q);
+        if self.fresh {
+            self.rhs.q.copy_from_slice(&self.q0);
+            let (z0, zd0) = (&self.z0, &self.zd0);
+            if let Err(failure) = self.rhs.evaluate(system, state.t, z0, zd0, &mut self.kv[0]) {
+                return Err(failure.after(1));
+            }
+            work += 1;
+        }
+        let proposal = if state.step_hint > 0.0 {
+            state.step_hint
+        } else {
+            self.control.initial_step
+        };
+        let mut h = if h_max <= 1.25 * proposal {
+            h_max
+        } else {
+            proposal
+        };
+        let mut rejected = false;
+        for _ in 0..=self.control.max_rejections {
+            // A failed evaluation (a position solve that does not converge, a singular matrix)
+            // counts as a large error: the step shrinks.
+            let err = self
+                .attempt(system, state, h, &mut work)
+                .unwrap_or(f64::INFINITY);
+            if err <= 1.0 {
+                let grow = if err == 0.0 {
+                    5.0
+                } else {
+                    (0.9 * err.powf(-0.2)).clamp(0.2, 5.0)
+                };
+                let mut next = h * if rejected { grow.min(1.0) } else { grow };
+                if h == h_max && h < proposal {
+                    // Landing on the communication point cut the step: keep the proposal.
+                    next = next.max(proposal);
+                }
+                self.rhs.multipliers();
+                let t1 = state.t + h;
+                let r = &self.rhs;
+                state.accept(t1, &r.q, &r.v, &r.qdd, &r.qdd, &r.lambda);
+                state.step_hint = next;
+                self.fresh = false;
+                return Ok(work);
+            }
+            rejected = true;
+            let shrink = if err.is_finite() {
+                (0.9 * err.powf(-0.2)).clamp(0.2, 1.0)
+            } else {
+                0.25
+            };
+            h *= shrink;
+            if h < 1e-14 * (1.0 + state.t.abs()) {
+                break;
+            }
+        }
+        Err(StepFailure::NewtonDiverged {
+            iterations: self.control.max_rejections,
+            last_correction: h,
+        }
+        .after(work))
+    }
+
+    /// The inputs may change at a communication point: the next step evaluates its first stage.
+    fn forget_between_steps(&mut self) {
+        self.fresh = true;
+    }
+
+    fn name(&self) -> &'static str {
+        "Dormand-Prince 5(4) on independent coordinates"
+    }
+
+    fn work_unit(&self) -> &'static str {
+        "right-hand sides"
+    }
+
+    fn is_adaptive(&self) -> bool {
+        true
+    }
+
+    fn consistent_outputs(&self) -> bool {
+        true
+    }
+}
