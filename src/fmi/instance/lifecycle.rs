@@ -74,12 +74,17 @@ impl Instance {
         self.state = MachineState::StepComplete;
         self.last_step = Status::Ok;
         if self.logger.events_on() {
-            let f = self.simulation.as_ref().map(Simulation::frequencies_hz);
+            let lowest = self
+                .simulation
+                .as_ref()
+                .and_then(|s| s.frequencies_hz().first().copied());
+            let frequency = match lowest {
+                Some(f) => format!("lowest natural frequency {f} Hz"),
+                None => "no natural frequency (rigid rod)".to_string(),
+            };
             self.logger.event(&format!(
-                "initialized at t = {t0} s with crank.angle = {} rad, crank.speed = {} rad/s; lowest natural frequency {:?} Hz",
-                self.inputs.angle,
-                self.inputs.speed,
-                f.and_then(|f| f.first())
+                "initialized at t = {t0} s with crank.angle = {} rad, crank.speed = {} rad/s; {frequency}",
+                self.inputs.angle, self.inputs.speed,
             ));
         }
         Ok(self.take_warnings())

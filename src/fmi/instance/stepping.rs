@@ -24,11 +24,13 @@ impl Instance {
             )));
         }
         if let Some(stop) = self.experiment.stop_time {
-            if now + h > stop + TIME_TOLERANCE * stop.abs().max(1.0) {
+            // In the master's terms: the communication point it passed, not the FMU's own
+            // (accumulated) time, which agrees with it only within the tolerance above.
+            let end = t + h;
+            if end > stop + TIME_TOLERANCE * stop.abs().max(1.0) {
                 return Err(FmiError::rejected(format!(
-                    "the step from t = {now} s with h = {h} s would end at {} s, after stopTime = {stop} s of fmi2SetupExperiment: allowed h <= {}",
-                    now + h,
-                    stop - now
+                    "the step from currentCommunicationPoint = {t} s with communicationStepSize = {h} s would end at {end} s, after stopTime = {stop} s of fmi2SetupExperiment: allowed communicationStepSize <= {} s",
+                    stop - t
                 )));
             }
         }

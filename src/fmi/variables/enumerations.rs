@@ -101,6 +101,30 @@ impl EnumerationType {
         (self.items)()
     }
 
+    /// The largest code (the number of items).
+    pub fn max_code(&self) -> i32 {
+        i32::try_from(self.items().len()).unwrap_or(i32::MAX)
+    }
+
+    /// "1 = ffr, 2 = segments", for the description of an Integer twin.
+    pub fn codes_text(&self) -> String {
+        let items: Vec<String> = self
+            .items()
+            .iter()
+            .enumerate()
+            .map(|(i, item)| format!("{} = {}", i + 1, item.name))
+            .collect();
+        items.join(", ")
+    }
+
+    /// The description of the Integer twin of the Enumeration parameter `name`.
+    pub fn twin_description(&self, name: &str) -> String {
+        format!(
+            "{name} as an Integer, for importers that ignore Enumeration variables: {}. The same parameter as {name}: setting either sets both, the last value set wins",
+            self.codes_text()
+        )
+    }
+
     /// "1 (ffr), 2 (segments)", for messages and descriptions.
     pub fn allowed_text(&self) -> String {
         let items: Vec<String> = self
@@ -145,5 +169,7 @@ mod tests {
         assert_eq!(from_code::<RodModelKind>(3), None);
         assert_eq!(from_code::<RodModelKind>(-1), None);
         assert_eq!(ROD_MODEL.allowed_text(), "1 (ffr), 2 (segments)");
+        assert_eq!(ROD_MODEL.codes_text(), "1 = ffr, 2 = segments");
+        assert_eq!(ROD_REFERENCE.max_code(), 4);
     }
 }

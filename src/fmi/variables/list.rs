@@ -20,6 +20,8 @@ const FREQUENCY_KNOWNS: &[&str] = &[
     "rod.model",
     "rod.elements",
     "rod.reference",
+    "rod.model_index",
+    "rod.reference_index",
 ];
 
 impl VariableTable {
@@ -239,6 +241,34 @@ impl VariableTable {
             "Retained modes (FFR), lowest first",
         );
         b.bounds(Some(Value::Integer(0)), None);
+
+        // Integer twins of the Enumeration parameters: masters that ignore Enumeration
+        // variables (libcosim, among others) can still switch the model and the reference
+        // conditions. Same getter and setter as the Enumeration: one value, two names.
+        b.integer_parameter(
+            "rod.model_index",
+            114,
+            ValueType::Integer,
+            |s| enumerations::code(s.rod.model),
+            set_model,
+            &ROD_MODEL.twin_description("rod.model"),
+        );
+        b.bounds(
+            Some(Value::Integer(1)),
+            Some(Value::Integer(ROD_MODEL.max_code())),
+        );
+        b.integer_parameter(
+            "rod.reference_index",
+            115,
+            ValueType::Integer,
+            |s| enumerations::code(s.rod.reference),
+            set_reference,
+            &ROD_REFERENCE.twin_description("rod.reference"),
+        );
+        b.bounds(
+            Some(Value::Integer(1)),
+            Some(Value::Integer(ROD_REFERENCE.max_code())),
+        );
 
         // Calculated parameters.
         for k in 1..=n_frequencies {
