@@ -107,6 +107,7 @@ fn run() -> Result<(), String> {
     if args.package {
         let identifier = flexrod::fmi::description::model_identifier(&scene);
         package::check_identifier(identifier)?;
+        package::check_experiment(&scene, &args.scene.display().to_string())?;
         package::platform()?;
         let target_dir = package::target_dir()?;
         let library = package::build_library(&target_dir)?;

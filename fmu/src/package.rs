@@ -27,6 +27,39 @@ pub fn check_identifier(identifier: &str) -> Result<(), String> {
     }
 }
 
+/// Relative tolerance of [`check_experiment`].
+const GRID_TOLERANCE: f64 = 1e-9;
+
+/// The default experiment must be a whole number of steps: `stop_time - start_time = n
+/// step_size`, n >= 1, within 1e-9 relative. Otherwise a fixed-step importer that passes the
+/// stop time to `fmi2SetupExperiment` would have to step past it on its last step (the FMU
+/// refuses: it never integrates past stopTime), and fmusim refuses to start.
+pub fn check_experiment(scene: &Scene, origin: &str) -> Result<(), String> {
+    let e = &scene.experiment;
+    let (start, stop, step) = (e.start_time, e.stop_time, e.step_size);
+    let duration = stop - start;
+    let valid = start.is_finite() && stop.is_finite() && step.is_finite();
+    if !(valid && step > 0.0 && duration > 0.0) {
+        return Err(format!(
+            "{origin}: [experiment] start_time = {start} s, stop_time = {stop} s, step_size = {step} s: allowed finite values with step_size > 0 and stop_time > start_time"
+        ));
+    }
+    let steps = (duration / step).round();
+    if steps < 1.0 || (duration - steps * step).abs() > GRID_TOLERANCE * duration {
+        let lower = (duration / step).floor().max(1.0);
+        return Err(format!(
+            "{origin}: [experiment] stop_time - start_time = {duration} s is not a whole number of step_size = {step} s ({} steps): a fixed-step importer that passes stopTime to fmi2SetupExperiment could not end on stop_time (the FMU never steps past it) and fmusim refuses such an experiment. Allowed: stop_time = start_time + n step_size within {GRID_TOLERANCE:e} relative, e.g. stop_time = {} or {} (n = {lower} or {}), or step_size = {} (n = {})",
+            duration / step,
+            start + lower * step,
+            start + (lower + 1.0) * step,
+            lower + 1.0,
+            duration / steps.max(1.0),
+            steps.max(1.0),
+        ));
+    }
+    Ok(())
+}
+
 /// The FMI 2.0 platform folder under `binaries/` and the file name of the shared library
 /// cargo builds, for the platform this packager runs on (the library is built natively).
 /// Only `linux64` is supported: the resource loading, the tests and the contract are Linux's.
@@ -147,6 +180,53 @@ pub fn write_fmu(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn scene_with(start: f64, stop: f64, step: f64) -> Scene {
+        let mut scene = Scene::benchmark();
+        scene.experiment.start_time = start;
+        scene.experiment.stop_time = stop;
+        scene.experiment.step_size = step;
+        scene
+    }
+
+    #[test]
+    fn experiments_must_be_whole_numbers_of_steps() {
+        assert!(check_experiment(&scene_with(0.0, 0.0838, 1e-4), "s").is_ok());
+        assert!(check_experiment(&scene_with(0.1, 0.3, 0.1), "s").is_ok());
+        assert!(check_experiment(&scene_with(0.0, 1.0, 1.0), "s").is_ok());
+        let two_revolutions = 4.0 * std::f64::consts::PI / 150.0;
+        let e = check_experiment(&scene_with(0.0, two_revolutions, 1e-4), "the scene").unwrap_err();
+        assert!(e.starts_with("the scene: [experiment]"), "{e}");
+        assert!(
+            e.contains("not a whole number of step_size = 0.0001 s"),
+            "{e}"
+        );
+        assert!(e.contains("or 0.0838 (n = 837 or 838)"), "{e}");
+        for (start, stop, step) in [
+            (0.0, 0.0, 1e-4),
+            (0.0, 1.0, 0.0),
+            (0.0, 1.0, 2.0),
+            (0.0, f64::NAN, 1e-4),
+        ] {
+            assert!(check_experiment(&scene_with(start, stop, step), "s").is_err());
+        }
+    }
+
+    #[test]
+    fn every_shipped_scene_is_a_whole_number_of_steps() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
+        let mut n = 0;
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.extension().and_then(|e| e.to_str()) != Some("toml") {
+                continue;
+            }
+            let scene = Scene::from_file(&path).unwrap();
+            check_experiment(&scene, &path.display().to_string()).unwrap();
+            n += 1;
+        }
+        assert!(n >= 6, "{n} scenes in {}", dir.display());
+    }
 
     #[test]
     fn platform_folder_from_os_and_arch() {

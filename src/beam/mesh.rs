@@ -11,6 +11,10 @@ use super::section::RodProperties;
 use crate::beam::MassKind;
 use crate::error::ModelError;
 
+/// Largest number of elements a mesh takes (`rod.elements`; the FMU declares it as the
+/// parameter's `max`).
+pub const MAX_ELEMENTS: usize = 4096;
+
 /// The rod's mesh.
 #[derive(Clone, Debug)]
 pub struct RodMesh {
@@ -24,11 +28,11 @@ impl RodMesh {
     /// A mesh of `n_elements >= 1`; the section must be valid.
     pub fn new(section: RodProperties, n_elements: usize, x_b: f64) -> Result<RodMesh, ModelError> {
         section.validate()?;
-        if n_elements == 0 || n_elements > 4096 {
+        if n_elements == 0 || n_elements > MAX_ELEMENTS {
             return Err(ModelError::InvalidParameter {
                 name: "rod.elements",
                 value: n_elements as f64,
-                allowed: "an integer in 1..=4096".into(),
+                allowed: format!("an integer in 1..={MAX_ELEMENTS}"),
             });
         }
         Ok(RodMesh {

@@ -22,18 +22,12 @@
 use super::inputs::{AccelerationSource, Experiment, Inputs};
 use super::state_machine::MachineState;
 use super::status::Status;
+use crate::hash::fnv1a_64;
 use crate::scene::Scene;
 use crate::simulation::Snapshot;
 
 const MAGIC: &[u8; 8] = b"FLXRFMI2";
 const VERSION: u32 = 2;
-
-/// FNV-1a, 64 bits.
-fn fnv1a_64(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
-    })
-}
 
 /// A saved state of an instance.
 #[derive(Clone, Debug)]

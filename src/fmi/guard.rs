@@ -27,7 +27,7 @@ fn install_hook() {
                     .location()
                     .map(|l| format!(" at {}:{}", l.file(), l.line()))
                     .unwrap_or_default();
-                let message = super::instance::panic_text(info.payload());
+                let message = panic_text(info.payload());
                 let text = format!("{message}{location}");
                 let _ = LAST_PANIC.try_with(|p| {
                     if let Ok(mut slot) = p.try_borrow_mut() {
@@ -52,8 +52,19 @@ pub fn catch<T>(f: impl FnOnce() -> T + UnwindSafe) -> Result<T, String> {
             .try_with(|p| p.try_borrow_mut().ok().and_then(|mut slot| slot.take()))
             .ok()
             .flatten()
-            .unwrap_or_else(|| super::instance::panic_text(payload.as_ref()))
+            .unwrap_or_else(|| panic_text(payload.as_ref()))
     })
+}
+
+/// Message of a caught panic payload.
+pub(crate) fn panic_text(payload: &(dyn std::any::Any + Send)) -> String {
+    if let Some(s) = payload.downcast_ref::<&str>() {
+        (*s).to_string()
+    } else if let Some(s) = payload.downcast_ref::<String>() {
+        s.clone()
+    } else {
+        "unknown panic payload".to_string()
+    }
 }
 
 #[cfg(test)]

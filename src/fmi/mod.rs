@@ -1,11 +1,12 @@
 //! FMI 2.0 Co-Simulation layer: the FMU's C ABI around [`crate::Simulation`].
 //!
 //! One call, top to bottom (e.g. `fmi2DoStep`):
-//! 1. [`ffi`] (`ffi.rs`, the only file with `unsafe`): the exported `extern "C"` symbol
+//! 1. [`ffi`] (`ffi/`, the only module with `unsafe`): the exported `extern "C"` symbol
 //!    checks and converts the C arguments and calls one method through [`Instance::run`];
 //! 2. [`instance`]: `run` checks the call against the state machine ([`state_machine`], a
 //!    table of allowed states per function), catches panics ([`guard`]), and the method
-//!    (`Instance::do_step`) does the work in safe Rust, returning `Result<Status, FmiError>`;
+//!    (`Instance::do_step`, in `instance/stepping.rs`) does the work in safe Rust,
+//!    returning `Result<Status, FmiError>`;
 //!    failures reach the importer's logger ([`logging`]) with the offending value and range;
 //! 3. the core: [`crate::Simulation`] (`set_input`, `advance`, `outputs`, `snapshot`).
 //!

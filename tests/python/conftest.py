@@ -2,6 +2,7 @@
 reference results."""
 
 import shutil
+import subprocess
 
 import pytest
 from fmpy import extract
@@ -88,3 +89,17 @@ def spaced_dir(tmp_path):
     d.mkdir()
     yield d
     shutil.rmtree(d, ignore_errors=True)
+
+
+@pytest.fixture(scope="session")
+def c_master(tmp_path_factory):
+    """tests/c_master/master.c compiled with gcc: a fixed-step master that declares the stop
+    time in fmi2SetupExperiment (see the file's header for its arguments)."""
+    source = ROOT / "tests" / "c_master" / "master.c"
+    binary = tmp_path_factory.mktemp("c_master") / "master"
+    command = ["gcc", "-std=c99", "-O1", "-Wall", "-Wextra", "-Werror", "-o", str(binary),
+               str(source), "-ldl", "-lm"]
+    result = subprocess.run(command, capture_output=True, text=True)
+    if result.returncode != 0:
+        raise RuntimeError(f"{' '.join(command)} failed:\n{result.stdout}\n{result.stderr}")
+    return binary

@@ -5,6 +5,7 @@ import csv
 import ctypes
 import math
 import subprocess
+import tomllib
 from pathlib import Path
 
 import numpy as np
@@ -18,6 +19,12 @@ from fmpy.fmi2 import (
 )
 
 ROOT = Path(__file__).resolve().parents[2]
+
+# The default experiment of scenes/benchmark.toml (a whole number of steps: 838 x 1e-4 s).
+with open(ROOT / "scenes" / "benchmark.toml", "rb") as _f:
+    EXPERIMENT = tomllib.load(_f)["experiment"]
+STOP = EXPERIMENT["stop_time"]
+DT = EXPERIMENT["step_size"]
 
 OUTPUTS = [
     "rod.deflection",

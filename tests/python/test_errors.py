@@ -109,7 +109,14 @@ def test_time_mismatch(running):
 def test_stop_time_enforced(slave):
     slave.init(stop=0.001)
     expect_error(slave, lambda: slave.fmu.doStep(0.0, 0.002), "stopTime")
-    slave.fmu.doStep(0.0, 0.001)
+    slave.fmu.doStep(0.0, 0.0005)
+    # The message names the communication point the master passed (here within the time
+    # tolerance of the FMU's own time, but not equal to it) and the end of its step.
+    t = 0.0005 + 3e-13
+    text = expect_error(slave, lambda: slave.fmu.doStep(t, 0.001), "stopTime = 0.001 s")
+    assert f"currentCommunicationPoint = {t!r} s" in text, text
+    assert f"would end at {t + 0.001!r} s" in text, text
+    slave.fmu.doStep(0.0005, 0.0005)
 
 
 def test_crank_longer_than_rod_fails_initialization_then_reset(slave):

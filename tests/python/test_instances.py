@@ -8,10 +8,7 @@ import threading
 
 import numpy as np
 
-from helpers import OUTPUTS, Slave, assert_close, crank_input, run_loop, schedule
-
-STOP = 4 * math.pi / 150
-DT = 1e-4
+from helpers import DT, OUTPUTS, STOP, Slave, assert_close, crank_input, run_loop, schedule
 
 
 def test_two_instances_interleaved_in_one_process(unzipdir):

@@ -7,10 +7,7 @@ import numpy as np
 import pytest
 from fmpy import extract, read_model_description, simulate_fmu
 
-from helpers import OUTPUTS, Slave, assert_close, crank_input, run_loop, schedule
-
-STOP = 4 * math.pi / 150
-DT = 1e-4
+from helpers import DT, OUTPUTS, STOP, Slave, assert_close, crank_input, run_loop, schedule
 
 
 def constant_speed_input(stop=STOP):

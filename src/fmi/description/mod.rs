@@ -1,0 +1,137 @@
+//! `modelDescription.xml`, written from the variable table, and the GUID derived from it.
+//!
+//! The GUID is the FNV-1a 128-bit hash of the description rendered with an all-zero GUID,
+//! formatted `{8-4-4-4-12}`: the same scene and the same code give the same GUID, any change
+//! of a variable, unit, start value or capability gives another.
+
+//!
+//! - this file: the description, its capabilities and GUID;
+//! - [`xml`]: the XML, written element by element from the variable table;
+//! - [`units`]: the unit definitions.
+
+mod units;
+mod xml;
+
+use std::io;
+
+use crate::error::ModelError;
+use crate::hash::fnv1a_128;
+use crate::scene::Scene;
+
+use super::variables::VariableTable;
+
+/// The FMU's capability flags, written into `<CoSimulation>` (fmu-contract.md).
+pub const CAPABILITIES: [(&str, &str); 10] = [
+    ("needsExecutionTool", "false"),
+    ("canHandleVariableCommunicationStepSize", "true"),
+    ("canInterpolateInputs", "true"),
+    ("maxOutputDerivativeOrder", "0"),
+    ("canRunAsynchronuously", "false"),
+    ("canBeInstantiatedOnlyOncePerProcess", "false"),
+    // The Rust allocator is used, never allocateMemory/freeMemory of the importer.
+    ("canNotUseMemoryManagementFunctions", "true"),
+    ("canGetAndSetFMUstate", "true"),
+    ("canSerializeFMUstate", "true"),
+    ("providesDirectionalDerivative", "false"),
+];
+
+/// A generated model description.
+#[derive(Clone)]
+pub struct ModelDescription {
+    /// The XML text.
+    pub xml: String,
+    /// `{8-4-4-4-12}`.
+    pub guid: String,
+    /// The table the description was written from.
+    pub table: VariableTable,
+}
+
+impl ModelDescription {
+    /// The description of `scene` (builds the model once to count the natural frequencies).
+    pub fn for_scene(scene: &Scene) -> Result<ModelDescription, ModelError> {
+        let table = VariableTable::for_scene(scene)?;
+        ModelDescription::new(scene, table)
+    }
+
+    /// The description of `scene` with the given table.
+    pub fn new(scene: &Scene, table: VariableTable) -> Result<ModelDescription, ModelError> {
+        let placeholder = "{00000000-0000-0000-0000-000000000000}";
+        let unhashed = xml::render(scene, &table, placeholder).map_err(write_error)?;
+        let guid = guid_from_hash(fnv1a_128(unhashed.as_bytes()));
+        let xml = xml::render(scene, &table, &guid).map_err(write_error)?;
+        Ok(ModelDescription { xml, guid, table })
+    }
+}
+
+/// The `modelIdentifier` (file name of the binary) of a scene: its name.
+pub fn model_identifier(scene: &Scene) -> &str {
+    &scene.name
+}
+
+fn write_error(e: io::Error) -> ModelError {
+    ModelError::State {
+        message: format!("cannot write modelDescription.xml: {e}"),
+    }
+}
+
+fn guid_from_hash(h: u128) -> String {
+    let hex = format!("{h:032x}");
+    format!(
+        "{{{}-{}-{}-{}-{}}}",
+        &hex[0..8],
+        &hex[8..12],
+        &hex[12..16],
+        &hex[16..20],
+        &hex[20..32]
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn guid_format() {
+        let g = guid_from_hash(0x0123456789abcdef0123456789abcdef);
+        assert_eq!(g, "{01234567-89ab-cdef-0123-456789abcdef}");
+    }
+
+    #[test]
+    fn description_depends_on_start_values() {
+        let scene = Scene::benchmark();
+        let a = ModelDescription::new(&scene, VariableTable::new(&scene, 6)).unwrap();
+        let mut other = scene.clone();
+        other.rod.length = 0.31;
+        let b = ModelDescription::new(&other, VariableTable::new(&other, 6)).unwrap();
+        assert_ne!(a.guid, b.guid);
+        assert!(a.xml.contains(&a.guid));
+        assert!(a.xml.contains("canSerializeFMUstate=\"true\""));
+        assert_eq!(a.xml.matches("canRunAsynchronuously").count(), 1);
+    }
+
+    #[test]
+    fn non_finite_values_are_not_written() {
+        let mut scene = Scene::benchmark();
+        scene.experiment.stop_time = f64::INFINITY;
+        let e = ModelDescription::new(&scene, VariableTable::new(&scene, 6))
+            .err()
+            .expect("an infinite stop time is rejected");
+        assert!(e.to_string().contains("not finite"), "{e}");
+    }
+
+    #[test]
+    fn parameter_bounds_are_declared() {
+        let scene = Scene::benchmark();
+        let xml = ModelDescription::new(&scene, VariableTable::new(&scene, 6))
+            .unwrap()
+            .xml;
+        assert!(
+            xml.contains("<Real unit=\"m\" min=\"0.0\" start=\"0.3048\"/>"),
+            "{xml}"
+        );
+        assert!(
+            xml.contains("<Integer min=\"1\" max=\"4096\" start=\"8\"/>"),
+            "{xml}"
+        );
+    }
+}

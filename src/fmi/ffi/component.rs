@@ -1,0 +1,197 @@
+//! What an `fmi2Component` points to ([`Component`]: the instance behind a busy flag, and the
+//! importer's logger), how a call reaches the instance ([`dispatch`]), and creating and
+//! freeing components.
+
+use std::cell::UnsafeCell;
+use std::ffi::{c_int, CString};
+use std::panic::AssertUnwindSafe;
+use std::ptr;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use super::convert::{lossy_text, text};
+use super::{
+    fmi2Boolean, fmi2CallbackFunctions, fmi2CallbackLogger, fmi2Component,
+    fmi2ComponentEnvironment, fmi2Status, fmi2String,
+};
+use crate::fmi::guard;
+use crate::fmi::instance::{Instance, InstantiateArgs};
+use crate::fmi::logging::{printf_escape, LogSink, Logger};
+use crate::fmi::state_machine::Call;
+use crate::fmi::status::{FmiResult, Status};
+
+const ERROR: fmi2Status = Status::Error as fmi2Status;
+/// The importer's logger callback.
+#[derive(Clone)]
+struct CallbackSink {
+    callback: fmi2CallbackLogger,
+    environment: fmi2ComponentEnvironment,
+    instance_name: CString,
+}
+
+fn c_string(text: &str) -> CString {
+    CString::new(text.replace('\0', " ")).unwrap_or_default()
+}
+
+impl LogSink for CallbackSink {
+    fn emit(&self, status: Status, category: &'static str, message: &str) {
+        let message = c_string(&printf_escape(message));
+        let category = c_string(category);
+        // SAFETY: the callback comes from the importer's fmi2CallbackFunctions; all string
+        // arguments are valid NUL-terminated strings that outlive the call, and the message
+        // has every '%' escaped, so the callback reads no variadic arguments.
+        unsafe {
+            (self.callback)(
+                self.environment,
+                self.instance_name.as_ptr(),
+                status.code(),
+                category.as_ptr(),
+                message.as_ptr(),
+            );
+        }
+    }
+}
+
+/// What an `fmi2Component` points to.
+pub struct Component {
+    /// Set while a call runs on `instance`.
+    busy: AtomicBool,
+    /// Set while a nested call is being reported (a logger that calls back on every
+    /// message must not recurse without end).
+    reporting: AtomicBool,
+    /// The importer's logger, for reporting nested calls without touching `instance`.
+    sink: Option<CallbackSink>,
+    instance: UnsafeCell<Instance>,
+}
+
+impl Component {
+    /// Report a call that arrived while another call on this instance was running.
+    fn report_busy(&self, name: &str) {
+        if self.reporting.swap(true, Ordering::Acquire) {
+            return;
+        }
+        if let Some(sink) = &self.sink {
+            let message = format!(
+                "{name}: illegal call while another call on this instance is in progress (a re-entrant call from a callback, or concurrent calls from two threads); nothing was done"
+            );
+            let _ = guard::catch(AssertUnwindSafe(|| {
+                sink.emit(Status::Error, "logStatusError", &message);
+            }));
+        }
+        self.reporting.store(false, Ordering::Release);
+    }
+}
+
+/// Clears the busy flag when the call ends (also if it unwinds).
+struct Busy<'a>(&'a AtomicBool);
+
+impl Drop for Busy<'_> {
+    fn drop(&mut self) {
+        self.0.store(false, Ordering::Release);
+    }
+}
+
+/// Run `f` on the instance `c` as FMI call `call`.
+pub unsafe fn dispatch(
+    c: fmi2Component,
+    call: Call,
+    f: impl FnOnce(&mut Instance) -> FmiResult<Status>,
+) -> fmi2Status {
+    // SAFETY: c is NULL or a live pointer from fmi2Instantiate (FMI 2.0). Only a shared
+    // reference is made here: a nested call may hold one at the same time.
+    let Some(component) = (unsafe { c.cast::<Component>().as_ref() }) else {
+        return ERROR;
+    };
+    if component.busy.swap(true, Ordering::Acquire) {
+        component.report_busy(call.name());
+        return ERROR;
+    }
+    let _busy = Busy(&component.busy);
+    // SAFETY: this call set the busy flag, so no other `&mut Instance` exists until it is
+    // cleared (when `_busy` drops, after the last use of `instance`).
+    let instance = unsafe { &mut *component.instance.get() };
+    match guard::catch(AssertUnwindSafe(|| instance.run(call, f).code())) {
+        Ok(code) => code,
+        Err(_) => {
+            instance.enter_error_state();
+            ERROR
+        }
+    }
+}
+
+/// `fmi2Instantiate`: a new component, or NULL (the reason goes to the logger).
+pub unsafe fn instantiate(
+    instanceName: fmi2String,
+    fmuType: c_int,
+    fmuGUID: fmi2String,
+    fmuResourceLocation: fmi2String,
+    functions: *const fmi2CallbackFunctions,
+    loggingOn: fmi2Boolean,
+) -> fmi2Component {
+    let created = guard::catch(AssertUnwindSafe(|| {
+        // SAFETY: NULL or the importer's callback struct (FMI 2.0).
+        let functions = unsafe { functions.as_ref() }?;
+        // SAFETY (all three): NULL or NUL-terminated strings (FMI 2.0).
+        let name = unsafe { lossy_text(instanceName) };
+        let guid = unsafe { text(fmuGUID, "fmuGUID") };
+        let location = unsafe { text(fmuResourceLocation, "fmuResourceLocation") };
+        let sink = functions.logger.map(|callback| CallbackSink {
+            callback,
+            environment: functions.component_environment,
+            instance_name: c_string(name.as_deref().unwrap_or("")),
+        });
+        let logger = Logger::new(
+            sink.clone().map(|s| Box::new(s) as Box<dyn LogSink>),
+            loggingOn != 0,
+        );
+        let args = match (&name, guid, location) {
+            (Some(instance_name), Ok(Some(guid)), Ok(resource_location)) => InstantiateArgs {
+                instance_name,
+                fmu_type: fmuType,
+                guid,
+                resource_location,
+            },
+            (name, guid, location) => {
+                let problem = if name.is_none() {
+                    "instanceName is NULL".to_string()
+                } else {
+                    match guid {
+                        Ok(None) => "fmuGUID is NULL".to_string(),
+                        Err(e) => e,
+                        Ok(Some(_)) => location.err().unwrap_or_default(),
+                    }
+                };
+                logger.status(Status::Error, &format!("fmi2Instantiate: {problem}"));
+                return None;
+            }
+        };
+        let instance = Instance::instantiate(args, logger)?;
+        Some(Component {
+            busy: AtomicBool::new(false),
+            reporting: AtomicBool::new(false),
+            sink,
+            instance: UnsafeCell::new(instance),
+        })
+    }));
+    match created {
+        Ok(Some(component)) => Box::into_raw(Box::new(component)).cast(),
+        _ => ptr::null_mut(),
+    }
+}
+
+/// `fmi2FreeInstance`.
+pub unsafe fn free(c: fmi2Component) {
+    // SAFETY: c is NULL or a live pointer from fmi2Instantiate (FMI 2.0).
+    let Some(component) = (unsafe { c.cast::<Component>().as_ref() }) else {
+        return;
+    };
+    if component.busy.swap(true, Ordering::Acquire) {
+        // Freed from inside a callback of a running call: refuse rather than free memory
+        // that call still uses.
+        component.report_busy("fmi2FreeInstance");
+        return;
+    }
+    // SAFETY: c came from Box::into_raw in fmi2Instantiate, no call is running on it (the busy
+    // flag), and it is freed once (FMI 2.0).
+    let component = unsafe { Box::from_raw(c.cast::<Component>()) };
+    let _ = guard::catch(AssertUnwindSafe(move || drop(component)));
+}

@@ -1,0 +1,82 @@
+//! The C ABI: the 34 functions of FMI 2.0 Co-Simulation, and all `unsafe` code of the FMI
+//! layer.
+//!
+//! Every function is a one-line delegation: convert the C arguments (null checks, slices,
+//! strings; [`convert`]) and call one method of the safe [`Instance`] through
+//! [`Instance::run`] ([`component::dispatch`]), which checks the call sequence, catches
+//! panics, logs failures and folds the status. An outer [`guard::catch`] makes sure no panic
+//! (not even one while logging) unwinds into the host.
+//!
+//! The safety contract of each function is the FMI 2.0 standard's: `c` is NULL or a pointer
+//! returned by `fmi2Instantiate` and not yet freed; arrays have the lengths passed with them;
+//! strings are NUL-terminated. NULL pointers are detected and reported.
+//!
+//! FMU state handles are opaque integers (never dereferenced), looked up per instance, so a
+//! stale or foreign handle gives an error (or a new handle where FMI allows one), not
+//! undefined behaviour.
+//!
+//! Re-entrancy: an `fmi2Component` points to a [`component::Component`], which holds the
+//! [`Instance`] in an `UnsafeCell` behind a busy flag. `&mut Instance` is created only by the
+//! call that set the flag, so a logger callback that calls back into the same instance (or a
+//! second thread calling it concurrently) never aliases it: such a nested call returns
+//! `fmi2Error` and is reported through the logger.
+//!
+//! Files: [`component`] (what `fmi2Component` points to, the logger callback, dispatch),
+//! [`convert`] (C arguments to Rust), and the exported functions grouped as in the standard:
+//! [`lifecycle`] (platform, creation, initialization), [`values`] (get and set), [`states`]
+//! (FMU states), [`stepping`] (derivatives, `fmi2DoStep`, status).
+//!
+//! [`Instance`]: super::Instance
+//! [`Instance::run`]: super::Instance::run
+//! [`guard::catch`]: super::guard::catch
+
+#![allow(non_snake_case, non_camel_case_types)]
+#![allow(clippy::missing_safety_doc)]
+#![deny(unsafe_op_in_unsafe_fn)]
+
+pub mod component;
+pub mod convert;
+pub mod lifecycle;
+pub mod states;
+pub mod stepping;
+pub mod values;
+
+use std::ffi::{c_char, c_int, c_uint, c_void};
+
+pub use lifecycle::*;
+pub use states::*;
+pub use stepping::*;
+pub use values::*;
+
+pub type fmi2Component = *mut c_void;
+pub type fmi2ComponentEnvironment = *mut c_void;
+pub type fmi2FMUstate = *mut c_void;
+pub type fmi2ValueReference = c_uint;
+pub type fmi2Real = f64;
+pub type fmi2Integer = c_int;
+pub type fmi2Boolean = c_int;
+pub type fmi2Char = c_char;
+pub type fmi2String = *const fmi2Char;
+pub type fmi2Byte = c_char;
+/// `fmi2Status` (a C enum).
+pub type fmi2Status = c_int;
+
+/// `fmi2CallbackLogger`: a printf-like variadic function.
+pub type fmi2CallbackLogger = unsafe extern "C" fn(
+    fmi2ComponentEnvironment,
+    fmi2String,
+    fmi2Status,
+    fmi2String,
+    fmi2String,
+    ...
+);
+
+/// `fmi2CallbackFunctions`.
+#[repr(C)]
+pub struct fmi2CallbackFunctions {
+    pub logger: Option<fmi2CallbackLogger>,
+    pub allocate_memory: Option<unsafe extern "C" fn(usize, usize) -> *mut c_void>,
+    pub free_memory: Option<unsafe extern "C" fn(*mut c_void)>,
+    pub step_finished: Option<unsafe extern "C" fn(fmi2ComponentEnvironment, fmi2Status)>,
+    pub component_environment: fmi2ComponentEnvironment,
+}

@@ -1,0 +1,266 @@
+//! One FMU instance: the whole FMI 2.0 Co-Simulation behaviour in safe Rust.
+//!
+//! `ffi/` turns each C call into one call of [`Instance::run`] with the matching method;
+//! `run` checks the call sequence against the state machine, catches panics, logs failures
+//! through the importer's logger and folds everything into a [`Status`].
+//!
+//! The methods, one concept per file:
+//! - this file: the instance, `fmi2Instantiate` and [`Instance::run`];
+//! - [`lifecycle`]: debug logging, setup, initialization mode, terminate, reset;
+//! - [`values`]: `fmi2Get*` / `fmi2Set*` through the variable table;
+//! - [`derivatives`]: input derivatives (the crank law's acceleration), output and
+//!   directional derivatives (not provided);
+//! - [`stepping`]: `fmi2DoStep` and the status queries;
+//! - [`states`]: FMU states and their serialization.
+//!
+//! The inputs and their law between communication points: [`super::inputs`].
+
+mod derivatives;
+mod lifecycle;
+mod states;
+mod stepping;
+mod values;
+
+use std::collections::HashMap;
+use std::panic::AssertUnwindSafe;
+
+use super::description::ModelDescription;
+use super::fmu_state::FmuState;
+use super::guard;
+use super::inputs::{Experiment, Inputs};
+use super::logging::Logger;
+use super::resource;
+use super::state_machine::{self, Call, MachineState};
+use super::status::{FmiResult, Status};
+use super::variables::VariableTable;
+use crate::error::ModelError;
+use crate::scene::Scene;
+use crate::simulation::Simulation;
+
+/// `fmi2Type` value of Co-Simulation.
+const FMI2_CO_SIMULATION: i32 = 1;
+
+/// Relative tolerance on `currentCommunicationPoint` and `stopTime`.
+const TIME_TOLERANCE: f64 = 1e-9;
+
+/// Arguments of `fmi2Instantiate`, already converted from C.
+pub struct InstantiateArgs<'a> {
+    pub instance_name: &'a str,
+    pub fmu_type: i32,
+    pub guid: &'a str,
+    pub resource_location: Option<&'a str>,
+}
+
+/// One FMU instance.
+pub struct Instance {
+    guid: String,
+    table: VariableTable,
+    /// The scene the FMU was exported for: the start values, restored by `fmi2Reset`.
+    exported: Scene,
+    /// The instance's own copy, with the parameters the importer set.
+    scene: Scene,
+    state: MachineState,
+    logger: Logger,
+    inputs: Inputs,
+    experiment: Experiment,
+    /// Built from `scene` (invariant: `Some` only if built from the current `scene`).
+    simulation: Option<Simulation>,
+    /// In initialization mode: the simulation was started with the current inputs.
+    started: bool,
+    /// Status of the last `fmi2DoStep`.
+    last_step: Status,
+    /// Why the simulation is missing after a failed initialization (for messages).
+    failure: Option<String>,
+    fmu_states: HashMap<usize, FmuState>,
+    /// Last serialization: (handle, bytes), so size and content are computed once.
+    serialized: Option<(usize, Vec<u8>)>,
+}
+
+fn model_error(e: ModelError) -> String {
+    e.to_string()
+}
+
+impl Instance {
+    /// `fmi2Instantiate`: load the scene from the resources, check the GUID. Failures are
+    /// logged and give `None`.
+    pub fn instantiate(args: InstantiateArgs<'_>, logger: Logger) -> Option<Instance> {
+        let result = guard::catch(AssertUnwindSafe(|| load(&args, &logger)));
+        let failure = match result {
+            Ok(Ok(model)) => {
+                return Some(Instance::from_description(
+                    model.scene,
+                    model.description,
+                    logger,
+                ))
+            }
+            Ok(Err(message)) => message,
+            Err(panic) => {
+                format!("internal error (a panic was caught at the FMI boundary): {panic}")
+            }
+        };
+        logger.status(
+            Status::Error,
+            &format!("fmi2Instantiate of \"{}\": {failure}", args.instance_name),
+        );
+        None
+    }
+
+    /// An instance of `scene` with its description (for tools and tests; no GUID check).
+    pub fn from_description(
+        scene: Scene,
+        description: ModelDescription,
+        logger: Logger,
+    ) -> Instance {
+        let inputs = Inputs::from_start_values(&description.table);
+        let experiment = Experiment {
+            start_time: scene.experiment.start_time,
+            stop_time: None,
+        };
+        Instance {
+            guid: description.guid,
+            table: description.table,
+            exported: scene.clone(),
+            scene,
+            state: MachineState::Instantiated,
+            logger,
+            inputs,
+            experiment,
+            simulation: None,
+            started: false,
+            last_step: Status::Ok,
+            failure: None,
+            fmu_states: HashMap::new(),
+            serialized: None,
+        }
+    }
+
+    /// The instance's state in the FMI state machine.
+    pub fn machine_state(&self) -> MachineState {
+        self.state
+    }
+
+    /// The GUID of the FMU this instance belongs to.
+    pub fn guid(&self) -> &str {
+        &self.guid
+    }
+
+    /// Run one FMI call: check the call sequence, run `f` with panics caught, log a failure
+    /// and return the status for the importer.
+    pub fn run(
+        &mut self,
+        call: Call,
+        f: impl FnOnce(&mut Instance) -> FmiResult<Status>,
+    ) -> Status {
+        let result = guard::catch(AssertUnwindSafe(|| {
+            state_machine::check(call, self.state)?;
+            f(self)
+        }));
+        let (status, message) = match result {
+            Ok(Ok(status)) => return status,
+            Ok(Err(e)) => {
+                if e.instance_failed {
+                    self.state = MachineState::Error;
+                }
+                (e.status, format!("{}: {}", call.name(), e.message))
+            }
+            Err(panic) => {
+                self.state = MachineState::Error;
+                (
+                    Status::Error,
+                    format!(
+                        "{}: internal error (a panic was caught at the FMI boundary): {panic}; the instance is in the Error state: call fmi2Reset, fmi2SetFMUstate or fmi2FreeInstance",
+                        call.name()
+                    ),
+                )
+            }
+        };
+        let logger = &self.logger;
+        if guard::catch(AssertUnwindSafe(|| logger.status(status, &message))).is_err() {
+            self.enter_error_state();
+            return Status::Error;
+        }
+        status
+    }
+
+    /// A panic escaped a call (in the logging path): the instance cannot be trusted to
+    /// continue and enters the `Error` state.
+    pub fn enter_error_state(&mut self) {
+        self.state = MachineState::Error;
+    }
+}
+
+/// Check the arguments of `fmi2Instantiate` and load the scene its resources name.
+fn load(args: &InstantiateArgs<'_>, logger: &Logger) -> Result<resource::LoadedModel, String> {
+    if args.instance_name.is_empty() {
+        return Err(
+            "instanceName is empty: allowed a non-empty name (it identifies the instance in messages)"
+                .to_string(),
+        );
+    }
+    if args.fmu_type != FMI2_CO_SIMULATION {
+        return Err(format!(
+            "fmuType = {} is not supported: allowed {FMI2_CO_SIMULATION} (fmi2CoSimulation); this FMU implements only Co-Simulation",
+            args.fmu_type
+        ));
+    }
+    let loaded = resource::load_model(args.resource_location, args.guid)?;
+    logger.event(&format!(
+        "instance \"{}\" of {} uses {}",
+        args.instance_name, loaded.description.guid, loaded.origin
+    ));
+    Ok(loaded)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fmi::logging::LogSink;
+    use crate::fmi::status::StatusKind;
+
+    struct PanickingSink;
+    impl LogSink for PanickingSink {
+        fn emit(&self, _: Status, _: &'static str, message: &str) {
+            panic!("the logger failed on: {message}");
+        }
+    }
+
+    fn instance(sink: Option<Box<dyn LogSink>>) -> Instance {
+        let scene = Scene::benchmark();
+        let description = ModelDescription::for_scene(&scene).unwrap();
+        Instance::from_description(scene, description, Logger::new(sink, false))
+    }
+
+    #[test]
+    fn a_panic_while_logging_moves_the_instance_to_error() {
+        let mut i = instance(Some(Box::new(PanickingSink)));
+        let status = i.run(Call::GetReal, |i| i.get_real(&[9999], &mut [0.0]));
+        assert_eq!(status, Status::Error);
+        assert_eq!(i.machine_state(), MachineState::Error);
+    }
+
+    #[test]
+    fn unavailable_status_kinds_are_discarded() {
+        let mut i = instance(None);
+        for call in [Call::SetupExperiment, Call::EnterInitializationMode] {
+            let status = i.run(call, |i| match call {
+                Call::SetupExperiment => i.setup_experiment(None, 0.0, None),
+                _ => i.enter_initialization_mode(),
+            });
+            assert_eq!(status, Status::Ok);
+        }
+        assert_eq!(
+            i.run(
+                Call::ExitInitializationMode,
+                Instance::exit_initialization_mode
+            ),
+            Status::Ok
+        );
+        let e = i.get_integer_status(StatusKind::DoStepStatus).unwrap_err();
+        assert_eq!(e.status, Status::Discard);
+        assert_eq!(
+            i.get_status(StatusKind::PendingStatus).unwrap_err().status,
+            Status::Discard
+        );
+        assert_eq!(StatusKind::from_code(9).unwrap_err().status, Status::Error);
+    }
+}

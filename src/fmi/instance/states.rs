@@ -1,0 +1,201 @@
+//! FMU states: `fmi2GetFMUstate`, `fmi2SetFMUstate`, `fmi2FreeFMUstate` and serialization.
+//! The saved state and its byte form: [`crate::fmi::fmu_state`].
+
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use super::{model_error, Instance};
+use crate::error::ModelError;
+use crate::fmi::fmu_state::{self, FmuState};
+use crate::fmi::status::{FmiError, FmiResult, Status};
+use crate::scene::Scene;
+use crate::simulation::Simulation;
+
+/// Handles of FMU states are unique across all instances of the process, so a state of
+/// another instance is recognized as foreign.
+static NEXT_STATE_HANDLE: AtomicUsize = AtomicUsize::new(1);
+
+impl Instance {
+    fn capture(&self) -> FmuState {
+        FmuState {
+            machine: self.state,
+            scene: self.scene.clone(),
+            inputs: self.inputs,
+            experiment: self.experiment,
+            started: self.started,
+            last_step: self.last_step,
+            simulation: self.simulation.as_ref().map(Simulation::snapshot),
+        }
+    }
+
+    fn saved(&self, handle: usize) -> FmiResult<&FmuState> {
+        self.fmu_states.get(&handle).ok_or_else(|| {
+            FmiError::rejected(format!(
+                "FMU state {handle:#x} is not a state of this instance (never created here, or already freed)"
+            ))
+        })
+    }
+
+    /// The handle to store a state under: `existing` if it is a live state of this instance
+    /// (it is overwritten), else a new one (NULL, or a handle of another instance or one
+    /// already freed: that handle is left alone).
+    fn handle_for(&self, existing: Option<usize>) -> usize {
+        match existing {
+            Some(h) if self.fmu_states.contains_key(&h) => h,
+            _ => NEXT_STATE_HANDLE.fetch_add(1, Ordering::Relaxed),
+        }
+    }
+
+    /// `fmi2GetFMUstate`: a new handle, or `existing` overwritten if it is this instance's.
+    pub fn get_fmu_state(&mut self, existing: Option<usize>) -> FmiResult<usize> {
+        let state = self.capture();
+        let handle = self.handle_for(existing);
+        self.fmu_states.insert(handle, state);
+        if matches!(self.serialized, Some((h, _)) if h == handle) {
+            self.serialized = None;
+        }
+        Ok(handle)
+    }
+
+    /// `fmi2SetFMUstate`: everything, including the state machine's state, as when saved.
+    pub fn set_fmu_state(&mut self, handle: usize) -> FmiResult<Status> {
+        self.saved(handle)?;
+        let saved = &self.fmu_states[&handle];
+        match &saved.simulation {
+            None => self.simulation = None,
+            Some(snapshot) => {
+                let reuse = self.simulation.is_some() && self.scene == saved.scene;
+                if !reuse {
+                    let rebuilt = Simulation::new(&saved.scene)
+                        .map_err(|e| FmiError::rejected(model_error(e)))?;
+                    self.simulation = Some(rebuilt);
+                }
+                if let Some(simulation) = self.simulation.as_mut() {
+                    simulation.restore(snapshot);
+                }
+            }
+        }
+        self.scene.clone_from(&saved.scene);
+        self.inputs = saved.inputs;
+        self.experiment = saved.experiment;
+        self.started = saved.started;
+        self.last_step = saved.last_step;
+        self.state = saved.machine;
+        self.failure = None;
+        Ok(Status::Ok)
+    }
+
+    /// `fmi2FreeFMUstate`.
+    pub fn free_fmu_state(&mut self, handle: usize) -> FmiResult<Status> {
+        self.saved(handle)?;
+        self.fmu_states.remove(&handle);
+        if matches!(self.serialized, Some((h, _)) if h == handle) {
+            self.serialized = None;
+        }
+        Ok(Status::Ok)
+    }
+
+    /// Bytes of a saved state (computed once per handle).
+    fn serialized(&mut self, handle: usize) -> FmiResult<&[u8]> {
+        let cached = matches!(&self.serialized, Some((h, _)) if *h == handle);
+        if !cached {
+            self.saved(handle)?;
+            let saved = &self.fmu_states[&handle];
+            // The core serializes the current state of a simulation: bring the saved
+            // snapshot in, write it, and put the current state back.
+            let simulation_bytes = match &saved.simulation {
+                None => None,
+                Some(snapshot) => Some(with_simulation_of(
+                    self.simulation.as_mut(),
+                    &self.scene,
+                    &saved.scene,
+                    |s| {
+                        s.restore(snapshot);
+                        Ok(s.snapshot_to_bytes())
+                    },
+                )?),
+            };
+            let bytes = fmu_state::serialize(&self.guid, saved, simulation_bytes.as_deref());
+            self.serialized = Some((handle, bytes));
+        }
+        Ok(self
+            .serialized
+            .as_ref()
+            .map(|(_, b)| b.as_slice())
+            .unwrap_or(&[]))
+    }
+
+    /// `fmi2SerializedFMUstateSize`.
+    pub fn serialized_size(&mut self, handle: usize) -> FmiResult<usize> {
+        Ok(self.serialized(handle)?.len())
+    }
+
+    /// `fmi2SerializeFMUstate`: `out` must have exactly the size reported.
+    pub fn serialize_fmu_state(&mut self, handle: usize, out: &mut [u8]) -> FmiResult<Status> {
+        let bytes = self.serialized(handle)?;
+        if out.len() != bytes.len() {
+            return Err(FmiError::rejected(format!(
+                "size = {} bytes is wrong: allowed {} (from fmi2SerializedFMUstateSize)",
+                out.len(),
+                bytes.len()
+            )));
+        }
+        out.copy_from_slice(bytes);
+        Ok(Status::Ok)
+    }
+
+    /// `fmi2DeSerializeFMUstate`: a new handle, or `existing` overwritten if it is this
+    /// instance's (a handle of another instance, e.g. the one the bytes were serialized from,
+    /// gets a new handle here). Foreign, truncated, corrupted or other-model bytes are
+    /// rejected and nothing changes.
+    pub fn deserialize_fmu_state(
+        &mut self,
+        bytes: &[u8],
+        existing: Option<usize>,
+    ) -> FmiResult<usize> {
+        let parsed = fmu_state::deserialize(&self.guid, bytes)
+            .map_err(|m| FmiError::rejected(format!("serialized state rejected: {m}")))?;
+        let simulation = match parsed.simulation_bytes {
+            None => None,
+            Some(b) => Some(with_simulation_of(
+                self.simulation.as_mut(),
+                &self.scene,
+                &parsed.state.scene,
+                |s| {
+                    s.restore_from_bytes(b)?;
+                    Ok(s.snapshot())
+                },
+            )?),
+        };
+        let state = FmuState {
+            simulation,
+            ..parsed.state
+        };
+        let handle = self.handle_for(existing);
+        self.fmu_states.insert(handle, state);
+        if matches!(self.serialized, Some((h, _)) if h == handle) {
+            self.serialized = None;
+        }
+        Ok(handle)
+    }
+}
+
+/// Run `f` on a simulation of `scene` whose state `f` may replace: the instance's own one if
+/// it was built from the same scene (its state is put back bit for bit afterwards), else a
+/// scratch one.
+fn with_simulation_of<T>(
+    own: Option<&mut Simulation>,
+    own_scene: &Scene,
+    scene: &Scene,
+    f: impl FnOnce(&mut Simulation) -> Result<T, ModelError>,
+) -> FmiResult<T> {
+    let result = match own {
+        Some(simulation) if own_scene == scene => {
+            let current = simulation.snapshot();
+            let result = f(simulation);
+            simulation.restore(&current);
+            result
+        }
+        _ => Simulation::new(scene).and_then(|mut scratch| f(&mut scratch)),
+    };
+    result.map_err(|e| FmiError::rejected(model_error(e)))
+}

@@ -1,0 +1,144 @@
+//! `fmi2DoStep` and the status queries.
+
+use super::{model_error, Instance, TIME_TOLERANCE};
+use crate::error::ModelError;
+use crate::fmi::state_machine::MachineState;
+use crate::fmi::status::{FmiError, FmiResult, Status, StatusKind};
+
+impl Instance {
+    /// `fmi2DoStep`: integrate from the FMU time `t` to `t + h`.
+    pub fn do_step(&mut self, t: f64, h: f64) -> FmiResult<Status> {
+        let Some(simulation) = self.simulation.as_mut() else {
+            return Err(FmiError::failed("no simulation (internal error)"));
+        };
+        let now = simulation.time();
+        let tolerance = TIME_TOLERANCE * now.abs().max(1.0);
+        if !(t.is_finite() && (t - now).abs() <= tolerance) {
+            return Err(FmiError::rejected(format!(
+                "currentCommunicationPoint = {t} s does not match the FMU time {now} s: allowed {now} +- {tolerance:e} s"
+            )));
+        }
+        if !(h.is_finite() && h > 0.0) {
+            return Err(FmiError::rejected(format!(
+                "communicationStepSize = {h} s is out of range: allowed a finite value > 0"
+            )));
+        }
+        if let Some(stop) = self.experiment.stop_time {
+            // In the master's terms: the communication point it passed, not the FMU's own
+            // (accumulated) time, which agrees with it only within the tolerance above.
+            let end = t + h;
+            if end > stop + TIME_TOLERANCE * stop.abs().max(1.0) {
+                return Err(FmiError::rejected(format!(
+                    "the step from currentCommunicationPoint = {t} s with communicationStepSize = {h} s would end at {end} s, after stopTime = {stop} s of fmi2SetupExperiment: allowed communicationStepSize <= {} s",
+                    stop - t
+                )));
+            }
+        }
+        // A new law starts at every communication point: theta_k, omega_k as set (or the
+        // previous law's values at t_k), alpha_k as set at t_k or 0 (see `inputs`).
+        simulation
+            .set_input(self.inputs.crank_input())
+            .map_err(|e| FmiError::rejected(model_error(e)))?;
+        if self.inputs.force_changed {
+            simulation
+                .set_slider_force(self.inputs.slider_force)
+                .map_err(|e| FmiError::rejected(model_error(e)))?;
+        }
+        match simulation.advance(h) {
+            Ok(_) => {
+                // The values the law used at the new time, from the core's own law.
+                let time = simulation.time();
+                let (angle, speed, _) = simulation
+                    .mechanism()
+                    .crank_law(simulation.state())
+                    .kinematics(time);
+                self.inputs.after_step(angle, speed);
+                self.last_step = Status::Ok;
+                Ok(self.take_warnings())
+            }
+            Err(e @ ModelError::StepFailed { .. }) => {
+                self.state = MachineState::StepFailed;
+                self.last_step = Status::Discard;
+                self.take_warnings();
+                Err(FmiError::discard(format!(
+                    "{e}. Restore a state saved before the step (fmi2SetFMUstate) and retry with a smaller communication step, or terminate"
+                )))
+            }
+            Err(e) => {
+                self.take_warnings();
+                Err(FmiError::failed(model_error(e)))
+            }
+        }
+    }
+
+    /// Pass the simulation's warnings to the logger; `Warning` if there were any.
+    pub(super) fn take_warnings(&mut self) -> Status {
+        let Some(simulation) = self.simulation.as_mut() else {
+            return Status::Ok;
+        };
+        let warnings = simulation.take_warnings();
+        for w in &warnings {
+            self.logger.status(Status::Warning, w);
+        }
+        if warnings.is_empty() {
+            Status::Ok
+        } else {
+            Status::Warning
+        }
+    }
+
+    /// `fmi2GetStatus`.
+    pub fn get_status(&self, kind: StatusKind) -> FmiResult<Status> {
+        match kind {
+            StatusKind::DoStepStatus => Ok(self.last_step),
+            _ => Err(self.undefined_status(kind, "fmi2GetStatus", "only fmi2DoStepStatus")),
+        }
+    }
+
+    /// `fmi2GetRealStatus`: `fmi2LastSuccessfulTime` is the FMU time (after a discarded step,
+    /// the time before it).
+    pub fn get_real_status(&self, kind: StatusKind) -> FmiResult<f64> {
+        match (kind, &self.simulation) {
+            (StatusKind::LastSuccessfulTime, Some(s)) => Ok(s.time()),
+            _ => {
+                Err(self.undefined_status(kind, "fmi2GetRealStatus", "only fmi2LastSuccessfulTime"))
+            }
+        }
+    }
+
+    /// `fmi2GetIntegerStatus`: FMI 2.0 defines no integer status.
+    pub fn get_integer_status(&self, kind: StatusKind) -> FmiResult<i32> {
+        Err(self.undefined_status(
+            kind,
+            "fmi2GetIntegerStatus",
+            "no integer status (FMI 2.0 defines none)",
+        ))
+    }
+
+    /// `fmi2GetBooleanStatus`: `fmi2Terminated` is false (the FMU never asks to stop).
+    pub fn get_boolean_status(&self, kind: StatusKind) -> FmiResult<bool> {
+        match kind {
+            StatusKind::Terminated => Ok(false),
+            _ => Err(self.undefined_status(kind, "fmi2GetBooleanStatus", "only fmi2Terminated")),
+        }
+    }
+
+    /// `fmi2GetStringStatus`: only `fmi2PendingStatus` exists, and no step is ever pending.
+    pub fn get_string_status(&self, kind: StatusKind) -> FmiResult<Status> {
+        Err(self.undefined_status(
+            kind,
+            "fmi2GetStringStatus",
+            "fmi2PendingStatus only while fmi2DoStep is pending, which never happens here (canRunAsynchronuously = false)",
+        ))
+    }
+
+    /// A status kind this FMU cannot provide: `fmi2Discard` (FMI 2.0, 4.2.3: "If a status is
+    /// required which cannot be retrieved by the slave it returns fmi2Discard"). Invalid kind
+    /// codes are errors ([`StatusKind::from_code`]).
+    fn undefined_status(&self, kind: StatusKind, function: &str, allowed: &str) -> FmiError {
+        FmiError::discard(format!(
+            "{function} cannot provide {}: it provides {allowed}",
+            kind.name()
+        ))
+    }
+}

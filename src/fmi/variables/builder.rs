@@ -1,0 +1,209 @@
+//! The builder of the variable list: one method per kind of variable (input, output, Real or
+//! Integer parameter, calculated parameter), and the unit types the list uses.
+
+use super::types::{
+    Access, Causality, Initial, InitialDependencies, InputSlot, OutputGetter, Value, ValueType,
+    Variability, Variable,
+};
+use super::{ValueReference, VariableTable};
+use crate::scene::Scene;
+
+pub(super) const RAD: ValueType = ValueType::Real {
+    unit: Some("rad"),
+    display_unit: Some("deg"),
+};
+pub(super) const RAD_PER_S: ValueType = ValueType::Real {
+    unit: Some("rad/s"),
+    display_unit: Some("rpm"),
+};
+
+pub(super) const fn real(unit: &'static str) -> ValueType {
+    ValueType::Real {
+        unit: Some(unit),
+        display_unit: None,
+    }
+}
+
+pub(super) const DIMENSIONLESS: ValueType = ValueType::Real {
+    unit: None,
+    display_unit: None,
+};
+
+/// Collects the variables of one table, in modelDescription.xml order.
+pub(super) struct Builder<'a> {
+    pub scene: &'a Scene,
+    variables: Vec<Variable>,
+}
+
+impl<'a> Builder<'a> {
+    pub fn new(scene: &'a Scene) -> Builder<'a> {
+        Builder {
+            scene,
+            variables: Vec::new(),
+        }
+    }
+
+    /// The table, with its index by value reference.
+    pub fn finish(self) -> VariableTable {
+        let max_vr = self
+            .variables
+            .iter()
+            .map(|v| v.value_reference)
+            .max()
+            .unwrap_or(0);
+        let mut by_vr = vec![0u16; max_vr as usize + 1];
+        for (i, v) in self.variables.iter().enumerate() {
+            by_vr[v.value_reference as usize] = (i + 1) as u16;
+        }
+        VariableTable {
+            variables: self.variables,
+            by_vr,
+        }
+    }
+
+    /// `min`/`max` of the variable added last.
+    pub fn bounds(&mut self, min: Option<Value>, max: Option<Value>) {
+        if let Some(v) = self.variables.last_mut() {
+            v.min = min;
+            v.max = max;
+        }
+    }
+
+    /// `min="0"` on a Real parameter that must be positive: FMI 2.0 has no open bound, so 0
+    /// itself passes the declared range and is rejected at initialization (`fmi2Error` at
+    /// `fmi2ExitInitializationMode` naming the parameter).
+    pub fn positive(&mut self) {
+        self.bounds(Some(Value::Real(0.0)), None);
+    }
+
+    /// `min="0"`: zero allowed.
+    pub fn non_negative(&mut self) {
+        self.bounds(Some(Value::Real(0.0)), None);
+    }
+
+    pub fn input(
+        &mut self,
+        name: &str,
+        vr: ValueReference,
+        ty: ValueType,
+        start: f64,
+        slot: InputSlot,
+        description: &str,
+    ) {
+        self.variables.push(Variable {
+            name: name.into(),
+            value_reference: vr,
+            description: description.into(),
+            causality: Causality::Input,
+            variability: Variability::Continuous,
+            initial: None,
+            value_type: ty,
+            start: Some(Value::Real(start)),
+            min: None,
+            max: None,
+            access: Access::Input(slot),
+            initial_dependencies: InitialDependencies::None,
+        });
+    }
+
+    pub fn output(
+        &mut self,
+        name: &str,
+        vr: ValueReference,
+        ty: ValueType,
+        get: OutputGetter,
+        deps: InitialDependencies,
+        description: &str,
+    ) {
+        self.variables.push(Variable {
+            name: name.into(),
+            value_reference: vr,
+            description: description.into(),
+            causality: Causality::Output,
+            variability: Variability::Continuous,
+            initial: Some(Initial::Calculated),
+            value_type: ty,
+            start: None,
+            min: None,
+            max: None,
+            access: Access::Output(get),
+            initial_dependencies: deps,
+        });
+    }
+
+    pub fn real_parameter(
+        &mut self,
+        name: &str,
+        vr: ValueReference,
+        ty: ValueType,
+        get: fn(&Scene) -> f64,
+        set: fn(&mut Scene, f64),
+        description: &str,
+    ) {
+        self.variables.push(Variable {
+            name: name.into(),
+            value_reference: vr,
+            description: description.into(),
+            causality: Causality::Parameter,
+            variability: Variability::Fixed,
+            initial: Some(Initial::Exact),
+            value_type: ty,
+            start: Some(Value::Real(get(self.scene))),
+            min: None,
+            max: None,
+            access: Access::RealParameter { get, set },
+            initial_dependencies: InitialDependencies::None,
+        });
+    }
+
+    pub fn integer_parameter(
+        &mut self,
+        name: &str,
+        vr: ValueReference,
+        ty: ValueType,
+        get: fn(&Scene) -> i32,
+        set: fn(&mut Scene, i32) -> Result<(), String>,
+        description: &str,
+    ) {
+        self.variables.push(Variable {
+            name: name.into(),
+            value_reference: vr,
+            description: description.into(),
+            causality: Causality::Parameter,
+            variability: Variability::Fixed,
+            initial: Some(Initial::Exact),
+            value_type: ty,
+            start: Some(Value::Integer(get(self.scene))),
+            min: None,
+            max: None,
+            access: Access::IntegerParameter { get, set },
+            initial_dependencies: InitialDependencies::None,
+        });
+    }
+
+    /// A calculated parameter (`rod.frequency[k]`).
+    pub fn calculated_parameter(
+        &mut self,
+        name: String,
+        vr: ValueReference,
+        ty: ValueType,
+        access: Access,
+        deps: InitialDependencies,
+        description: String,
+    ) {
+        self.variables.push(Variable {
+            name,
+            value_reference: vr,
+            description,
+            causality: Causality::CalculatedParameter,
+            variability: Variability::Fixed,
+            initial: Some(Initial::Calculated),
+            value_type: ty,
+            start: None,
+            min: None,
+            max: None,
+            access,
+            initial_dependencies: deps,
+        });
+    }
+}

@@ -1,0 +1,175 @@
+//! The FMU's enumeration types. Their items are the core's single name lists
+//! (`RodModelKind::ALL`, `ReferenceKind::ALL` with `name()`), numbered 1, 2, ... in that
+//! order; only the items' descriptions for `modelDescription.xml` are written here.
+
+use crate::scene::{ReferenceKind, RodModelKind};
+
+/// One item of an enumeration type.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EnumerationItem {
+    pub name: &'static str,
+    pub description: &'static str,
+}
+
+/// A core enumeration exported as an FMI enumeration type: its variants in code order.
+pub trait Kind: Copy + PartialEq + 'static {
+    /// Every variant; the FMI code of `ALL[i]` is `i + 1`.
+    const ALL: &'static [Self];
+    /// The name in scenes and in `modelDescription.xml`.
+    fn name(self) -> &'static str;
+    /// The item's description in `modelDescription.xml`.
+    fn description(self) -> &'static str;
+}
+
+impl Kind for RodModelKind {
+    const ALL: &'static [Self] = &RodModelKind::ALL;
+    fn name(self) -> &'static str {
+        RodModelKind::name(self)
+    }
+    fn description(self) -> &'static str {
+        match self {
+            RodModelKind::Ffr => "Floating frame of reference with component modes",
+            RodModelKind::Segments => {
+                "Rigid segments joined by rotational springs (finite segment method)"
+            }
+        }
+    }
+}
+
+impl Kind for ReferenceKind {
+    const ALL: &'static [Self] = &ReferenceKind::ALL;
+    fn name(self) -> &'static str {
+        ReferenceKind::name(self)
+    }
+    fn description(self) -> &'static str {
+        match self {
+            ReferenceKind::SimplySupported => {
+                "u = v = 0 at B, v = 0 at C; frame at B, x axis through C"
+            }
+            ReferenceKind::MeanAxis => {
+                "Free-free modes without the rigid-body modes; frame at the centre of mass"
+            }
+            ReferenceKind::BodyFixedMid => {
+                "All coordinates of the middle node zero (even number of elements)"
+            }
+            ReferenceKind::Cantilever => "All coordinates of the B node zero",
+        }
+    }
+}
+
+/// The FMI code (1-based) of a variant.
+pub fn code<K: Kind>(kind: K) -> i32 {
+    let position = K::ALL.iter().position(|&k| k == kind).unwrap_or(0);
+    i32::try_from(position + 1).unwrap_or(i32::MAX)
+}
+
+/// The variant of an FMI code, `None` outside 1..=ALL.len().
+pub fn from_code<K: Kind>(code: i32) -> Option<K> {
+    let index = usize::try_from(code).ok()?.checked_sub(1)?;
+    K::ALL.get(index).copied()
+}
+
+fn items<K: Kind>() -> Vec<EnumerationItem> {
+    K::ALL
+        .iter()
+        .map(|&k| EnumerationItem {
+            name: k.name(),
+            description: k.description(),
+        })
+        .collect()
+}
+
+/// An enumeration type of `modelDescription.xml` (`TypeDefinitions/SimpleType`).
+#[derive(Debug)]
+pub struct EnumerationType {
+    pub name: &'static str,
+    pub description: &'static str,
+    /// The items in code order, from the core's name list.
+    items: fn() -> Vec<EnumerationItem>,
+}
+
+impl PartialEq for EnumerationType {
+    /// Types are identified by their name (unique in a description).
+    fn eq(&self, other: &Self) -> bool {
+        self.name == other.name
+    }
+}
+
+impl EnumerationType {
+    /// The items; item `i` (0-based) has the value `i + 1`.
+    pub fn items(&self) -> Vec<EnumerationItem> {
+        (self.items)()
+    }
+
+    /// The largest code (the number of items).
+    pub fn max_code(&self) -> i32 {
+        i32::try_from(self.items().len()).unwrap_or(i32::MAX)
+    }
+
+    /// "1 = ffr, 2 = segments", for the description of an Integer twin.
+    pub fn codes_text(&self) -> String {
+        let items: Vec<String> = self
+            .items()
+            .iter()
+            .enumerate()
+            .map(|(i, item)| format!("{} = {}", i + 1, item.name))
+            .collect();
+        items.join(", ")
+    }
+
+    /// The description of the Integer twin of the Enumeration parameter `name`.
+    pub fn twin_description(&self, name: &str) -> String {
+        format!(
+            "{name} as an Integer, for importers that ignore Enumeration variables: {}. The same parameter as {name}: setting either sets both, the last value set wins",
+            self.codes_text()
+        )
+    }
+
+    /// "1 (ffr), 2 (segments)", for messages and descriptions.
+    pub fn allowed_text(&self) -> String {
+        let items: Vec<String> = self
+            .items()
+            .iter()
+            .enumerate()
+            .map(|(i, item)| format!("{} ({})", i + 1, item.name))
+            .collect();
+        items.join(", ")
+    }
+}
+
+/// `rod.model`.
+pub static ROD_MODEL: EnumerationType = EnumerationType {
+    name: "RodModel",
+    description: "Which model computes the connecting rod",
+    items: items::<RodModelKind>,
+};
+
+/// `rod.reference`.
+pub static ROD_REFERENCE: EnumerationType = EnumerationType {
+    name: "RodReference",
+    description: "Reference conditions of the FFR rod",
+    items: items::<ReferenceKind>,
+};
+
+/// Every enumeration type, in `TypeDefinitions` order.
+pub static ENUMERATION_TYPES: [&EnumerationType; 2] = [&ROD_MODEL, &ROD_REFERENCE];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn codes_follow_the_core_lists() {
+        for (i, &k) in ReferenceKind::ALL.iter().enumerate() {
+            assert_eq!(code(k), i as i32 + 1);
+            assert_eq!(from_code::<ReferenceKind>(code(k)), Some(k));
+            assert_eq!(ROD_REFERENCE.items()[i].name, k.name());
+        }
+        assert_eq!(from_code::<RodModelKind>(0), None);
+        assert_eq!(from_code::<RodModelKind>(3), None);
+        assert_eq!(from_code::<RodModelKind>(-1), None);
+        assert_eq!(ROD_MODEL.allowed_text(), "1 (ffr), 2 (segments)");
+        assert_eq!(ROD_MODEL.codes_text(), "1 = ffr, 2 = segments");
+        assert_eq!(ROD_REFERENCE.max_code(), 4);
+    }
+}

@@ -1,0 +1,288 @@
+//! The variable list: every variable of the FMU, its value reference, unit, start value,
+//! bounds and where its value lives. Names, units and signs are those of `fmu-contract.md`.
+
+use super::builder::{real, Builder, DIMENSIONLESS, RAD, RAD_PER_S};
+use super::enumerations::{self, ROD_MODEL, ROD_REFERENCE};
+use super::ranges::{
+    element_count, non_negative, set_model, set_reference, usize_to_i32, ELEMENTS_MAX,
+};
+use super::types::{Access, InitialDependencies, InputSlot, Value, ValueType};
+use super::{ValueReference, VariableTable, FREQUENCY_VR_BASE};
+use crate::scene::Scene;
+
+/// Parameters the rod's natural frequencies depend on.
+const FREQUENCY_KNOWNS: &[&str] = &[
+    "rod.length",
+    "rod.youngs_modulus",
+    "rod.density",
+    "rod.area",
+    "rod.area_moment",
+    "rod.model",
+    "rod.elements",
+    "rod.reference",
+    "rod.model_index",
+    "rod.reference_index",
+];
+
+impl VariableTable {
+    /// The table of `scene`, with `n_frequencies` calculated parameters `rod.frequency[k]`.
+    pub fn new(scene: &Scene, n_frequencies: usize) -> VariableTable {
+        use InitialDependencies as D;
+        let mut b = Builder::new(scene);
+        let exp = &scene.experiment;
+        let out = &scene.outputs;
+
+        // Inputs. Start values: the default experiment (constant crank speed from t = start).
+        b.input(
+            "crank.angle",
+            1,
+            RAD,
+            exp.crank_speed * exp.start_time,
+            InputSlot::CrankAngle,
+            "Crank angle theta at the communication point",
+        );
+        b.input("crank.speed", 2, RAD_PER_S, exp.crank_speed, InputSlot::CrankSpeed,
+            "Crank speed omega at the communication point (order-1 input derivative: crank acceleration)");
+        if out.slider_force {
+            b.input(
+                "slider.force",
+                3,
+                real("N"),
+                0.0,
+                InputSlot::SliderForce,
+                "External force on the slider along +x",
+            );
+        }
+
+        // Outputs. No direct feedthrough: outputs refer to the end of the last step.
+        b.output(
+            "rod.deflection",
+            10,
+            real("m"),
+            |o| o.deflection,
+            D::None,
+            "Midpoint deflection v_mid from the chord B->C, positive to the left of B->C",
+        );
+        b.output(
+            "rod.deflection_rel",
+            11,
+            DIMENSIONLESS,
+            |o| o.deflection_rel,
+            D::None,
+            "v_mid / L",
+        );
+        if out.pin_forces {
+            b.output(
+                "pinB.force_x",
+                12,
+                real("N"),
+                |o| o.pin_b_force[0],
+                D::All,
+                "Force of the rod on the crank pin B, global x",
+            );
+            b.output(
+                "pinB.force_y",
+                13,
+                real("N"),
+                |o| o.pin_b_force[1],
+                D::All,
+                "Force of the rod on the crank pin B, global y",
+            );
+            b.output(
+                "pinC.force_x",
+                14,
+                real("N"),
+                |o| o.pin_c_force[0],
+                D::All,
+                "Force of the rod on the slider at C, global x",
+            );
+            b.output(
+                "pinC.force_y",
+                15,
+                real("N"),
+                |o| o.pin_c_force[1],
+                D::All,
+                "Force of the rod on the slider at C, global y",
+            );
+        }
+        if out.crank_torque {
+            b.output(
+                "crank.torque",
+                16,
+                real("N.m"),
+                |o| o.crank_torque,
+                D::All,
+                "Drive torque about A that imposes the crank motion (massless crank)",
+            );
+        }
+        if out.slider {
+            b.output(
+                "slider.position",
+                17,
+                real("m"),
+                |o| o.slider_position,
+                D::Named(&["crank.angle", "crank.length", "rod.length"]),
+                "Slider position x_C",
+            );
+            b.output(
+                "slider.velocity",
+                18,
+                real("m/s"),
+                |o| o.slider_velocity,
+                D::Named(&["crank.angle", "crank.speed", "crank.length", "rod.length"]),
+                "Slider velocity",
+            );
+        }
+
+        // Parameters (fixed: settable until fmi2ExitInitializationMode).
+        b.real_parameter(
+            "crank.length",
+            100,
+            real("m"),
+            |s| s.crank.length,
+            |s, v| s.crank.length = v,
+            "Crank length r",
+        );
+        b.positive();
+        b.real_parameter(
+            "rod.length",
+            101,
+            real("m"),
+            |s| s.rod.length,
+            |s, v| s.rod.length = v,
+            "Rod length L",
+        );
+        b.positive();
+        b.real_parameter(
+            "rod.youngs_modulus",
+            102,
+            real("Pa"),
+            |s| s.rod.youngs_modulus,
+            |s, v| s.rod.youngs_modulus = v,
+            "Young's modulus E",
+        );
+        b.positive();
+        b.real_parameter(
+            "rod.density",
+            103,
+            real("kg/m3"),
+            |s| s.rod.density,
+            |s, v| s.rod.density = v,
+            "Density rho",
+        );
+        b.positive();
+        b.real_parameter(
+            "rod.area",
+            104,
+            real("m2"),
+            |s| s.rod.area,
+            |s, v| s.rod.area = v,
+            "Cross-section area A",
+        );
+        b.positive();
+        b.real_parameter(
+            "rod.area_moment",
+            105,
+            real("m4"),
+            |s| s.rod.area_moment,
+            |s, v| s.rod.area_moment = v,
+            "Second moment of area I",
+        );
+        b.positive();
+        b.real_parameter(
+            "rod.damping_ratio",
+            106,
+            DIMENSIONLESS,
+            |s| s.rod.damping_ratio,
+            |s, v| s.rod.damping_ratio = v,
+            "Modal damping ratio (0 = undamped)",
+        );
+        b.non_negative();
+        b.real_parameter(
+            "slider.mass",
+            107,
+            real("kg"),
+            |s| s.slider.mass,
+            |s, v| s.slider.mass = v,
+            "Slider mass m_s (0 allowed)",
+        );
+        b.non_negative();
+        b.integer_parameter(
+            "rod.model",
+            110,
+            ValueType::Enumeration(&ROD_MODEL),
+            |s| enumerations::code(s.rod.model),
+            set_model,
+            "Rod model: ffr or segments",
+        );
+        b.integer_parameter(
+            "rod.elements",
+            111,
+            ValueType::Integer,
+            |s| usize_to_i32(s.rod.elements),
+            |s, v| element_count(v).map(|n| s.rod.elements = n),
+            "Beam elements (FFR) or rigid segments (segments)",
+        );
+        b.bounds(Some(Value::Integer(1)), Some(Value::Integer(ELEMENTS_MAX)));
+        b.integer_parameter(
+            "rod.reference",
+            112,
+            ValueType::Enumeration(&ROD_REFERENCE),
+            |s| enumerations::code(s.rod.reference),
+            set_reference,
+            "Reference conditions (FFR)",
+        );
+        b.integer_parameter(
+            "rod.modes",
+            113,
+            ValueType::Integer,
+            |s| usize_to_i32(s.rod.modes),
+            |s, v| non_negative(v).map(|n| s.rod.modes = n),
+            "Retained modes (FFR), lowest first",
+        );
+        b.bounds(Some(Value::Integer(0)), None);
+
+        // Integer twins of the Enumeration parameters: masters that ignore Enumeration
+        // variables (libcosim, among others) can still switch the model and the reference
+        // conditions. Same getter and setter as the Enumeration: one value, two names.
+        b.integer_parameter(
+            "rod.model_index",
+            114,
+            ValueType::Integer,
+            |s| enumerations::code(s.rod.model),
+            set_model,
+            &ROD_MODEL.twin_description("rod.model"),
+        );
+        b.bounds(
+            Some(Value::Integer(1)),
+            Some(Value::Integer(ROD_MODEL.max_code())),
+        );
+        b.integer_parameter(
+            "rod.reference_index",
+            115,
+            ValueType::Integer,
+            |s| enumerations::code(s.rod.reference),
+            set_reference,
+            &ROD_REFERENCE.twin_description("rod.reference"),
+        );
+        b.bounds(
+            Some(Value::Integer(1)),
+            Some(Value::Integer(ROD_REFERENCE.max_code())),
+        );
+
+        // Calculated parameters.
+        for k in 1..=n_frequencies {
+            b.calculated_parameter(
+                format!("rod.frequency[{k}]"),
+                FREQUENCY_VR_BASE + k as ValueReference,
+                real("Hz"),
+                Access::Frequency(k - 1),
+                D::Named(FREQUENCY_KNOWNS),
+                format!(
+                    "Natural frequency {k} of the rod under its reference conditions (retained or not)"
+                ),
+            );
+        }
+        b.finish()
+    }
+}

@@ -1,0 +1,74 @@
+//! The range checks of the Integer and Enumeration parameters at the set call
+//! (`fmi2SetInteger`). An `Err` carries the allowed values for the message; the physical
+//! ranges are checked when the model is built (`Simulation::new`).
+
+use super::enumerations::{self, EnumerationType, Kind, ROD_MODEL, ROD_REFERENCE};
+use crate::beam::mesh::MAX_ELEMENTS;
+use crate::scene::{ReferenceKind, RodModelKind, Scene};
+
+/// `rod.elements`: the largest value, as the FMI Integer of the `max` attribute.
+pub const ELEMENTS_MAX: i32 = MAX_ELEMENTS as i32;
+
+/// A count as an FMI Integer (saturating).
+pub fn usize_to_i32(n: usize) -> i32 {
+    i32::try_from(n).unwrap_or(i32::MAX)
+}
+
+/// A count `>= 0`.
+pub fn non_negative(value: i32) -> Result<usize, String> {
+    usize::try_from(value).map_err(|_| "an integer >= 0".to_string())
+}
+
+/// `rod.elements`: the core's mesh takes 1..=MAX_ELEMENTS elements.
+pub fn element_count(value: i32) -> Result<usize, String> {
+    match usize::try_from(value) {
+        Ok(n) if (1..=MAX_ELEMENTS).contains(&n) => Ok(n),
+        _ => Err(format!("an integer in 1..={MAX_ELEMENTS}")),
+    }
+}
+
+/// The variant of an enumeration code, or the allowed items.
+fn kind<K: Kind>(ty: &EnumerationType, value: i32) -> Result<K, String> {
+    enumerations::from_code(value).ok_or_else(|| ty.allowed_text())
+}
+
+/// `rod.model`: 1 (ffr), 2 (segments).
+pub fn set_model(scene: &mut Scene, value: i32) -> Result<(), String> {
+    scene.rod.model = kind::<RodModelKind>(&ROD_MODEL, value)?;
+    Ok(())
+}
+
+/// `rod.reference`: 1 (simply_supported) .. 4 (cantilever).
+pub fn set_reference(scene: &mut Scene, value: i32) -> Result<(), String> {
+    scene.rod.reference = kind::<ReferenceKind>(&ROD_REFERENCE, value)?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn enumeration_setters_check_items() {
+        let mut scene = Scene::benchmark();
+        assert!(set_model(&mut scene, 2).is_ok());
+        assert_eq!(scene.rod.model, RodModelKind::Segments);
+        assert_eq!(
+            set_model(&mut scene, 3).unwrap_err(),
+            "1 (ffr), 2 (segments)"
+        );
+        assert!(set_reference(&mut scene, 0).is_err());
+        assert!(set_reference(&mut scene, 4).is_ok());
+        assert_eq!(scene.rod.reference, ReferenceKind::Cantilever);
+    }
+
+    #[test]
+    fn element_counts() {
+        assert_eq!(element_count(1), Ok(1));
+        assert_eq!(element_count(ELEMENTS_MAX), Ok(MAX_ELEMENTS));
+        assert!(element_count(0).is_err());
+        assert!(element_count(ELEMENTS_MAX + 1).is_err());
+        assert!(element_count(-3).is_err());
+        assert!(non_negative(-1).is_err());
+    }
+}
