@@ -20,7 +20,7 @@
 
 // Index loops are the natural notation for the matrix formulas of the papers.
 #![allow(clippy::needless_range_loop)]
-// `unsafe` lives in one file, the C boundary (`fmi/ffi.rs`, allowed there alone).
+// `unsafe` lives in one module, the C boundary (`fmi/ffi/`, allowed there alone).
 #![deny(unsafe_code)]
 
 pub mod beam;

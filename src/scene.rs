@@ -91,7 +91,9 @@ impl Default for ExperimentSpec {
     fn default() -> Self {
         ExperimentSpec {
             start_time: 0.0,
-            stop_time: 4.0 * std::f64::consts::PI / 150.0,
+            // Two revolutions at 150 rad/s rounded to the 1e-4 s step grid (838 steps): fixed-step
+            // masters need a stop time on the grid.
+            stop_time: 0.0838,
             step_size: 1e-4,
             crank_speed: 150.0,
         }

@@ -270,6 +270,17 @@ impl VariableTable {
             Some(Value::Integer(ROD_REFERENCE.max_code())),
         );
 
+        // The integrator's accuracy: the error control chooses the internal steps.
+        b.real_parameter(
+            "solver.tolerance",
+            116,
+            DIMENSIONLESS,
+            |s| s.solver.tolerance,
+            |s, v| s.solver.tolerance = v,
+            "Accuracy of the integration (solver.method auto or dopri5): pointwise error of the deflection relative to its peak, in (0, 0.1]",
+        );
+        b.bounds(Some(Value::Real(0.0)), Some(Value::Real(0.1)));
+
         // Calculated parameters.
         for k in 1..=n_frequencies {
             b.calculated_parameter(
