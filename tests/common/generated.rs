@@ -141,6 +141,12 @@ pub fn sig(x: f64, digits: usize) -> String {
     }
 }
 
+/// `x` to `digits` significant digits, always as `m.me-k` (Rust's form: 1.5e-5, 2.1e5).
+pub fn sci(x: f64, digits: usize) -> String {
+    assert!(digits >= 1);
+    format!("{:.*e}", digits - 1, x)
+}
+
 /// `100 x` to `digits` significant digits followed by " %".
 pub fn percent(x: f64, digits: usize) -> String {
     format!("{} %", sig(100.0 * x, digits))
