@@ -162,11 +162,24 @@ pub fn signed_percent(x: f64, digits: usize) -> String {
     }
 }
 
-/// A round-off level number: `< bound` when below it, else [`sig`] to one digit.
+/// A round-off level number: "0" when exactly zero, `< bound` when below the bound, else
+/// [`sci`] to two digits.
 pub fn below(x: f64, bound: f64) -> String {
+    if x == 0.0 {
+        "0".into()
+    } else if x.abs() < bound {
+        format!("< {}", sig(bound, 1))
+    } else {
+        sci(x, 2)
+    }
+}
+
+/// A round-off level number that may or may not come out exactly zero: `< bound` when below
+/// the bound (zero included), else [`sci`] to two digits.
+pub fn under(x: f64, bound: f64) -> String {
     if x.abs() < bound {
         format!("< {}", sig(bound, 1))
     } else {
-        sig(x, 1)
+        sci(x, 2)
     }
 }

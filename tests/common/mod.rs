@@ -15,4 +15,5 @@ pub mod generated;
 pub mod runs;
 pub mod seeds;
 
+#[allow(unused_imports)]
 pub use generated::check_generated;

@@ -100,8 +100,31 @@ pub fn drive_visit(
     scene: &Scene,
     times: &[f64],
     slider_force: f64,
+    input: impl FnMut(usize, f64) -> CrankInput,
+    visit: impl FnMut(&Simulation),
+) -> Run {
+    drive_loop(scene, times, slider_force, input, visit, true)
+}
+
+/// [`drive_visit`] for long runs: the record keeps only the first and the last point (and
+/// every warning); the visitor sees every point.
+pub fn visit_only(
+    scene: &Scene,
+    times: &[f64],
+    slider_force: f64,
+    input: impl FnMut(usize, f64) -> CrankInput,
+    visit: impl FnMut(&Simulation),
+) -> Run {
+    drive_loop(scene, times, slider_force, input, visit, false)
+}
+
+fn drive_loop(
+    scene: &Scene,
+    times: &[f64],
+    slider_force: f64,
     mut input: impl FnMut(usize, f64) -> CrankInput,
     mut visit: impl FnMut(&Simulation),
+    keep_all: bool,
 ) -> Run {
     let mut sim = Simulation::new(scene).unwrap_or_else(|e| panic!("{e}"));
     let t0 = times[0];
@@ -134,6 +157,11 @@ pub fn drive_visit(
             record.warnings.push((t_next, w));
         }
         visit(&sim);
+        if !keep_all && record.times.len() > 1 {
+            record.times.pop();
+            record.inputs.pop();
+            record.outputs.pop();
+        }
         record.times.push(t_next);
         record.inputs.push(input(k + 1, t_next));
         record.outputs.push(sim.outputs());
