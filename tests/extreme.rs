@@ -667,7 +667,7 @@ fn long_run(revs: usize) -> String {
                 let (b, c) = constraint_drift(sim);
                 drift_b = drift_b.max(b);
                 drift_c = drift_c.max(c);
-                if k % per_rev == 0 {
+                if k.is_multiple_of(per_rev) {
                     energies.push(energy(sim));
                 }
             }
