@@ -4,10 +4,11 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use flexrod::beam::RodProperties;
+use flexrod::drive::{self, communication_grid, CrankDrive};
 use flexrod::modal::{ComponentModes, ModeSelection, ReferenceConditions};
 use flexrod::rod::ffr::FfrRod;
 use flexrod::scene::{MassKind, SolverMethod};
-use flexrod::{CrankInput, Scene, Simulation};
+use flexrod::{Scene, Simulation};
 use std::hint::black_box;
 
 fn preprocessing(c: &mut Criterion) {
@@ -32,26 +33,13 @@ fn preprocessing(c: &mut Criterion) {
 fn two_revolutions(c: &mut Criterion, name: &str, scene: Scene, comm_step: f64) {
     let w = 150.0;
     let stop = 4.0 * std::f64::consts::PI / w;
+    let grid = communication_grid(0.0, comm_step, (stop / comm_step).round() as usize);
+    let law = CrankDrive::Constant { speed: w };
     let mut sim = Simulation::new(&scene).unwrap();
     c.bench_function(name, |b| {
         b.iter(|| {
-            sim.start(
-                0.0,
-                CrankInput {
-                    angle: 0.0,
-                    speed: w,
-                    acceleration: 0.0,
-                },
-                0.0,
-            )
-            .unwrap();
-            let n = (stop / comm_step).round() as usize;
-            let mut peak: f64 = 0.0;
-            for _ in 0..n {
-                sim.advance(comm_step).unwrap();
-                peak = peak.max(sim.outputs().deflection_rel.abs());
-            }
-            black_box(peak)
+            let record = drive::run(&mut sim, &law, 0.0, &grid).unwrap();
+            black_box(record.peak_deflection_rel())
         })
     });
 }

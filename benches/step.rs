@@ -8,6 +8,7 @@ use std::ffi::CString;
 use std::ptr;
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use flexrod::drive::{self, communication_grid, CrankDrive};
 use flexrod::fmi::ffi::{self, fmi2CallbackFunctions};
 use flexrod::fmi::ModelDescription;
 use flexrod::{CrankInput, Scene, Simulation};
@@ -62,27 +63,20 @@ fn one_step(c: &mut Criterion) {
 
 fn one_revolution(c: &mut Criterion) {
     let scene = Scene::benchmark();
-    let h = scene.solver.step;
-    let n = (2.0 * std::f64::consts::PI / W / h).round() as usize;
+    let dt = 1e-4;
+    let grid = communication_grid(
+        0.0,
+        dt,
+        (2.0 * std::f64::consts::PI / W / dt).round() as usize,
+    );
+    let law = CrankDrive::Constant { speed: W };
     let mut sim = Simulation::new(&scene).unwrap();
     c.bench_function(
         "one revolution at 150 rad/s (default scene, outputs every 1e-4 s)",
         |b| {
             b.iter(|| {
-                sim.start(
-                    0.0,
-                    CrankInput {
-                        angle: 0.0,
-                        speed: W,
-                        acceleration: 0.0,
-                    },
-                    0.0,
-                )
-                .unwrap();
-                for _ in 0..n {
-                    sim.advance(h).unwrap();
-                }
-                black_box(sim.outputs().deflection_rel)
+                let record = drive::run(&mut sim, &law, 0.0, &grid).unwrap();
+                black_box(record.peak_deflection_rel())
             })
         },
     );

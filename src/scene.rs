@@ -23,7 +23,7 @@ pub use crate::rod::{RodModelKind, RodSpec};
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Scene {
-    /// Short identifier; also the FMU's `modelIdentifier` unless `[fmu] model_identifier` says otherwise.
+    /// Short identifier; also the FMU's `modelIdentifier`.
     pub name: String,
     /// One line shown in modelDescription.xml and the documentation.
     #[serde(default)]

@@ -3,7 +3,7 @@
 //! This is the whole surface the FMI layer (and the command-line tools) use. It knows
 //! nothing of FMI: times in s, angles in rad, forces in N.
 //!
-//! Input law between communication points (fmu-contract.md, "Behaviour"):
+//! Input law between communication points (docs/fmu.md, "Behaviour"):
 //! `theta(t_k + s) = theta_k + omega_k s + alpha_k s^2 / 2`, `omega(t_k + s) = omega_k + alpha_k s`.
 
 use crate::error::ModelError;
@@ -96,7 +96,7 @@ impl Simulation {
         Ok(self.state.stats)
     }
 
-    /// Outputs at the current time (physics.md, "Output definitions").
+    /// Outputs at the current time (docs/physics.md, "Output definitions").
     pub fn outputs(&self) -> Outputs {
         self.state.outputs
     }

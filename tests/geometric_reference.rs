@@ -1,7 +1,7 @@
 //! The FFR rod against a geometrically exact reference (tests/data/exudyn_ancf_150rad_s.csv:
 //! Exudyn ANCF cable, 32/64 elements, converged to < 1e-5 of the peak). Issue 3's target:
 //! with axial stiffening and a handful of modes, the peak |v_mid/L| within 0.5 %; linear modes
-//! overshoot it by about 10 % (physics.md, "What linear modes miss"). Pointwise, the stiffened
+//! overshoot it by about 10 % (docs/physics.md, "What linear modes miss"). Pointwise, the stiffened
 //! rod follows the exact beam to 0.16 % in the default scene (RK4, h = 3e-4 s); with
 //! generalized-alpha to 0.35 % at h = 5e-5 s, 1 % at h = 1e-4 s and 0.15 % at h = 1e-5 s.
 

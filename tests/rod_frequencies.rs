@@ -1,4 +1,4 @@
-//! The six frequency lists of physics.md (seeds 000 and 001, 2 elements, consistent mass).
+//! The six frequency lists of docs/physics.md (seeds 000 and 001, 2 elements, consistent mass).
 
 use flexrod::beam::RodProperties;
 use flexrod::modal::{ComponentModes, ModeSelection, ReferenceConditions};
@@ -61,7 +61,7 @@ fn seed001_simply_supported() {
 
 #[test]
 fn seed001_free_free() {
-    // physics.md: seed 001's 980.7 and 3918 Hz are 980.58 and 3917.25 Hz for these data.
+    // docs/physics.md: seed 001's 980.7 and 3918 Hz are 980.58 and 3917.25 Hz for these data.
     let f = frequencies(seeds::SEED001_DENSITY, ReferenceConditions::MeanAxis);
     check_four_digits("seed 001 free-free", &f, &seeds::SEED001_FREE_FREE);
     assert!(

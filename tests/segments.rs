@@ -1,4 +1,4 @@
-//! The finite segment rod (seed 002, 002_e6c2c81d944c25fc.txt; physics.md, "Rod model 2"):
+//! The finite segment rod (seed 002, 002_e6c2c81d944c25fc.txt; docs/physics.md, "Rod model 2"):
 //! consistency of the body's equations, seed 002's axial convergence table, bending
 //! convergence, centrifugal stiffening, the slider-crank against the FFR rod, energy and
 //! momentum balances, and a run with the default solver settings.

@@ -4,16 +4,17 @@
 //!
 //! The communication points follow FMPy's `simulate_fmu` (and the Python tests): fixed
 //! steps at `start + (k+1) dt`, the last one shortened to end at the stop time; with
-//! `--steps`, t_{k+1} = t_k + h_(k mod n). Crank law (s = t - start):
-//! `theta = theta_0 + omega_0 s + 0.5 alpha s s`, `omega = omega_0 + alpha s`.
+//! `--steps`, t_{k+1} = t_k + h_(k mod n). Crank law from `t = 0`:
+//! `theta = omega_0 t + 0.5 alpha t t`, `omega = omega_0 + alpha t`.
 
 use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
+use flexrod::drive::{self, CrankDrive};
 use flexrod::fmi::variables::OutputGetter;
 use flexrod::fmi::VariableTable;
-use flexrod::{CrankInput, Outputs, Scene, Simulation, StepStats};
+use flexrod::{Outputs, Scene, Simulation, StepStats};
 
 /// How the experiment is driven.
 pub struct Options {
@@ -39,54 +40,49 @@ fn isclose(a: f64, b: f64) -> bool {
     a == b || (a - b).abs() <= 1e-9 * a.abs().max(b.abs())
 }
 
-/// Run the default experiment of `scene`.
-pub fn run(scene: &Scene, options: &Options) -> Result<Run, String> {
-    let e = &scene.experiment;
-    let (start, stop, dt) = (e.start_time, e.stop_time, e.step_size);
-    let (theta0, omega0, alpha) = (e.crank_speed * start, e.crank_speed, options.accel);
-    let input_at = |t: f64| {
-        let s = t - start;
-        CrankInput {
-            angle: theta0 + omega0 * s + 0.5 * alpha * s * s,
-            speed: omega0 + alpha * s,
-            acceleration: alpha,
-        }
-    };
-
-    let clock = Instant::now();
-    let mut simulation = Simulation::new(scene).map_err(|e| e.to_string())?;
-    simulation
-        .start(start, input_at(start), 0.0)
-        .map_err(|e| format!("start at t = {start} s: {e}"))?;
+/// The communication points of the experiment `start..stop` as FMPy's `simulate_fmu` steps:
+/// `start + (k+1) dt`, the last one shortened to end at `stop`; with `steps`,
+/// `t_{k+1} = t_k + h_(k mod n)`.
+pub fn communication_points(start: f64, stop: f64, dt: f64, steps: Option<&[f64]>) -> Vec<f64> {
     let mut times = vec![start];
-    let mut outputs = vec![simulation.outputs()];
-
     let mut time = start;
     let mut n: usize = 0;
     while !(time > stop || isclose(time, stop)) {
-        let mut next = match &options.steps {
+        let mut next = match steps {
             None => start + (n + 1) as f64 * dt,
             Some(steps) => time + steps[n % steps.len()],
         };
         if next > stop && !isclose(next, stop) {
             next = stop;
         }
-        let h = next - time;
-        simulation
-            .set_input(input_at(time))
-            .map_err(|e| format!("input at t = {time} s: {e}"))?;
-        simulation
-            .advance(h)
-            .map_err(|e| format!("step {n} at t = {time} s: {e}"))?;
         time = next;
         n += 1;
         times.push(time);
-        outputs.push(simulation.outputs());
     }
+    times
+}
+
+/// Run the default experiment of `scene`: constant crank acceleration `options.accel` from
+/// the scene's crank speed at `t = 0` (`flexrod::drive::CrankDrive::UniformAcceleration`).
+pub fn run(scene: &Scene, options: &Options) -> Result<Run, String> {
+    let e = &scene.experiment;
+    let times = communication_points(
+        e.start_time,
+        e.stop_time,
+        e.step_size,
+        options.steps.as_deref(),
+    );
+    let law = CrankDrive::UniformAcceleration {
+        speed: e.crank_speed,
+        acceleration: options.accel,
+    };
+    let clock = Instant::now();
+    let mut simulation = Simulation::new(scene).map_err(|e| e.to_string())?;
+    let record = drive::run(&mut simulation, &law, 0.0, &times).map_err(|e| e.to_string())?;
     Ok(Run {
-        times,
-        outputs,
-        stats: simulation.stats(),
+        times: record.times,
+        outputs: record.outputs,
+        stats: record.stats,
         wall_seconds: clock.elapsed().as_secs_f64(),
         frequencies_hz: simulation.frequencies_hz().to_vec(),
         integrator: simulation.mechanism().integrator_name(),

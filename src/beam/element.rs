@@ -3,7 +3,7 @@
 //! Coordinates, in the element's own axis (which is parallel to the body frame's x axis):
 //! `e = [u1, v1, theta1, u2, v2, theta2]` (axial, transverse, slope at each node).
 //! Shape functions, with `xi = x / l` in [0, 1] (Shabana, *Dynamics of Multibody Systems*,
-//! eq. 6.13 restricted to the plane; seed 000, eq. 3.1):
+//! eq. 6.13 restricted to the plane; seed 000, eq. 5.1-5.2):
 //! `u = (1 - xi) u1 + xi u2`,
 //! `v = (1 - 3 xi^2 + 2 xi^3) v1 + l (xi - 2 xi^2 + xi^3) theta1 + (3 xi^2 - 2 xi^3) v2 + l (xi^3 - xi^2) theta2`.
 //! Linear axial, cubic (Hermite) transverse.

@@ -1,4 +1,4 @@
-//! The prescribed crank (fmu-contract.md, "Behaviour"):
+//! The prescribed crank (docs/fmu.md, "Behaviour"):
 //! `theta(t) = theta_k + omega_k s + alpha_k s^2 / 2`, `s = t - t_k`; pin B at
 //! `r (cos theta, sin theta)`.
 

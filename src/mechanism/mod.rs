@@ -1,4 +1,4 @@
-//! The planar slider-crank with a flexible rod (physics.md, "The mechanism", "Joints,
+//! The planar slider-crank with a flexible rod (docs/physics.md, "The mechanism", "Joints,
 //! constraints, reaction forces", "Output definitions").
 
 pub mod crank;

@@ -1,4 +1,4 @@
-//! The outputs of the slider-crank (physics.md, "Output definitions and sign conventions").
+//! The outputs of the slider-crank (docs/physics.md, "Output definitions and sign conventions").
 
 /// Outputs at one time. Forces in the global frame, N; lengths in m.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]

@@ -32,7 +32,7 @@ impl Default for SliderSpec {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "snake_case")]
 pub enum StartDeflection {
-    /// Undeformed, moving rigidly with the crank (physics.md, "Initial state").
+    /// Undeformed, moving rigidly with the crank (docs/physics.md, "Initial state").
     #[default]
     Undeformed,
     /// Deflected by the inertia loads of the start motion, with no elastic velocity or

@@ -1,4 +1,4 @@
-//! Starting the slider-crank (physics.md of the docs, "Initial state"): the rod undeformed
+//! Starting the slider-crank (docs/physics.md, "Initial state"): the rod undeformed
 //! and moving rigidly with the crank, or deflected quasi-statically by the inertia loads of the
 //! start motion; positions, velocities, accelerations and joint forces consistent.
 

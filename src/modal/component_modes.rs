@@ -1,7 +1,7 @@
 //! The rod's component modes: mesh + reference conditions + eigenproblem + selection.
 //!
 //! Deformation field in the body frame: `u_f(x) = S(x) B_r Phi p = S_hat(x) p`
-//! (seed 000, eq. 4.1-4.6).
+//! (seed 000, eq. 4.4 and the modal transformation eq. 6.1).
 
 use faer::Mat;
 

@@ -9,7 +9,7 @@ use crate::beam::RodMesh;
 use crate::error::ModelError;
 use serde::{Deserialize, Serialize};
 
-/// Reference conditions of the FFR rod (physics.md, "Rod model 1").
+/// Reference conditions of the FFR rod (docs/physics.md, "Rod model 1").
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ReferenceKind {
@@ -55,7 +55,7 @@ pub enum ReferenceConditions {
     SimplySupported,
     /// Free-free modes with the three rigid-body modes removed; frame at the centre of mass.
     /// The retained modes satisfy the mean-axis conditions (zero linear and angular momentum
-    /// of deformation; seed 000 section 3.2, eq. 3.14-3.15, and section 5.2).
+    /// of deformation; seed 000 section 3.2, eq. 3.6-3.7 and 5.3-5.4, and section 5.2).
     MeanAxis,
     /// All three coordinates of node `node` zero (node N/2 = midpoint, node 0 = cantilever at B);
     /// frame at that node.

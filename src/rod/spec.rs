@@ -62,7 +62,7 @@ pub struct RodSpec {
     /// Consistent or lumped element mass (FFR only).
     #[serde(default)]
     pub mass: MassKind,
-    /// Axial force acting on bending (geometric stiffness); physics.md, "What linear modes miss".
+    /// Axial force acting on bending (geometric stiffness); docs/physics.md, "What linear modes miss".
     #[serde(default = "default_true")]
     pub axial_stiffening: bool,
     /// Segments only: keep the axial springs E A / l (prismatic joints) between segments.

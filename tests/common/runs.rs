@@ -208,7 +208,7 @@ pub fn max_diff(a: &[f64], b: &[f64]) -> f64 {
         .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
 }
 
-/// Largest pointwise |delta v_mid/L| relative to the reference's peak (physics.md, "How error
+/// Largest pointwise |delta v_mid/L| relative to the reference's peak (docs/physics.md, "How error
 /// is measured"), on the same communication points.
 pub fn deflection_error(record: &Record, reference: &Record) -> f64 {
     assert_eq!(record.times.len(), reference.times.len(), "different grids");

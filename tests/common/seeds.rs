@@ -1,4 +1,4 @@
-//! The frequency tables of the seeds (physics.md, "Verification: frequencies and closed
+//! The frequency tables of the seeds (docs/physics.md, "Verification: frequencies and closed
 //! forms"): the connecting rod in 2 elements, consistent mass, Hz.
 
 /// Seed 001's benchmark rod density, kg/m^3 (the default scene's).
@@ -10,7 +10,7 @@ pub const SEED000_DENSITY: f64 = 8143.1;
 /// Seed 001, simply supported (printed to 4 significant digits).
 pub const SEED001_SIMPLY_SUPPORTED: [f64; 6] = [138.5, 612.3, 1539.0, 2806.0, 4323.0, 15100.0];
 
-/// Seed 001, free-free (4 significant digits; physics.md: its 980.7 and 3918 Hz are 980.58 and
+/// Seed 001, free-free (4 significant digits; docs/physics.md: its 980.7 and 3918 Hz are 980.58 and
 /// 3917.25 Hz for these data).
 pub const SEED001_FREE_FREE: [f64; 6] = [313.3, 980.6, 2452.0, 3917.0, 9294.0, 18590.0];
 

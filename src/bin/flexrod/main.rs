@@ -12,10 +12,11 @@ use std::time::Instant;
 
 mod svg_plot;
 
+use flexrod::drive::{self, communication_grid, CrankDrive};
 use flexrod::modal::shape_integrals::point_shape;
 use flexrod::modal::{ComponentModes, ModeSelection, ReferenceConditions};
 use flexrod::scene::{RodModelKind, Scene};
-use flexrod::{CrankInput, Simulation};
+use flexrod::Simulation;
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -130,91 +131,20 @@ fn modes(args: &[String]) -> Result<(), String> {
     Ok(())
 }
 
-/// The crank motion: constant speed, a smooth start ramp, or a CSV of (t, angle, speed).
-enum Drive {
-    Constant(f64),
-    /// Speed rises as w (1 - cos(pi t / T)) / 2 over T seconds.
-    Ramp {
-        speed: f64,
-        time: f64,
-    },
-    Table(Vec<[f64; 3]>),
-}
-
-impl Drive {
-    fn at(&self, t: f64) -> CrankInput {
-        match self {
-            Drive::Constant(w) => CrankInput {
-                angle: w * t,
-                speed: *w,
-                acceleration: 0.0,
-            },
-            Drive::Ramp { speed, time } => {
-                if t >= *time {
-                    let angle0 = 0.5 * speed * time;
-                    CrankInput {
-                        angle: angle0 + speed * (t - time),
-                        speed: *speed,
-                        acceleration: 0.0,
-                    }
-                } else {
-                    let k = std::f64::consts::PI / time;
-                    CrankInput {
-                        angle: 0.5 * speed * (t - (k * t).sin() / k),
-                        speed: 0.5 * speed * (1.0 - (k * t).cos()),
-                        acceleration: 0.5 * speed * k * (k * t).sin(),
-                    }
-                }
-            }
-            Drive::Table(rows) => {
-                let i = rows.partition_point(|r| r[0] <= t).clamp(1, rows.len() - 1);
-                let (a, b) = (rows[i - 1], rows[i]);
-                let u = ((t - a[0]) / (b[0] - a[0])).clamp(0.0, 1.0);
-                CrankInput {
-                    angle: a[1] + u * (b[1] - a[1]),
-                    speed: a[2] + u * (b[2] - a[2]),
-                    acceleration: (b[2] - a[2]) / (b[0] - a[0]),
-                }
-            }
-        }
-    }
-}
-
 fn simulate(args: &[String]) -> Result<(), String> {
     let (scene, flags) = parse(args)?;
     let speed = number(&flags, "speed", scene.experiment.crank_speed)?;
     let dt = number(&flags, "step", scene.experiment.step_size)?;
     let drive = if let Some(path) = flag(&flags, "input") {
         let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
-        let rows: Vec<[f64; 3]> = text
-            .lines()
-            .filter(|l| {
-                l.chars()
-                    .next()
-                    .is_some_and(|c| c.is_ascii_digit() || c == '-' || c == '.')
-            })
-            .map(|l| {
-                let v: Vec<f64> = l.split(',').filter_map(|x| x.trim().parse().ok()).collect();
-                if v.len() >= 3 {
-                    Ok([v[0], v[1], v[2]])
-                } else {
-                    Err(format!("{path}: a row needs t, angle, speed: {l}"))
-                }
-            })
-            .collect::<Result<_, _>>()?;
-        if rows.len() < 2 {
-            return Err(format!(
-                "{path}: needs at least two rows of t, angle, speed"
-            ));
-        }
-        Drive::Table(rows)
+        CrankDrive::table_from_csv(&text, path).map_err(|e| e.to_string())?
     } else if let Some(t) = flag(&flags, "ramp") {
-        Drive::Ramp {
+        CrankDrive::Ramp {
             speed,
             time: t.parse().map_err(|_| "--ramp: not a number")?,
         }
     } else {
-        Drive::Constant(speed)
+        CrankDrive::Constant { speed }
     };
     let revolutions = number(&flags, "revolutions", 0.0)?;
     let stop = if revolutions > 0.0 {
@@ -224,27 +154,19 @@ fn simulate(args: &[String]) -> Result<(), String> {
     };
     let mut sim = Simulation::new(&scene).map_err(|e| e.to_string())?;
     let t0 = scene.experiment.start_time;
-    sim.start(t0, drive.at(t0), 0.0)
-        .map_err(|e| e.to_string())?;
-    let mut rows = vec![(t0, drive.at(t0), sim.outputs())];
     let n = ((stop - t0) / dt).round().max(1.0) as usize;
     let wall = Instant::now();
-    for k in 0..n {
-        let t = t0 + k as f64 * dt;
-        sim.set_input(drive.at(t)).map_err(|e| e.to_string())?;
-        sim.advance(t0 + (k + 1) as f64 * dt - sim.time())
-            .map_err(|e| e.to_string())?;
-        for w in sim.take_warnings() {
-            eprintln!("warning: {w}");
-        }
-        rows.push((sim.time(), drive.at(sim.time()), sim.outputs()));
-    }
+    let record = drive::run(&mut sim, &drive, 0.0, &communication_grid(t0, dt, n))
+        .map_err(|e| e.to_string())?;
     let elapsed = wall.elapsed().as_secs_f64();
-    let stats = sim.stats();
-    let peak = rows
-        .iter()
-        .map(|r| r.2.deflection_rel.abs())
-        .fold(0.0, f64::max);
+    for (t, w) in &record.warnings {
+        eprintln!("warning after t = {t} s: {w}");
+    }
+    let stats = record.stats;
+    let rows: Vec<_> = (0..record.times.len())
+        .map(|k| (record.times[k], record.inputs[k], record.outputs[k]))
+        .collect();
+    let peak = record.peak_deflection_rel();
     let peak_b = rows
         .iter()
         .map(|r| r.2.pin_b_force[0].hypot(r.2.pin_b_force[1]))

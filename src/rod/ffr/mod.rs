@@ -1,6 +1,8 @@
 //! The floating frame of reference rod: rigid frame `(R, phi)` plus modal coordinates `p`
-//! (seed 000, sections 4-5; physics.md, "Rod model 1").
+//! (seed 000, sections 4-5; docs/physics.md, "Rod model 1").
 
+pub mod points;
 pub mod rod;
+pub mod stiffening;
 
 pub use rod::FfrRod;

@@ -4,7 +4,7 @@
 //! (rad, counter-clockwise), modal amplitudes p (unit modal mass). A material point at
 //! undeformed body-frame position `xbar` is at `r = R + A(phi) (xbar + S_hat p)`.
 //!
-//! Mass matrix (seed 000, eq. 5.7-5.10; physics.md; re-derived from
+//! Mass matrix (seed 000, eq. 3.17-3.18, in modal form eq. 6.2; docs/physics.md; re-derived from
 //! `T = 1/2 int rho r'.r'` with `r' = R' + phi' A I~ ubar + A S_hat p'`):
 //! `M_RR = m I`, `M_Rphi = A I~ (I1 + I2 p)`, `M_Rp = A I2`,
 //! `M_phiphi = I3 + 2 I4 p + p^T M_uu p` (M_uu = M_ff without nodal rotary inertia), `M_phip = -(I5 + p^T S~) + I_rot`, `M_pp = M_ff`.
@@ -14,62 +14,31 @@
 //! `Qv_p = phi'^2 (I4^T + M_ff p) - 2 phi' S~ p'`.
 //! Elastic and damping forces `-K p - D p'`, `K = diag(w_i^2)`, `D = diag(2 zeta w_i)`.
 //!
-//! Axial stiffening (physics.md, "What linear modes miss"): a bending rod's material points
-//! move towards B by the foreshortening `1/2 int_0^s v'^2`, second order in the deflection,
-//! which linear modes leave out. Two works through it make the stiffening, both kept here
-//! with bending modes only (no axial modes needed, no locking):
-//! - the axial inertia of the rigid frame motion through the distributed foreshortening: the
-//!   axial force `N(s) = -rho A int_s^L a_x ds'`, `a_x(s) = e.R'' - phi'^2 (x_b + s)`, a quadratic
-//!   `n0 + n1 s + n2 s^2`, acting as the geometric stiffness `K_G = n0 G_0 + n1 G_1 + n2 G_2` on
-//!   the chord-relative slopes (adds `-K_G p` to `Q_p`; Cook et al., eq. 18.3-4);
-//! - the pin force at C through the chord's foreshortening, carried exactly in the C pin's
-//!   kinematics: `ubar_C = xbar_C + S_hat_C p - 1/2 (p^T G_0 p) e_x`, so the constraint changes
-//!   the rod's rigid motion as the chord shortens, and its multiplier stiffens or softens the
-//!   bending as a tension or compression (Kane, Ryan and Banerjee 1987; Wallrapp 1994 on
-//!   geometric nonlinear FFR bodies).
 //!
-//! Measured against a geometrically exact beam at 150 rad/s: 0.15 % pointwise (h = 1e-5),
-//! where the quasi-static axial force alone (pin force in N, chord kept at L) drifted to 4.9 %.
+//! Material points: [`super::points`]; the axial stiffening: [`super::stiffening`].
 
 use faer::reborrow::ReborrowMut;
 use faer::MatMut;
 use nalgebra::{DMatrix, Vector2};
 
+use super::points::{rot, rotate, tilde};
 use crate::modal::{ComponentModes, ShapeIntegrals};
 use crate::rod::body::{RodBody, RodPoint};
-
-/// Rotation matrix entries (cos, sin).
-#[inline]
-fn rot(phi: f64) -> (f64, f64) {
-    (phi.cos(), phi.sin())
-}
-
-/// `A v`.
-#[inline]
-fn rotate(c: f64, s: f64, v: Vector2<f64>) -> Vector2<f64> {
-    Vector2::new(c * v.x - s * v.y, s * v.x + c * v.y)
-}
-
-/// `I~ v` (rotation by +90 degrees).
-#[inline]
-fn tilde(v: Vector2<f64>) -> Vector2<f64> {
-    Vector2::new(-v.y, v.x)
-}
 
 /// The FFR rod with its preprocessed modes.
 pub struct FfrRod {
     pub modes: ComponentModes,
     pub integrals: ShapeIntegrals,
     /// Modal stiffness w_i^2 and damping 2 zeta w_i.
-    stiffness: Vec<f64>,
-    damping: Vec<f64>,
-    axial_stiffening: bool,
+    pub(super) stiffness: Vec<f64>,
+    pub(super) damping: Vec<f64>,
+    pub(super) axial_stiffening: bool,
     /// `G_1 - L G_0`: the geometric stiffness per unit `rho A e.R''` (computed once).
-    acceleration_stiffness: DMatrix<f64>,
-    length: f64,
-    rho_a: f64,
-    mass: f64,
-    n: usize,
+    pub(super) acceleration_stiffness: DMatrix<f64>,
+    pub(super) length: f64,
+    pub(super) rho_a: f64,
+    pub(super) mass: f64,
+    pub(super) n: usize,
 }
 
 impl FfrRod {
@@ -102,107 +71,8 @@ impl FfrRod {
         self.n
     }
 
-    fn point_data(&self, p: RodPoint) -> (f64, &DMatrix<f64>) {
-        let ig = &self.integrals;
-        match p {
-            RodPoint::B => (ig.x_b, &ig.s_b),
-            RodPoint::C => (ig.x_c, &ig.s_c),
-            RodPoint::Mid => (ig.x_mid, &ig.s_mid),
-        }
-    }
-
-    /// Body-frame position of a material point, `ubar = xbar + S_hat p`, and at the C end,
-    /// with axial stiffening on, the foreshortening of the chord `-1/2 p^T G_0 p` along x.
-    fn ubar(&self, p: RodPoint, q: &[f64]) -> Vector2<f64> {
-        let (x, s) = self.point_data(p);
-        let mut u = Vector2::new(x, 0.0);
-        for j in 0..self.n {
-            u.x += s[(0, j)] * q[3 + j];
-            u.y += s[(1, j)] * q[3 + j];
-        }
-        if self.foreshortening(p) {
-            u.x -= 0.5 * self.quad(&q[3..], &q[3..]);
-        }
-        u
-    }
-
-    /// Whether point `p` carries the chord's foreshortening.
-    fn foreshortening(&self, p: RodPoint) -> bool {
-        self.axial_stiffening && p == RodPoint::C
-    }
-
-    /// `a^T G_0 b`.
-    fn quad(&self, a: &[f64], b: &[f64]) -> f64 {
-        let g = &self.integrals.g[0];
-        let mut t = 0.0;
-        for i in 0..self.n {
-            for j in 0..self.n {
-                t += a[i] * g[(i, j)] * b[j];
-            }
-        }
-        t
-    }
-
-    /// Body-frame `d ubar / dp` column j (with the foreshortening at C).
-    fn ubar_p(&self, p: RodPoint, q: &[f64], j: usize) -> Vector2<f64> {
-        let (_, sh) = self.point_data(p);
-        let mut c = Vector2::new(sh[(0, j)], sh[(1, j)]);
-        if self.foreshortening(p) {
-            let g = &self.integrals.g[0];
-            c.x -= (0..self.n).map(|k| g[(j, k)] * q[3 + k]).sum::<f64>();
-        }
-        c
-    }
-
-    /// Body-frame elastic velocity `(d ubar / dp) p'` at a point.
-    fn shape_rate(&self, p: RodPoint, q: &[f64], v: &[f64]) -> Vector2<f64> {
-        let mut u = Vector2::zeros();
-        for j in 0..self.n {
-            u += self.ubar_p(p, q, j) * v[3 + j];
-        }
-        u
-    }
-
-    /// `I1 + I2 p` (body frame).
-    fn first_moment(&self, q: &[f64]) -> Vector2<f64> {
-        let ig = &self.integrals;
-        let mut c = ig.i1;
-        for j in 0..self.n {
-            c.x += ig.i2[(0, j)] * q[3 + j];
-            c.y += ig.i2[(1, j)] * q[3 + j];
-        }
-        c
-    }
-
-    /// Coefficients (n0, n1, n2) of the axial force N(s) = n0 + n1 s + n2 s^2, N.
-    /// Coefficients (n0, n1, n2) of the velocity part of the axial force,
-    /// `N(s) = n0 + n1 s + n2 s^2`, N. The acceleration part, `-rho A (L - s) e.R''`, is carried
-    /// by the mass matrix (see [`FfrRod::add_stiffening_coupling`]).
-    pub fn axial_force_coefficients(&self, v: &[f64]) -> [f64; 3] {
-        let w = v[2] * v[2];
-        let a0 = -w * self.integrals.x_b;
-        let l = self.length;
-        let n0 = -self.rho_a * (l * a0 - 0.5 * w * l * l);
-        [n0, self.rho_a * a0, -0.5 * self.rho_a * w]
-    }
-
-    /// The axial force of the frame acceleration, `N_a(s) = -rho A (L - s) e.R''`, acting on the
-    /// bending: `-(rho A e.R'') (G_1 - L G_0) p` in `Q_p`, linear in `R''`, so it is moved to the
-    /// left-hand side as `M_pR += rho A ((G_1 - L G_0) p) e^T` (no iteration on accelerations).
-    fn add_stiffening_coupling(&self, q: &[f64], mut m: MatMut<'_, f64>) {
-        let (c, s) = rot(q[2]);
-        for i in 0..self.n {
-            let mut h = 0.0;
-            for j in 0..self.n {
-                h += self.acceleration_stiffness[(i, j)] * q[3 + j];
-            }
-            m[(3 + i, 0)] += self.rho_a * h * c;
-            m[(3 + i, 1)] += self.rho_a * h * s;
-        }
-    }
-
     /// The symmetric mass matrix of the kinetic energy.
-    fn kinetic_mass(&self, q: &[f64], mut m: MatMut<'_, f64>) {
+    pub(super) fn kinetic_mass(&self, q: &[f64], mut m: MatMut<'_, f64>) {
         let n = self.n;
         let ig = &self.integrals;
         let (c, s) = rot(q[2]);

@@ -1,4 +1,4 @@
-//! The finite segment rod (seed 002, `../shared/seeds/002_e6c2c81d944c25fc.txt`; physics.md,
+//! The finite segment rod (seed 002, `002_e6c2c81d944c25fc.txt`; docs/physics.md,
 //! "Rod model 2: finite segments"): `N` rigid segments joined by revolute joints with
 //! rotational springs and dampers, optionally with prismatic joints carrying axial springs.
 //!
@@ -8,6 +8,8 @@
 //!   bending and axial frequencies, and the free-free axial chain of seed 002's convergence
 //!   table ([`axial_chain_frequencies_hz`]).
 
+pub mod body;
+pub mod kinematics;
 pub mod linear;
 pub mod rod;
 
