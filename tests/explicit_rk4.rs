@@ -1,9 +1,13 @@
 //! The explicit path (`solver.method = "rk4"`, issue 6): fourth order in the step, constraints
 //! held by projection, the same answer as generalized-alpha.
 
+use flexrod::drive::{communication_grid, CrankDrive};
 use flexrod::rod::RodPoint;
 use flexrod::scene::SolverMethod;
-use flexrod::{CrankInput, Scene, Simulation};
+use flexrod::Scene;
+
+mod common;
+use common::runs;
 
 const W: f64 = 150.0;
 
@@ -17,39 +21,26 @@ fn rk4(h: f64) -> Scene {
 /// v_mid/L at t = k * 6e-4 s over one revolution, and the largest pin position error.
 fn run(scene: &Scene) -> (Vec<f64>, f64) {
     let dt = 6e-4;
-    let mut sim = Simulation::new(scene).unwrap();
-    sim.start(
-        0.0,
-        CrankInput {
-            angle: 0.0,
-            speed: W,
-            acceleration: 0.0,
-        },
-        0.0,
-    )
-    .unwrap();
     let n = (2.0 * std::f64::consts::PI / W / dt).floor() as usize;
-    let mut v = vec![0.0];
     let mut drift: f64 = 0.0;
-    for k in 0..n {
-        sim.set_input(CrankInput {
-            angle: W * k as f64 * dt,
-            speed: W,
-            acceleration: 0.0,
-        })
-        .unwrap();
-        sim.advance(dt).unwrap();
-        v.push(sim.outputs().deflection_rel);
-        let st = sim.state();
-        let nr = sim.mechanism().rod.n_coordinates();
-        let b = sim.mechanism().rod.point(RodPoint::B, &st.dae.q[..nr]);
-        let th = W * sim.time();
-        let r = sim.mechanism().crank_length();
-        drift = drift
-            .max((b.x - r * th.cos()).abs())
-            .max((b.y - r * th.sin()).abs());
-    }
-    (v, drift)
+    let run = runs::drive_visit(
+        scene,
+        &communication_grid(0.0, dt, n),
+        0.0,
+        |_, t| CrankDrive::Constant { speed: W }.at(t),
+        |sim| {
+            let st = sim.state();
+            let nr = sim.mechanism().rod.n_coordinates();
+            let b = sim.mechanism().rod.point(RodPoint::B, &st.dae.q[..nr]);
+            let th = W * sim.time();
+            let r = sim.mechanism().crank_length();
+            drift = drift
+                .max((b.x - r * th.cos()).abs())
+                .max((b.y - r * th.sin()).abs());
+        },
+    );
+    assert!(run.error.is_none(), "{}", run.error_text());
+    (run.deflection_rel(), drift)
 }
 
 fn max_diff(a: &[f64], b: &[f64]) -> f64 {
@@ -104,30 +95,18 @@ fn rk4_agrees_with_generalized_alpha() {
 fn rk4_caps_its_step_at_the_stability_limit() {
     let mut s = rk4(3e-4);
     s.rod.modes = 24;
-    let mut sim = Simulation::new(&s).unwrap();
-    let f_max = sim.mechanism().rod.highest_frequency_hz();
-    sim.start(
+    let f_max = flexrod::Simulation::new(&s)
+        .unwrap()
+        .mechanism()
+        .rod
+        .highest_frequency_hz();
+    let (record, sim) = runs::completed(
+        &s,
+        &CrankDrive::Constant { speed: W },
         0.0,
-        CrankInput {
-            angle: 0.0,
-            speed: W,
-            acceleration: 0.0,
-        },
-        0.0,
-    )
-    .unwrap();
-    let dt = 1e-3;
-    let mut peak: f64 = 0.0;
-    for k in 0..20 {
-        sim.set_input(CrankInput {
-            angle: W * k as f64 * dt,
-            speed: W,
-            acceleration: 0.0,
-        })
-        .unwrap();
-        sim.advance(dt).unwrap();
-        peak = peak.max(sim.outputs().deflection_rel.abs());
-    }
+        &communication_grid(0.0, 1e-3, 20),
+    );
+    let peak = record.peak_deflection_rel();
     let st = sim.stats();
     println!(
         "24 modes (to {f_max:.0} Hz): {} steps in 20 ms, {} halvings, peak |v/L| {peak:.4e}",

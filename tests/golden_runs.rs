@@ -44,6 +44,12 @@ fn cases() -> Vec<Case> {
     let mut ga_slider = ga.clone();
     ga_slider.slider.mass = 0.1;
     ga_slider.rod.damping_ratio = 0.01;
+    // The violent case: 600 rad/s, the chain deflects to 0.41 L in the second revolution, where
+    // steps fail and are halved (the costly path; 0 halvings in every other case).
+    let mut seg600 = base();
+    seg600.rod.model = RodModelKind::Segments;
+    seg600.rod.elements = 32;
+    seg600.solver.step = 2.5e-5;
     let two_revolutions = (4.0 * std::f64::consts::PI / 150.0 / 1e-4).round() as usize;
     vec![
         Case {
@@ -90,6 +96,15 @@ fn cases() -> Vec<Case> {
             slider_force: -200.0,
             dt: 2.5e-4,
             steps: 200,
+        },
+        Case {
+            name: "segments N 32, h 2.5e-5, 600 rad/s, dt 1e-4, two revolutions (step halvings)",
+            scene: seg600,
+            speed: 600.0,
+            acceleration: 0.0,
+            slider_force: 0.0,
+            dt: 1e-4,
+            steps: 209,
         },
     ]
 }

@@ -1,8 +1,12 @@
 //! The quasi-static deflected start (`[start] deflection = "quasi_static"`, issue 3): the rod
 //! starts deflected by the inertia loads of its motion, without the start transient.
 
+use flexrod::drive::communication_grid;
 use flexrod::scene::{RodModelKind, StartDeflection};
 use flexrod::{CrankInput, Scene, Simulation};
+
+mod common;
+use common::runs;
 
 const W: f64 = 150.0;
 const THETA0: f64 = std::f64::consts::FRAC_PI_2;
@@ -16,17 +20,11 @@ fn input(t: f64) -> CrankInput {
 }
 
 /// v_mid/L at every communication point over `revolutions`, from a start at THETA0.
-fn run(scene: &Scene, revolutions: f64, dt: f64) -> (Vec<f64>, Simulation) {
-    let mut sim = Simulation::new(scene).unwrap();
-    sim.start(0.0, input(0.0), 0.0).unwrap();
-    let n = (revolutions * 2.0 * std::f64::consts::PI / W / dt).round() as usize;
-    let mut v = vec![sim.outputs().deflection_rel];
-    for k in 0..n {
-        sim.set_input(input(k as f64 * dt)).unwrap();
-        sim.advance(dt).unwrap();
-        v.push(sim.outputs().deflection_rel);
-    }
-    (v, sim)
+fn run(scene: &Scene, revolutions: f64, dt: f64) -> Vec<f64> {
+    let n = runs::steps_for(W, revolutions, dt);
+    let run = runs::drive_inputs(scene, &communication_grid(0.0, dt, n), 0.0, |_, t| input(t));
+    assert!(run.error.is_none(), "{}", run.error_text());
+    run.deflection_rel()
 }
 
 #[test]
@@ -36,7 +34,7 @@ fn quasi_static_start_removes_the_start_transient() {
     let mut damped = Scene::benchmark();
     damped.rod.damping_ratio = 0.1;
     // The periodic steady state: 8 revolutions with 10 % modal damping, the last one kept.
-    let (steady_all, _) = run(&damped, 8.0, dt);
+    let steady_all = run(&damped, 8.0, dt);
     let steady = &steady_all[steady_all.len() - per_rev - 1..];
     let peak = steady.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let mut errors = Vec::new();
@@ -50,7 +48,7 @@ fn quasi_static_start_removes_the_start_transient() {
         let elastic_acc = st.dae.qdd[3..3 + s.rod.modes]
             .iter()
             .fold(0.0f64, |m, x| m.max(x.abs()));
-        let (first, _) = run(&s, 1.0, dt);
+        let first = run(&s, 1.0, dt);
         // The steady state's revolution starts at the same crank angle (THETA0 + 2 pi k).
         let err = first
             .iter()

@@ -4,6 +4,9 @@ use flexrod::beam::RodProperties;
 use flexrod::modal::{ComponentModes, ModeSelection, ReferenceConditions};
 use flexrod::scene::MassKind;
 
+mod common;
+use common::seeds;
+
 fn rod(density: f64) -> RodProperties {
     RodProperties {
         density,
@@ -48,23 +51,19 @@ fn check_relative(name: &str, got: &[f64], table: &[f64]) {
 
 #[test]
 fn seed001_simply_supported() {
-    let f = frequencies(7833.8, ReferenceConditions::SimplySupported);
+    let f = frequencies(seeds::SEED001_DENSITY, ReferenceConditions::SimplySupported);
     check_four_digits(
         "seed 001 simply supported",
         &f,
-        &[138.5, 612.3, 1539.0, 2806.0, 4323.0, 15100.0],
+        &seeds::SEED001_SIMPLY_SUPPORTED,
     );
 }
 
 #[test]
 fn seed001_free_free() {
     // docs/physics.md: seed 001's 980.7 and 3918 Hz are 980.58 and 3917.25 Hz for these data.
-    let f = frequencies(7833.8, ReferenceConditions::MeanAxis);
-    check_four_digits(
-        "seed 001 free-free",
-        &f,
-        &[313.3, 980.6, 2452.0, 3917.0, 9294.0, 18590.0],
-    );
+    let f = frequencies(seeds::SEED001_DENSITY, ReferenceConditions::MeanAxis);
+    check_four_digits("seed 001 free-free", &f, &seeds::SEED001_FREE_FREE);
     assert!(
         (f[1] - 980.58).abs() < 0.01 && (f[3] - 3917.25).abs() < 0.01,
         "{f:?}"
@@ -73,40 +72,38 @@ fn seed001_free_free() {
 
 #[test]
 fn seed000_simply_supported() {
-    let f = frequencies(8143.1, ReferenceConditions::SimplySupported);
+    let f = frequencies(seeds::SEED000_DENSITY, ReferenceConditions::SimplySupported);
     check_relative(
         "seed 000 simply supported",
         &f,
-        &[135.80, 600.52, 1509.45, 2751.91, 4240.25, 14812.84],
+        &seeds::SEED000_SIMPLY_SUPPORTED,
     );
 }
 
 #[test]
 fn seed000_body_fixed_mid() {
-    let f = frequencies(8143.1, ReferenceConditions::BodyFixed { node: 1 });
+    let f = frequencies(
+        seeds::SEED000_DENSITY,
+        ReferenceConditions::BodyFixed { node: 1 },
+    );
     check_relative(
         "seed 000 body-fixed mid",
         &f,
-        &[193.66, 193.66, 1908.09, 1908.09, 9115.38, 9115.38],
+        &seeds::SEED000_BODY_FIXED_MID,
     );
 }
 
 #[test]
 fn seed000_mean_axis() {
-    let f = frequencies(8143.1, ReferenceConditions::MeanAxis);
-    check_relative(
-        "seed 000 mean axis",
-        &f,
-        &[307.31, 961.77, 2404.94, 3842.11, 9115.38, 18230.77],
-    );
+    let f = frequencies(seeds::SEED000_DENSITY, ReferenceConditions::MeanAxis);
+    check_relative("seed 000 mean axis", &f, &seeds::SEED000_MEAN_AXIS);
 }
 
 #[test]
 fn seed000_cantilever() {
-    let f = frequencies(8143.1, ReferenceConditions::BodyFixed { node: 0 });
-    check_relative(
-        "seed 000 cantilever",
-        &f,
-        &[48.21, 304.54, 1030.02, 2989.54, 4240.25, 14812.84],
+    let f = frequencies(
+        seeds::SEED000_DENSITY,
+        ReferenceConditions::BodyFixed { node: 0 },
     );
+    check_relative("seed 000 cantilever", &f, &seeds::SEED000_CANTILEVER);
 }
