@@ -212,6 +212,8 @@ impl Integrator for Dopri5 {
         for _ in 0..=self.control.max_rejections {
             // A failed evaluation (a position solve that does not converge, a singular matrix)
             // counts as a large error: the step shrinks.
+            // A failed evaluation (a position solve that does not converge, a singular matrix)
+            // counts as a large error: the step shrinks.
             let err = self
                 .attempt(system, state, h, &mut work)
                 .unwrap_or(f64::INFINITY);
