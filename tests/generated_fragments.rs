@@ -184,7 +184,7 @@ fn embedded_fragments_are_current_and_none_is_orphaned() {
             } else {
                 failures.push(format!(
                     "{name}:{}: block '{}' differs from docs/generated/{}.md (- embedded, + \
-                     fragment):\n{}",
+                     fragment; lines counted from the start marker):\n{}",
                     block.line,
                     block.id,
                     block.id,
@@ -268,4 +268,33 @@ fn line_diff_names_the_differing_lines() {
     let d = line_diff("a\nb\nc\n", "a\nB\nc\nd\n", 10);
     assert_eq!(d, "-   2: b\n+   2: B\n+   4: d");
     assert!(line_diff("a", "a\n", 10).contains("final newline"));
+}
+
+#[test]
+fn check_generated_accepts_a_current_fragment_and_shows_a_stale_line() {
+    if blessing() {
+        return; // blessing would write the altered text below
+    }
+    let Some(path) = std::fs::read_dir(generated_dir())
+        .into_iter()
+        .flatten()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|e| e == "md"))
+        .min()
+    else {
+        return;
+    };
+    let id = path.file_stem().unwrap().to_str().unwrap().to_string();
+    let text = std::fs::read_to_string(&path).unwrap();
+    common::check_generated(&id, &text);
+    common::check_generated(&id, text.trim_end_matches('\n'));
+    let stale = format!("{text}| one more line |\n");
+    let panic = std::panic::catch_unwind(|| common::check_generated(&id, &stale)).unwrap_err();
+    let message = panic.downcast_ref::<String>().expect("a formatted message");
+    let added = format!("+{:>4}: | one more line |", text.lines().count() + 1);
+    assert!(
+        message.contains("is stale") && message.contains(&added),
+        "{message}"
+    );
 }
