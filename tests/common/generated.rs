@@ -12,60 +12,9 @@
 //! whole test file, not a filtered subset).
 
 use std::collections::BTreeMap;
-use std::path::PathBuf;
 use std::sync::Mutex;
 
-/// `docs/generated/<id>.md`.
-pub fn fragment_path(id: &str) -> PathBuf {
-    assert!(
-        !id.is_empty()
-            && id
-                .chars()
-                .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-'),
-        "fragment id '{id}': lowercase letters, digits and '-' only"
-    );
-    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/generated")).join(format!("{id}.md"))
-}
-
-/// Compare freshly measured Markdown with `docs/generated/<id>.md` (the text is stored with
-/// exactly one final newline); with `FLEXROD_BLESS=1`, write it instead.
-pub fn check_generated(id: &str, markdown: &str) {
-    let path = fragment_path(id);
-    let text = format!("{}\n", markdown.trim_end_matches('\n'));
-    if std::env::var("FLEXROD_BLESS").as_deref() == Ok("1") {
-        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
-        std::fs::write(&path, &text).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-        println!("generated {}", path.display());
-        return;
-    }
-    let stored = std::fs::read_to_string(&path).unwrap_or_else(|e| {
-        panic!(
-            "generated fragment {id}: {}: {e} (run the test with FLEXROD_BLESS=1 to write it)",
-            path.display()
-        )
-    });
-    if stored == text {
-        return;
-    }
-    let (old, new): (Vec<&str>, Vec<&str>) = (stored.lines().collect(), text.lines().collect());
-    let mut report = String::new();
-    for i in 0..old.len().max(new.len()) {
-        let (a, b) = (old.get(i), new.get(i));
-        if a != b {
-            report += &format!(
-                "  line {}:\n    file:     {}\n    measured: {}\n",
-                i + 1,
-                a.unwrap_or(&"(none)"),
-                b.unwrap_or(&"(none)")
-            );
-        }
-    }
-    panic!(
-        "generated fragment {id} ({}) differs from the measurement:\n{report}If the change is \
-         meant, rerun with FLEXROD_BLESS=1 and update the README block (it must equal the file).",
-        path.display()
-    );
-}
+pub use super::fragments::check_generated;
 
 /// A fragment assembled from parts that different tests measure.
 pub struct Fragment {

@@ -4,16 +4,20 @@
 //!   differences), including runs that may end in a failed step;
 //! - [`exudyn`]: the geometrically exact reference, `tests/data/exudyn_ancf_150rad_s.csv`;
 //! - [`seeds`]: the frequency tables of seeds 000 and 001;
-//! - [`generated`]: README fragments written by the tests that measure their numbers
-//!   (`docs/generated/<id>.md`, checked by [`generated::check_generated`]).
+//! - [`fragments`]: the generated-fragment convention (`docs/generated/<id>.md` embedded in
+//!   README.md and docs/ between markers) and [`check_generated`];
+//! - [`generated`]: tables assembled from parts measured by several tests, number formats.
 
 // Not every test file uses every helper.
 #![allow(dead_code)]
 
 pub mod exudyn;
+pub mod fragments;
 pub mod generated;
 pub mod runs;
 pub mod seeds;
 
 #[allow(unused_imports)]
-pub use generated::check_generated;
+pub use fragments::{
+    blessing, check_generated, fragment_path, generated_dir, is_fragment_id, line_diff, repository,
+};
