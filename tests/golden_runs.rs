@@ -50,6 +50,7 @@ fn cases() -> Vec<Case> {
     seg600.rod.model = RodModelKind::Segments;
     seg600.rod.elements = 32;
     seg600.solver.step = 2.5e-5;
+    seg600.solver.method = SolverMethod::GeneralizedAlpha;
     let two_revolutions = (4.0 * std::f64::consts::PI / 150.0 / 1e-4).round() as usize;
     vec![
         Case {

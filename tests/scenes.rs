@@ -61,7 +61,7 @@ fn is_exudyn_case(s: &Scene) -> bool {
         && s.slider.mass == 0.0
         && e.start_time == 0.0
         && e.crank_speed == exudyn::SPEED
-        && (e.stop_time - 4.0 * std::f64::consts::PI / exudyn::SPEED).abs() < 1e-9
+        && (e.stop_time - 4.0 * std::f64::consts::PI / exudyn::SPEED).abs() < e.step_size
         && ((e.step_size / exudyn::DT).round() * exudyn::DT - e.step_size).abs() < 1e-15
 }
 

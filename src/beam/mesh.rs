@@ -2,12 +2,21 @@
 //!
 //! Node `i` (0 = the B end, N = the C end) sits at `x = x_b + i L / N` in the body frame,
 //! `x_b` being the B end's position (0 when the frame sits at B, `-L/2` when it sits at the
-//! middle). Global coordinates: node `i` owns `[3i, 3i+1, 3i+2] = [u, v, slope]`.
+//! middle). Global coordinates: node `i` owns `[3i, 3i+1, 3i+2] = [u, v, slope]` (for the
+//! shear-deformable rod the third is the section rotation `psi`).
+//!
+//! The uniform Euler-Bernoulli rod without end bodies ([`RodDefinition::is_plain`]) uses the
+//! closed-form [`BeamElement`]; every other rod the [`SectionElement`] on the rod's section
+//! table, with the end bodies' masses added on `u`, `v` and their inertias on the rotation of
+//! the end nodes (lumped, rigidly attached at B and C).
 
 use faer::Mat;
 
-use super::element::{BeamElement, ElementMatrix};
+use super::definition::RodDefinition;
+use super::element::{BeamElement, ElementMatrix, ShapeMatrix, SlopeRow};
 use super::section::RodProperties;
+use super::section_element::SectionElement;
+use super::section_table::SectionTable;
 use crate::beam::MassKind;
 use crate::error::ModelError;
 
@@ -22,12 +31,26 @@ pub struct RodMesh {
     pub n_elements: usize,
     /// Position of the B end on the body frame's x axis, m.
     pub x_b: f64,
+    /// The whole rod: section table, shear, end bodies.
+    pub definition: RodDefinition,
+    /// The section table of a rod that is not plain (the [`SectionElement`] path).
+    table: Option<SectionTable>,
 }
 
 impl RodMesh {
     /// A mesh of `n_elements >= 1`; the section must be valid.
     pub fn new(section: RodProperties, n_elements: usize, x_b: f64) -> Result<RodMesh, ModelError> {
-        section.validate()?;
+        Self::from_definition(RodDefinition::uniform(section), n_elements, x_b)
+    }
+
+    /// A mesh of `n_elements >= 1` of any rod; the definition must be valid.
+    pub fn from_definition(
+        definition: RodDefinition,
+        n_elements: usize,
+        x_b: f64,
+    ) -> Result<RodMesh, ModelError> {
+        definition.validate()?;
+        let section = definition.properties;
         if n_elements == 0 || n_elements > MAX_ELEMENTS {
             return Err(ModelError::InvalidParameter {
                 name: "rod.elements",
@@ -35,10 +58,13 @@ impl RodMesh {
                 allowed: format!("an integer in 1..={MAX_ELEMENTS}"),
             });
         }
+        let table = (!definition.is_plain()).then(|| definition.section_table());
         Ok(RodMesh {
             section,
             n_elements,
             x_b,
+            definition,
+            table,
         })
     }
 
@@ -59,6 +85,54 @@ impl RodMesh {
         BeamElement {
             length: self.element_length(),
             section: self.section,
+        }
+    }
+
+    /// Whether the rod uses the closed-form uniform Euler-Bernoulli element.
+    pub fn is_plain(&self) -> bool {
+        self.table.is_none()
+    }
+
+    /// Element `e` on the section table (`None` for a plain rod: use [`Self::element`]).
+    pub fn section_element(&self, e: usize) -> Option<SectionElement<'_>> {
+        let table = self.table.as_ref()?;
+        let l = self.element_length();
+        Some(SectionElement::new(
+            table,
+            e as f64 * l,
+            l,
+            self.section.youngs_modulus,
+            self.section.density,
+            self.definition.shear_modulus,
+        ))
+    }
+
+    /// The section table of a rod that is not plain.
+    pub fn section_table(&self) -> Option<&SectionTable> {
+        self.table.as_ref()
+    }
+
+    /// Shape matrix of element `e` at `xi`.
+    pub fn shape(&self, e: usize, xi: f64) -> ShapeMatrix {
+        match self.section_element(e) {
+            Some(el) => el.shape(xi),
+            None => self.element().shape(xi),
+        }
+    }
+
+    /// Slope `dv/dx` row of element `e` at `xi`.
+    pub fn slope(&self, e: usize, xi: f64) -> SlopeRow {
+        match self.section_element(e) {
+            Some(el) => el.slope(xi),
+            None => self.element().slope(xi),
+        }
+    }
+
+    /// Section rotation row of element `e` at `xi` (the slope for Euler-Bernoulli).
+    pub fn rotation(&self, e: usize, xi: f64) -> SlopeRow {
+        match self.section_element(e) {
+            Some(el) => el.rotation(xi),
+            None => self.element().slope(xi),
         }
     }
 
@@ -83,6 +157,27 @@ impl RodMesh {
     /// Assembled stiffness and mass matrices (n x n, symmetric).
     pub fn assemble(&self, mass: MassKind) -> (Mat<f64>, Mat<f64>) {
         let n = self.n_coordinates();
+        if !self.is_plain() {
+            // Section elements (consistent mass) and the end bodies at the end nodes.
+            let mut k = Mat::zeros(n, n);
+            let mut m = Mat::zeros(n, n);
+            for e in 0..self.n_elements {
+                let el = self.section_element(e).expect("not plain");
+                let dofs = self.element_dofs(e);
+                scatter(&mut k, &el.stiffness(), &dofs);
+                scatter(&mut m, &el.mass(), &dofs);
+            }
+            let last = 3 * self.n_elements;
+            for (base, body) in [
+                (0, self.definition.big_end),
+                (last, self.definition.small_end),
+            ] {
+                m[(base, base)] += body.mass;
+                m[(base + 1, base + 1)] += body.mass;
+                m[(base + 2, base + 2)] += body.inertia;
+            }
+            return (k, m);
+        }
         let el = self.element();
         let (ke, me) = (el.stiffness(), el.mass(mass));
         let mut k = Mat::zeros(n, n);

@@ -145,7 +145,7 @@ impl MechanismSpec {
     /// not negative, solver settings in range.
     pub fn validate(&self) -> Result<(), ModelError> {
         let rod = &self.rod;
-        rod.properties().validate()?;
+        rod.validate()?;
         require_positive("crank.length", self.crank.length)?;
         if self.crank.length >= rod.length {
             return Err(ModelError::InvalidParameter {

@@ -9,7 +9,7 @@ use super::eigen::generalized_symmetric_eigen;
 use super::reference::ReferenceConditions;
 use super::selection::ModeSelection;
 use crate::beam::MassKind;
-use crate::beam::{RodMesh, RodProperties};
+use crate::beam::{RodDefinition, RodMesh, RodProperties};
 use crate::error::ModelError;
 
 /// Retained modes of the rod and the spectrum they come from.
@@ -39,9 +39,40 @@ impl ComponentModes {
         mass_kind: MassKind,
         selection: &ModeSelection,
     ) -> Result<ComponentModes, ModelError> {
-        section.validate()?;
-        let x_b = reference.frame_x_b(section.length, n_elements.max(1));
-        let mesh = RodMesh::new(section, n_elements, x_b)?;
+        Self::from_definition(
+            RodDefinition::uniform(section),
+            n_elements,
+            reference,
+            mass_kind,
+            selection,
+        )
+    }
+
+    /// As [`Self::new`] for any rod: a section table, shear deformation, end bodies (whose
+    /// masses and inertias enter `M` at the end nodes before the eigenproblem). With the mean
+    /// axis the frame sits at the centre of mass of rod and end bodies. Lumped mass is
+    /// available for the plain uniform Euler-Bernoulli rod only.
+    pub fn from_definition(
+        definition: RodDefinition,
+        n_elements: usize,
+        reference: ReferenceConditions,
+        mass_kind: MassKind,
+        selection: &ModeSelection,
+    ) -> Result<ComponentModes, ModelError> {
+        definition.validate()?;
+        let section = definition.properties;
+        if !definition.is_plain() && mass_kind == MassKind::Lumped {
+            return Err(ModelError::InvalidParameter {
+                name: "rod.mass",
+                value: f64::NAN,
+                allowed: "\"consistent\" for a rod with a section table, shear deformation or end bodies (\"lumped\" only for the uniform Euler-Bernoulli rod)".into(),
+            });
+        }
+        let x_b = match reference {
+            ReferenceConditions::MeanAxis if !definition.is_plain() => -definition.centre_of_mass(),
+            _ => reference.frame_x_b(section.length, n_elements.max(1)),
+        };
+        let mesh = RodMesh::from_definition(definition, n_elements, x_b)?;
         if let ReferenceConditions::BodyFixed { node } = reference {
             if node > n_elements {
                 return Err(ModelError::InvalidParameter {

@@ -17,6 +17,23 @@
 //! (1 x n) gives `G_k = int_0^L s^k D^T D ds`, k = 0, 1, 2: the geometric stiffness of an axial
 //! force `N(s) = n0 + n1 s + n2 s^2` is `K_G = n0 G_0 + n1 G_1 + n2 G_2` (Cook, Malkus,
 //! Plesha and Witt, *Concepts and Applications of FEA*, 4th ed., eq. 18.3-4).
+//!
+//! A rod that is not plain (section table, shear deformation, end bodies; see
+//! [`crate::beam::RodDefinition::is_plain`]) takes every integral with `rho A(s)` on the pieces
+//! of its section table (exact Gauss quadrature per piece), plus:
+//! - the end bodies as point masses at B and C (`m_B`, `m_C`) and rotary inertias `J_B`, `J_C`
+//!   on the end nodes' rotation rows `Theta_B`, `Theta_C` (like the lumped rotary inertia:
+//!   `I3 += J`, `I_rot += J Theta`, `M_ff += J Theta^T Theta`);
+//! - the section's rotary inertia `rho I(s)` on the rotation `psi(s)` for the shear-deformable
+//!   rod, in the same three places;
+//! - `M_ff = M_uu + (rotary part)`, which is the identity for the mass-normalized modes;
+//! - for the axial stiffening, the axial force is no longer a quadratic in `s`: with
+//!   `mu(s) = int_s^L rho A ds' + m_C` (mass beyond s) and
+//!   `nu(s) = int_s^L rho A (x_b + s') ds' + m_C (x_b + L)`, the force of the frame motion is
+//!   `N(s) = -mu(s) e.R'' + phi'^2 nu(s)`, and its geometric stiffness
+//!   `K_G = (e.R'') G_a + phi'^2 G_v` with `G_a = -int mu D^T D ds`, `G_v = int nu D^T D ds`
+//!   (field [`ShapeIntegrals::g_axial`]; for the plain rod they are `rho A (G_1 - L G_0)` and
+//!   the quadratic `n0 G_0 + n1 G_1 + n2 G_2` at `phi' = 1`, kept in that original form).
 
 use nalgebra::{DMatrix, DVector, Vector2};
 
@@ -51,6 +68,10 @@ pub struct ShapeIntegrals {
     pub s_tilde: DMatrix<f64>,
     /// Geometric stiffness moments G_0, G_1, G_2 (n x n each), chord-relative slopes.
     pub g: [DMatrix<f64>; 3],
+    /// Rods that are not plain: `[G_a, G_v]`, the geometric stiffness per unit `e.R''` and per
+    /// unit `phi'^2` of the axial force of the frame motion (module documentation); `None` for
+    /// the plain rod, whose force is the quadratic of the `G_k`.
+    pub g_axial: Option<[DMatrix<f64>; 2]>,
     /// S_hat at the B end (s = 0), the C end (s = L) and the midpoint (s = L / 2).
     pub s_b: DMatrix<f64>,
     pub s_c: DMatrix<f64>,
@@ -64,6 +85,15 @@ pub struct ShapeIntegrals {
 impl ShapeIntegrals {
     /// Compute every integral for `modes`.
     pub fn new(modes: &ComponentModes) -> ShapeIntegrals {
+        if modes.mesh.is_plain() {
+            Self::plain(modes)
+        } else {
+            Self::general(modes)
+        }
+    }
+
+    /// The plain rod (uniform, Euler-Bernoulli, no end bodies): closed-form element.
+    fn plain(modes: &ComponentModes) -> ShapeIntegrals {
         let mesh = &modes.mesh;
         let n = modes.n_modes();
         let el = mesh.element();
@@ -181,6 +211,7 @@ impl ShapeIntegrals {
             m_uu,
             s_tilde,
             g,
+            g_axial: None,
             s_b,
             s_c,
             s_mid,
@@ -189,11 +220,143 @@ impl ShapeIntegrals {
             x_mid: mesh.x_b + 0.5 * length,
         }
     }
+
+    /// A rod with a section table, shear deformation or end bodies (module documentation).
+    fn general(modes: &ComponentModes) -> ShapeIntegrals {
+        let mesh = &modes.mesh;
+        let def = &mesh.definition;
+        let table = mesh.section_table().expect("not plain");
+        let n = modes.n_modes();
+        let l = mesh.element_length();
+        let rho = mesh.section.density;
+        let length = mesh.section.length;
+        let x_b = mesh.x_b;
+
+        let mut i1 = Vector2::zeros();
+        let mut i2 = DMatrix::zeros(2, n);
+        let mut i3 = 0.0;
+        let mut i4 = DVector::zeros(n);
+        let mut i5 = DVector::zeros(n);
+        let mut i_rot = DVector::zeros(n);
+        let mut s_tilde = DMatrix::zeros(n, n);
+        let mut m_uu = DMatrix::zeros(n, n);
+        let mut m_rot = DMatrix::zeros(n, n);
+        let mut g = [
+            DMatrix::zeros(n, n),
+            DMatrix::zeros(n, n),
+            DMatrix::zeros(n, n),
+        ];
+        let mut g_a = DMatrix::zeros(n, n);
+        let mut g_v = DMatrix::zeros(n, n);
+
+        let s_b = point_shape(modes, 0.0);
+        let s_c = point_shape(modes, length);
+        let s_mid = point_shape(modes, 0.5 * length);
+        let chord = (s_c.row(1) - s_b.row(1)) / length;
+
+        let mut add_point = |w: f64, x: f64, a: &DMatrix<f64>, b: &DMatrix<f64>| {
+            i1[0] += w * x;
+            i3 += w * x * x;
+            for j in 0..n {
+                i2[(0, j)] += w * a[(0, j)];
+                i2[(1, j)] += w * b[(0, j)];
+                i4[j] += w * x * a[(0, j)];
+                i5[j] -= w * x * b[(0, j)];
+            }
+            for i in 0..n {
+                for j in 0..n {
+                    s_tilde[(i, j)] += w * (b[(0, i)] * a[(0, j)] - a[(0, i)] * b[(0, j)]);
+                    m_uu[(i, j)] += w * (a[(0, i)] * a[(0, j)] + b[(0, i)] * b[(0, j)]);
+                }
+            }
+        };
+        // Rotary inertia `j` on the rotation row `theta` (1 x n).
+        let mut rotary_total = 0.0;
+        let mut add_rotary = |j: f64, theta: &DMatrix<f64>| {
+            rotary_total += j;
+            for a in 0..n {
+                i_rot[a] += j * theta[(0, a)];
+                for b in 0..n {
+                    m_rot[(a, b)] += j * theta[(0, a)] * theta[(0, b)];
+                }
+            }
+        };
+        let small = def.small_end.mass;
+
+        for e in 0..mesh.n_elements {
+            let t = modes.element_shapes(e);
+            let el = mesh.section_element(e).expect("not plain");
+            let s0 = e as f64 * l;
+            for (s, sec, w) in table.quadrature_points(s0, s0 + l) {
+                let xi = (s - s0) / l;
+                let sh = el.shape(xi) * &t;
+                let a = sh.rows(0, 1).into_owned();
+                let b = sh.rows(1, 1).into_owned();
+                add_point(w * rho * sec.area, x_b + s, &a, &b);
+                if def.shear_modulus.is_some() {
+                    let psi = el.rotation(xi) * &t;
+                    add_rotary(
+                        w * rho * sec.area_moment,
+                        &DMatrix::from_fn(1, n, |_, j| psi[(0, j)]),
+                    );
+                }
+                // Geometric stiffness: slopes of the element's v interpolation.
+                let d = el.slope(xi) * &t - &chord;
+                let dtd = d.transpose() * &d;
+                for (k, gk) in g.iter_mut().enumerate() {
+                    *gk += &dtd * (w * s.powi(k as i32));
+                }
+                let (tail_a, tail_m) = table.tail_integrals(s);
+                let mu = rho * tail_a + small;
+                let nu = rho * (x_b * tail_a + tail_m) + small * (x_b + length);
+                g_a -= &dtd * (w * mu);
+                g_v += &dtd * (w * nu);
+            }
+        }
+        // End bodies: point masses and rotary inertias at the end nodes.
+        let last = mesh.n_elements;
+        for (node, body) in [(0usize, def.big_end), (last, def.small_end)] {
+            let row = |k: usize| DMatrix::from_fn(1, n, |_, j| modes.shapes[(3 * node + k, j)]);
+            add_point(body.mass, mesh.node_x(node), &row(0), &row(1));
+            add_rotary(body.inertia, &row(2));
+        }
+        i3 += rotary_total;
+        let m_ff = &m_uu + &m_rot;
+
+        ShapeIntegrals {
+            mass: def.total_mass(),
+            i1,
+            i2,
+            i3,
+            i4,
+            i5,
+            i_rot,
+            m_ff,
+            m_uu,
+            s_tilde,
+            g,
+            g_axial: Some([g_a, g_v]),
+            s_b,
+            s_c,
+            s_mid,
+            x_b,
+            x_c: x_b + length,
+            x_mid: x_b + 0.5 * length,
+        }
+    }
 }
 
 /// `S_hat(s)` (2 x n) at arc length `s` from B.
 pub fn point_shape(modes: &ComponentModes, s: f64) -> DMatrix<f64> {
     let (e, xi) = modes.mesh.locate(s);
-    let sh = modes.mesh.element().shape(xi) * modes.element_shapes(e);
+    let sh = modes.mesh.shape(e, xi) * modes.element_shapes(e);
     DMatrix::from_fn(2, sh.ncols(), |i, j| sh[(i, j)])
+}
+
+/// The rotation row `psi(s)` (1 x n) at arc length `s` from B: the slope for Euler-Bernoulli,
+/// the section rotation for the shear-deformable rod.
+pub fn point_rotation(modes: &ComponentModes, s: f64) -> DMatrix<f64> {
+    let (e, xi) = modes.mesh.locate(s);
+    let r = modes.mesh.rotation(e, xi) * modes.element_shapes(e);
+    DMatrix::from_fn(1, r.ncols(), |_, j| r[(0, j)])
 }

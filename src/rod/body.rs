@@ -77,6 +77,8 @@ pub trait RodBody: Send {
     fn frequencies_hz(&self) -> &[f64];
     /// Rod length L, m.
     fn length(&self) -> f64;
+    /// Mass of the rod with its end bodies (big end at B, small end at C), kg.
+    fn total_mass(&self) -> f64;
     /// The highest natural frequency the model carries, Hz (the explicit integrator's step
     /// limit follows from it). By default the highest of `frequencies_hz`.
     fn highest_frequency_hz(&self) -> f64 {

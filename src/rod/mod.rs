@@ -21,13 +21,12 @@ use crate::modal::{ComponentModes, ModeSelection, ReferenceConditions};
 /// Build the rod model `spec` asks for: validates the section, preprocesses the modes (FFR)
 /// or the chain (segments).
 pub fn build(spec: &RodSpec) -> Result<Box<dyn RodBody>, ModelError> {
-    let props = spec.properties();
-    props.validate()?;
+    let definition = spec.definition()?;
     match spec.model {
         RodModelKind::Ffr => {
             let reference = ReferenceConditions::from_kind(spec.reference, spec.elements)?;
-            let modes = ComponentModes::new(
-                props,
+            let modes = ComponentModes::from_definition(
+                definition,
                 spec.elements,
                 reference,
                 spec.mass,
@@ -39,8 +38,8 @@ pub fn build(spec: &RodSpec) -> Result<Box<dyn RodBody>, ModelError> {
                 spec.axial_stiffening,
             )))
         }
-        RodModelKind::Segments => Ok(Box::new(segments::SegmentRod::new(
-            props,
+        RodModelKind::Segments => Ok(Box::new(segments::SegmentRod::from_definition(
+            &definition,
             spec.elements,
             spec.damping_ratio,
             spec.axial_springs,

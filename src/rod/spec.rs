@@ -2,7 +2,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::beam::{MassKind, RodProperties};
+use crate::beam::{EndBody, MassKind, RodDefinition, RodProperties, SectionStation, SectionTable};
+use crate::error::ModelError;
 use crate::modal::ReferenceKind;
 
 /// Which rod model computes the connecting rod.
@@ -44,10 +45,27 @@ pub struct RodSpec {
     pub youngs_modulus: f64,
     /// Density rho, kg/m^3.
     pub density: f64,
-    /// Cross-section area A, m^2.
+    /// Cross-section area A, m^2, of the uniform rod (left out, i.e. 0, with a section table).
+    #[serde(default)]
     pub area: f64,
-    /// Second moment of area I, m^4.
+    /// Second moment of area I, m^4, of the uniform rod (left out, i.e. 0, with a section table).
+    #[serde(default)]
     pub area_moment: f64,
+    /// Station table `[[rod.section]]` of a rod whose section varies (empty = uniform rod).
+    #[serde(default, rename = "section", skip_serializing_if = "Vec::is_empty")]
+    pub section: Vec<SectionStation>,
+    /// Timoshenko beam (shear flexibility and rotary inertia) instead of Euler-Bernoulli.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub shear_deformation: bool,
+    /// Shear modulus G, Pa (default E / 2.6); used with `shear_deformation`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shear_modulus: Option<f64>,
+    /// Rigid body attached at B (`[rod.big_end]`: mass kg, inertia kg m^2 about B).
+    #[serde(default, skip_serializing_if = "EndBody::is_empty")]
+    pub big_end: EndBody,
+    /// Rigid body attached at C (`[rod.small_end]`: mass kg, inertia kg m^2 about C).
+    #[serde(default, skip_serializing_if = "EndBody::is_empty")]
+    pub small_end: EndBody,
     /// Modal damping ratio (FFR) or joint damping ratio of the first bending mode (segments); 0 = undamped.
     #[serde(default)]
     pub damping_ratio: f64,
@@ -70,17 +88,101 @@ pub struct RodSpec {
     pub axial_springs: bool,
 }
 
+/// Default shear modulus as a fraction of Young's modulus, `G = E / 2.6` (isotropic, Poisson's
+/// ratio 0.3: `G = E / (2 (1 + nu))`).
+pub const DEFAULT_SHEAR_MODULUS_FACTOR: f64 = 1.0 / 2.6;
+
 impl RodSpec {
-    /// The section properties of the uniform rod.
+    /// The section properties of the uniform rod; with a section table, `area` and
+    /// `area_moment` are the table's length means (an equivalent uniform rod, for messages and
+    /// estimates; the models use [`Self::definition`]). A table that does not validate gives
+    /// the spec's own (possibly 0) values, so that [`Self::validate`] names the station.
     pub fn properties(&self) -> RodProperties {
-        RodProperties {
+        let uniform = RodProperties {
             length: self.length,
             youngs_modulus: self.youngs_modulus,
             density: self.density,
             area: self.area,
             area_moment: self.area_moment,
+        };
+        if self.section.is_empty() {
+            return uniform;
+        }
+        match SectionTable::new(self.length, &self.section) {
+            Ok(t) => RodDefinition::with_table(uniform, t).properties,
+            Err(_) => uniform,
         }
     }
+
+    /// The shear modulus in use: `Some(G)` (given, or `E / 2.6`) with shear deformation on.
+    pub fn effective_shear_modulus(&self) -> Option<f64> {
+        self.shear_deformation.then(|| {
+            self.shear_modulus
+                .unwrap_or(self.youngs_modulus * DEFAULT_SHEAR_MODULUS_FACTOR)
+        })
+    }
+
+    /// The full rod (section table, shear, end bodies), validated: every error names the
+    /// offending key (a station by its index and position).
+    pub fn definition(&self) -> Result<RodDefinition, ModelError> {
+        let mut def = if self.section.is_empty() {
+            RodDefinition::uniform(self.properties())
+        } else {
+            if self.area != 0.0 || self.area_moment != 0.0 {
+                let (name, value) = if self.area != 0.0 {
+                    ("rod.area", self.area)
+                } else {
+                    ("rod.area_moment", self.area_moment)
+                };
+                return Err(ModelError::InvalidParameter {
+                    name,
+                    value,
+                    allowed: "left out when [[rod.section]] stations are given (the table fixes the section)".into(),
+                });
+            }
+            let table = SectionTable::new(self.length, &self.section)?;
+            RodDefinition::with_table(self.properties(), table)
+        };
+        if self.shear_modulus.is_some() && !self.shear_deformation {
+            return Err(ModelError::InvalidParameter {
+                name: "rod.shear_modulus",
+                value: self.shear_modulus.unwrap_or(f64::NAN),
+                allowed: "only with rod.shear_deformation = true".into(),
+            });
+        }
+        def.shear_modulus = self.effective_shear_modulus();
+        def.big_end = self.big_end;
+        def.small_end = self.small_end;
+        def.validate()?;
+        Ok(def)
+    }
+
+    /// Check the rod's keys (see [`Self::definition`]).
+    pub fn validate(&self) -> Result<(), ModelError> {
+        self.definition().map(|_| ())
+    }
+
+    /// Check that stress can be computed: every station gives `fibre_distance` (a section
+    /// table is required for it, since the uniform keys have no fibre distance).
+    pub fn require_fibre_distance(&self) -> Result<(), ModelError> {
+        match &self.definition()?.table {
+            Some(t) => t.require_fibre_distance(),
+            None => Err(ModelError::InvalidParameter {
+                name: "rod.section.fibre_distance",
+                value: f64::NAN,
+                allowed: "a [[rod.section]] table with fibre_distance at every station when stress is asked for".into(),
+            }),
+        }
+    }
+
+    /// Mass of the rod with its end bodies, kg (the FMU's calculated parameter `rod.mass`).
+    pub fn total_mass(&self) -> Result<f64, ModelError> {
+        Ok(self.definition()?.total_mass())
+    }
+}
+
+fn is_false(b: &bool) -> bool {
+    !*b
 }
 
 fn default_reference() -> ReferenceKind {

@@ -33,8 +33,10 @@ pub struct FfrRod {
     pub(super) stiffness: Vec<f64>,
     pub(super) damping: Vec<f64>,
     pub(super) axial_stiffening: bool,
-    /// `G_1 - L G_0`: the geometric stiffness per unit `rho A e.R''` (computed once).
+    /// The geometric stiffness per unit `coupling_scale e.R''` (computed once): `G_1 - L G_0`
+    /// for the plain rod (`coupling_scale = rho A`), `G_a` otherwise (`coupling_scale = 1`).
     pub(super) acceleration_stiffness: DMatrix<f64>,
+    pub(super) coupling_scale: f64,
     pub(super) length: f64,
     pub(super) rho_a: f64,
     pub(super) mass: f64,
@@ -51,9 +53,17 @@ impl FfrRod {
             .map(|w2| 2.0 * damping_ratio * w2.sqrt())
             .collect();
         let section = modes.mesh.section;
-        let acceleration_stiffness = &integrals.g[1] - &integrals.g[0] * section.length;
+        let (acceleration_stiffness, coupling_scale) = match &integrals.g_axial {
+            None => (
+                &integrals.g[1] - &integrals.g[0] * section.length,
+                section.mass_per_length(),
+            ),
+            Some([g_a, _]) => (g_a.clone(), 1.0),
+        };
+        let mass = integrals.mass;
         FfrRod {
             acceleration_stiffness,
+            coupling_scale,
             n: modes.n_modes(),
             integrals,
             stiffness,
@@ -61,7 +71,7 @@ impl FfrRod {
             axial_stiffening,
             length: section.length,
             rho_a: section.mass_per_length(),
-            mass: section.mass(),
+            mass,
             modes,
         }
     }
@@ -69,6 +79,11 @@ impl FfrRod {
     /// Number of modal coordinates.
     pub fn n_modes(&self) -> usize {
         self.n
+    }
+
+    /// Mass of the rod with its end bodies, kg (the FMU's `rod.mass`).
+    pub fn total_mass(&self) -> f64 {
+        self.mass
     }
 
     /// The symmetric mass matrix of the kinetic energy.
@@ -200,10 +215,14 @@ impl RodBody for FfrRod {
             qphi -= 2.0 * w * row * pd[j];
         }
         f[2] = qphi;
-        let kg = if self.axial_stiffening && n > 0 {
+        let kg = if self.axial_stiffening && n > 0 && ig.g_axial.is_none() {
             Some(self.axial_force_coefficients(v))
         } else {
             None
+        };
+        let g_velocity = match &ig.g_axial {
+            Some([_, g_v]) if self.axial_stiffening => Some(g_v),
+            _ => None,
         };
         for i in 0..n {
             // Qv_p = w^2 (I4 + M_ff p) - 2 w S~ p'.
@@ -216,6 +235,11 @@ impl RodBody for FfrRod {
                 for j in 0..n {
                     let kij = n0 * ig.g[0][(i, j)] + n1 * ig.g[1][(i, j)] + n2 * ig.g[2][(i, j)];
                     fi -= kij * p[j];
+                }
+            }
+            if let Some(g_v) = g_velocity {
+                for j in 0..n {
+                    fi -= w * w * g_v[(i, j)] * p[j];
                 }
             }
             f[3 + i] = fi;
@@ -338,6 +362,10 @@ impl RodBody for FfrRod {
 
     fn length(&self) -> f64 {
         self.length
+    }
+
+    fn total_mass(&self) -> f64 {
+        self.mass
     }
 
     fn highest_frequency_hz(&self) -> f64 {

@@ -39,10 +39,11 @@ impl FfrRod {
         t
     }
 
-    /// Coefficients (n0, n1, n2) of the axial force N(s) = n0 + n1 s + n2 s^2, N.
     /// Coefficients (n0, n1, n2) of the velocity part of the axial force,
-    /// `N(s) = n0 + n1 s + n2 s^2`, N. The acceleration part, `-rho A (L - s) e.R''`, is carried
-    /// by the mass matrix (see [`FfrRod::add_stiffening_coupling`]).
+    /// `N(s) = n0 + n1 s + n2 s^2`, N, of the plain (uniform, no end bodies) rod. The
+    /// acceleration part, `-rho A (L - s) e.R''`, is carried by the mass matrix (see
+    /// [`FfrRod::add_stiffening_coupling`]). Other rods use `phi'^2 G_v` instead
+    /// ([`crate::modal::ShapeIntegrals::g_axial`]).
     pub fn axial_force_coefficients(&self, v: &[f64]) -> [f64; 3] {
         let w = v[2] * v[2];
         let a0 = -w * self.integrals.x_b;
@@ -61,8 +62,8 @@ impl FfrRod {
             for j in 0..self.n {
                 h += self.acceleration_stiffness[(i, j)] * q[3 + j];
             }
-            m[(3 + i, 0)] += self.rho_a * h * c;
-            m[(3 + i, 1)] += self.rho_a * h * s;
+            m[(3 + i, 0)] += self.coupling_scale * h * c;
+            m[(3 + i, 1)] += self.coupling_scale * h * s;
         }
     }
 }

@@ -47,26 +47,24 @@ impl RodBody for SegmentRod {
 
     fn mass(&self, q: &[f64], mut mm: MatMut<'_, f64>) {
         let n = self.n_seg;
-        let m = self.seg_mass;
-        let l = self.seg_len;
         let ns = self.n_stretch();
-        let a = |j: usize| m * (n - 1 - j) as f64;
+        let a = |j: usize| self.beyond[j];
         // B block.
-        mm[(0, 0)] = m * n as f64;
-        mm[(1, 1)] = m * n as f64;
+        mm[(0, 0)] = self.total;
+        mm[(1, 1)] = self.total;
         mm[(0, 1)] = 0.0;
         mm[(1, 0)] = 0.0;
         for j in 0..n {
             let tj = self.theta_index(j);
             let (ej, nj) = axes(q[tj]);
             let lj = self.lever_q(j, q);
-            let hj = 0.5 * m * l + a(j) * lj;
+            let hj = self.first[j] + a(j) * lj;
             mm[(0, tj)] = hj * nj.x;
             mm[(1, tj)] = hj * nj.y;
             mm[(tj, 0)] = hj * nj.x;
             mm[(tj, 1)] = hj * nj.y;
             // Angle-angle block: row i <= j.
-            mm[(tj, tj)] = m * l * l / 3.0 + a(j) * lj * lj;
+            mm[(tj, tj)] = self.second[j] + a(j) * lj * lj;
             for i in 0..j {
                 let ti = self.theta_index(i);
                 let (ei, _) = axes(q[ti]);
@@ -96,7 +94,7 @@ impl RodBody for SegmentRod {
                 } else if i == j {
                     0.0
                 } else {
-                    (0.5 * m * l + a(i) * self.lever_q(i, q)) * snij
+                    (self.first[i] + a(i) * self.lever_q(i, q)) * snij
                 };
                 mm[(ti, sj)] = v;
                 mm[(sj, ti)] = v;
@@ -114,15 +112,14 @@ impl RodBody for SegmentRod {
 
     fn forces(&self, q: &[f64], v: &[f64], f: &mut [f64]) {
         let n = self.n_seg;
-        let m = self.seg_mass;
-        let half = 0.5 * self.seg_len;
-        // Pass 1: sum of the centroid bias accelerations gamma_k.
+        let m = self.weight_scale;
+        // Pass 1: the (weighted) sum of the centroid bias accelerations gamma_k.
         let mut prefix = Vector2::zeros(); // A_k = sum_{j<k} w_j
         let mut total = Vector2::zeros();
         for k in 0..n {
             let t = self.theta_index(k);
             let (e, _) = axes(q[t]);
-            total += prefix - e * (half * v[t] * v[t]);
+            total += (prefix - e * (self.centroids[k] * v[t] * v[t])) * self.weights[k];
             prefix += self.bias_term(k, q, v);
         }
         f[0] = -m * total.x;
@@ -133,21 +130,21 @@ impl RodBody for SegmentRod {
         for i in 0..n {
             let t = self.theta_index(i);
             let (e, nn) = axes(q[t]);
-            let gamma_i = prefix - e * (half * v[t] * v[t]);
-            done += gamma_i;
+            let gamma_i = prefix - e * (self.centroids[i] * v[t] * v[t]);
+            done += gamma_i * self.weights[i];
             let downstream = total - done;
             let (li, _) = self.lever(i, q, v);
-            f[t] = -m * nn.dot(&(gamma_i * half + downstream * li));
+            f[t] = -m * nn.dot(&(gamma_i * self.weighted_first[i] + downstream * li));
             if self.axial && i + 1 < n {
                 let s = self.stretch_index(i);
-                f[s] = -m * e.dot(&downstream) - self.k_ax * q[s] - self.c_ax * v[s];
+                f[s] = -m * e.dot(&downstream) - self.k_ax[i] * q[s] - self.c_ax[i] * v[s];
             }
             prefix += self.bias_term(i, q, v);
         }
         // Joint springs and dampers.
         for j in 0..n.saturating_sub(1) {
             let (ti, tj) = (self.theta_index(j), self.theta_index(j + 1));
-            let tau = self.k_rot * (q[tj] - q[ti]) + self.c_rot * (v[tj] - v[ti]);
+            let tau = self.k_rot[j] * (q[tj] - q[ti]) + self.c_rot[j] * (v[tj] - v[ti]);
             f[ti] += tau;
             f[tj] -= tau;
         }
@@ -156,16 +153,16 @@ impl RodBody for SegmentRod {
     fn add_tangent(&self, _q: &[f64], _v: &[f64], c_k: f64, c_d: f64, mut out: MatMut<'_, f64>) {
         // Exact for the springs and dampers; the velocity-product terms are left out (their
         // share of the Newton matrix is O((h omega)^2) and O(h omega) of the mass).
-        let kr = c_k * self.k_rot + c_d * self.c_rot;
         for j in 0..self.n_seg.saturating_sub(1) {
+            let kr = c_k * self.k_rot[j] + c_d * self.c_rot[j];
             let (ti, tj) = (self.theta_index(j), self.theta_index(j + 1));
             out[(ti, ti)] += kr;
             out[(tj, tj)] += kr;
             out[(ti, tj)] -= kr;
             out[(tj, ti)] -= kr;
         }
-        let ka = c_k * self.k_ax + c_d * self.c_ax;
         for j in 0..self.n_stretch() {
+            let ka = c_k * self.k_ax[j] + c_d * self.c_ax[j];
             let s = self.stretch_index(j);
             out[(s, s)] += ka;
         }
@@ -227,14 +224,13 @@ impl RodBody for SegmentRod {
 
     fn kinetic_energy(&self, q: &[f64], v: &[f64]) -> f64 {
         // T = sum_k (m |g_k'|^2 + I_c theta_k'^2) / 2, accumulating the joint velocities.
-        let half = 0.5 * self.seg_len;
         let mut joint = Vector2::new(v[0], v[1]);
         let mut t2 = 0.0;
         for k in 0..self.n_seg {
             let t = self.theta_index(k);
             let (e, nn) = axes(q[t]);
-            let g = joint + nn * (half * v[t]);
-            t2 += self.seg_mass * g.norm_squared() + self.seg_inertia * v[t] * v[t];
+            let g = joint + nn * (self.centroids[k] * v[t]);
+            t2 += self.masses[k] * g.norm_squared() + self.inertias[k] * v[t] * v[t];
             let (lk, sd) = self.lever(k, q, v);
             joint += e * sd + nn * (lk * v[t]);
         }
@@ -245,27 +241,26 @@ impl RodBody for SegmentRod {
         let mut u = 0.0;
         for j in 0..self.n_seg.saturating_sub(1) {
             let d = q[self.theta_index(j + 1)] - q[self.theta_index(j)];
-            u += self.k_rot * d * d;
+            u += self.k_rot[j] * d * d;
         }
         for j in 0..self.n_stretch() {
             let s = q[self.stretch_index(j)];
-            u += self.k_ax * s * s;
+            u += self.k_ax[j] * s * s;
         }
         0.5 * u
     }
 
     fn linear_momentum(&self, q: &[f64], v: &[f64]) -> Vector2<f64> {
-        let half = 0.5 * self.seg_len;
         let mut joint = Vector2::new(v[0], v[1]);
         let mut p = Vector2::zeros();
         for k in 0..self.n_seg {
             let t = self.theta_index(k);
             let (e, nn) = axes(q[t]);
-            p += joint + nn * (half * v[t]);
+            p += (joint + nn * (self.centroids[k] * v[t])) * self.weights[k];
             let (lk, sd) = self.lever(k, q, v);
             joint += e * sd + nn * (lk * v[t]);
         }
-        p * self.seg_mass
+        p * self.weight_scale
     }
 
     fn frequencies_hz(&self) -> &[f64] {
@@ -274,5 +269,9 @@ impl RodBody for SegmentRod {
 
     fn length(&self) -> f64 {
         self.length
+    }
+
+    fn total_mass(&self) -> f64 {
+        self.total_mass
     }
 }

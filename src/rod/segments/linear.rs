@@ -31,8 +31,8 @@ pub(crate) struct LinearizedChain {
     mass: Mat<f64>,
     n_seg: usize,
     axial: bool,
-    k_rot: f64,
-    k_ax: f64,
+    k_rot: Vec<f64>,
+    k_ax: Vec<f64>,
 }
 
 /// `T^T A T` for a dense `a` (n x n) and `t` (n x r).
@@ -61,7 +61,8 @@ impl LinearizedChain {
         let q0 = vec![0.0; n];
         let mut mass = Mat::zeros(n, n);
         rod.mass(&q0, mass.as_mut());
-        let (k_rot, k_ax) = rod.spring_constants();
+        let (k_rot, k_ax) = rod.joint_springs();
+        let (k_rot, k_ax) = (k_rot.to_vec(), k_ax.to_vec());
         LinearizedChain {
             mass,
             n_seg: rod.n_segments(),
@@ -81,11 +82,20 @@ impl LinearizedChain {
         // Angle block of M_0 and the tridiagonal joint stiffness.
         let m = Mat::from_fn(n, n, |i, j| self.mass[(2 + i, 2 + j)]);
         let k = Mat::from_fn(n, n, |i, j| {
-            let d = if i == 0 || i == n - 1 { 1.0 } else { 2.0 };
+            // Joint j joins angles j and j + 1: K_ii = k_{i-1} + k_i, K_{i,i+1} = -k_i (for
+            // equal springs 1 k or 2 k exactly, k + k being exact).
             if i == j {
-                d * self.k_rot
+                let left = if i > 0 { self.k_rot[i - 1] } else { 0.0 };
+                let right = if i + 1 < n { self.k_rot[i] } else { 0.0 };
+                if i == 0 {
+                    right
+                } else if i == n - 1 {
+                    left
+                } else {
+                    left + right
+                }
             } else if i.abs_diff(j) == 1 {
-                -self.k_rot
+                -self.k_rot[i.min(j)]
             } else {
                 0.0
             }
@@ -112,7 +122,7 @@ impl LinearizedChain {
         let ns = n - 1;
         let s0 = 2 + n;
         let m = Mat::from_fn(ns, ns, |i, j| self.mass[(s0 + i, s0 + j)]);
-        let k = Mat::from_fn(ns, ns, |i, j| if i == j { self.k_ax } else { 0.0 });
+        let k = Mat::from_fn(ns, ns, |i, j| if i == j { self.k_ax[i] } else { 0.0 });
         let t = Mat::from_fn(ns, ns - 1, |i, j| {
             if i == j {
                 1.0
@@ -134,10 +144,17 @@ impl LinearizedChain {
         // Coordinates [x_B, s_0..s_{N-2}].
         let idx = |i: usize| if i == 0 { 0 } else { 2 + n + (i - 1) };
         let m = Mat::from_fn(n, n, |i, j| self.mass[(idx(i), idx(j))]);
-        let k = Mat::from_fn(n, n, |i, j| if i == j && i > 0 { self.k_ax } else { 0.0 });
+        let k = Mat::from_fn(n, n, |i, j| {
+            if i == j && i > 0 {
+                self.k_ax[i - 1]
+            } else {
+                0.0
+            }
+        });
         // The rigid mode has omega^2 ~ round-off; the lowest elastic one is
         // (2 sin(pi/2N))^2 k/m >= (pi/N)^2 k/m (1 - small), far above the tolerance.
-        let k_over_m = self.k_ax / self.mass[(0, 0)] * n as f64;
+        let k_min = self.k_ax.iter().cloned().fold(f64::INFINITY, f64::min);
+        let k_over_m = k_min / self.mass[(0, 0)] * n as f64;
         let tol = 1e-6 * (std::f64::consts::PI / n as f64).powi(2) * k_over_m;
         frequencies(&k, &m, Some(tol))
     }

@@ -91,7 +91,7 @@
 
 use super::linear::LinearizedChain;
 use super::validate_segments;
-use crate::beam::RodProperties;
+use crate::beam::{RodDefinition, RodProperties};
 use crate::error::{require_non_negative, ModelError};
 
 /// The finite segment rod.
@@ -104,16 +104,34 @@ pub struct SegmentRod {
     pub(super) length: f64,
     /// Segment length l = L/N, m.
     pub(super) seg_len: f64,
-    /// Segment mass m = rho A l, kg.
-    pub(super) seg_mass: f64,
-    /// Centroidal inertia of a segment, m l^2 / 12, kg m^2.
-    pub(super) seg_inertia: f64,
-    /// Rotational spring k_r = E I / l, N m/rad, and damper c_r, N m s/rad.
-    pub(super) k_rot: f64,
-    pub(super) c_rot: f64,
-    /// Axial spring k_a = E A / l, N/m, and damper c_a, N s/m (0 without axial springs).
-    pub(super) k_ax: f64,
-    pub(super) c_ax: f64,
+    /// Segment masses m_k, kg (uniform rod: rho A l each).
+    pub(super) masses: Vec<f64>,
+    /// Centroid offsets c_k from each segment's B-side joint, m (uniform: l / 2).
+    pub(super) centroids: Vec<f64>,
+    /// Centroidal inertias I_k, kg m^2 (uniform: m l^2 / 12).
+    pub(super) inertias: Vec<f64>,
+    /// First moments about the B-side joint, `f_k = m_k c_k`, kg m (uniform: m l / 2).
+    pub(super) first: Vec<f64>,
+    /// Second moments about the B-side joint, `J_k = I_k + m_k c_k^2`, kg m^2 (uniform: m l^2 / 3).
+    pub(super) second: Vec<f64>,
+    /// Mass beyond segment j, `a_j = sum_{k>j} m_k`, kg (uniform: m (N - 1 - j)).
+    pub(super) beyond: Vec<f64>,
+    /// Total mass of the segments (end bodies included), kg (uniform: N m).
+    pub(super) total: f64,
+    /// The velocity-product sums are accumulated with the weights `weights[k]` and multiplied
+    /// by `weight_scale` at the end: `(1, m)` for the uniform rod (the original arithmetic), and
+    /// `(m_k, 1)` otherwise. `weighted_first[k]` is `f_k / weight_scale` (uniform: l / 2).
+    pub(super) weights: Vec<f64>,
+    pub(super) weight_scale: f64,
+    pub(super) weighted_first: Vec<f64>,
+    /// Rotational springs k_r of the joints, N m/rad, and dampers c_r, N m s/rad (N - 1 each).
+    pub(super) k_rot: Vec<f64>,
+    pub(super) c_rot: Vec<f64>,
+    /// Axial springs k_a, N/m, and dampers c_a, N s/m, of the joints (0 without axial springs).
+    pub(super) k_ax: Vec<f64>,
+    pub(super) c_ax: Vec<f64>,
+    /// Mass of the rod with its end bodies, kg.
+    pub(super) total_mass: f64,
     /// The material midpoint: (segment, distance from its start in m).
     pub(super) mid: (usize, f64),
     /// Pinned-pinned frequencies of the linearized chain, Hz: all, bending, axial.
@@ -138,49 +156,185 @@ impl SegmentRod {
         let n = n_segments;
         let l = props.length / n as f64;
         let m = props.mass_per_length() * l;
-        let half = 0.5 * props.length;
-        let k_mid = ((half / l).floor() as usize).min(n - 1);
-        let mut rod = SegmentRod {
-            n_seg: n,
-            axial: axial_springs,
-            length: props.length,
-            seg_len: l,
-            seg_mass: m,
-            seg_inertia: m * l * l / 12.0,
-            k_rot: props.bending_rigidity() / l,
-            c_rot: 0.0,
-            k_ax: if axial_springs {
-                props.axial_rigidity() / l
+        let k_rot = props.bending_rigidity() / l;
+        let k_ax = if axial_springs {
+            props.axial_rigidity() / l
+        } else {
+            0.0
+        };
+        let mut rod = Self::empty(props.length, n, axial_springs);
+        rod.masses = vec![m; n];
+        rod.centroids = vec![0.5 * l; n];
+        rod.inertias = vec![m * l * l / 12.0; n];
+        rod.first = vec![0.5 * m * l; n];
+        rod.second = vec![m * l * l / 3.0; n];
+        rod.beyond = (0..n).map(|j| m * (n - 1 - j) as f64).collect();
+        rod.total = m * n as f64;
+        rod.weights = vec![1.0; n];
+        rod.weight_scale = m;
+        rod.weighted_first = vec![0.5 * l; n];
+        rod.k_rot = vec![k_rot; n - 1];
+        rod.k_ax = vec![k_ax; n - 1];
+        rod.total_mass = props.mass();
+        rod.finish(damping_ratio, |_| {
+            Ok(2.0 * (k_ax / m).sqrt() * (std::f64::consts::PI / (2.0 * n as f64)).sin())
+        })?;
+        Ok(rod)
+    }
+
+    /// Build the chain of any rod: each segment `k` (arc lengths `[k l, (k + 1) l]`) takes the
+    /// mass, centroid and centroidal inertia of its piece of the section table,
+    /// `int rho A`, `int rho A s`, `int rho A s^2` (exact; the section's own rotary inertia
+    /// `rho I` is left out, as in the uniform chain and the Euler-Bernoulli beam), and the end
+    /// bodies are added to the first and last segment (point mass at B or C, inertia about it;
+    /// parallel-axis theorem). The joint between segments `j` and `j + 1` stands for the rod
+    /// from the middle of segment `j` to the middle of segment `j + 1` (two half segments in
+    /// series): `k_r = 1 / int ds / (E I(s))` over that length, the harmonic mean of `E I / l`
+    /// (exact for linear `I`: the `ln` form of
+    /// [`crate::beam::SectionTable::compliance_integral`]); the same for the axial spring with
+    /// `E A(s)`. For the uniform rod these are `E I / l` and `E A / l`. The shear-deformable
+    /// option does not apply to the chain (rejected).
+    pub fn from_definition(
+        def: &RodDefinition,
+        n_segments: usize,
+        damping_ratio: f64,
+        axial_springs: bool,
+    ) -> Result<SegmentRod, ModelError> {
+        if def.is_plain() {
+            return Self::new(def.properties, n_segments, damping_ratio, axial_springs);
+        }
+        def.validate()?;
+        validate_segments(n_segments)?;
+        require_non_negative("rod.damping_ratio", damping_ratio)?;
+        if let Some(g) = def.shear_modulus {
+            return Err(ModelError::InvalidParameter {
+                name: "rod.shear_deformation",
+                value: g,
+                allowed: "false with rod.model = \"segments\" (the chain has no shear flexibility; use rod.model = \"ffr\")".into(),
+            });
+        }
+        let n = n_segments;
+        let length = def.properties.length;
+        let l = length / n as f64;
+        let rho = def.properties.density;
+        let e_mod = def.properties.youngs_modulus;
+        let table = def.section_table();
+        let mut rod = Self::empty(length, n, axial_springs);
+        for k in 0..n {
+            let s0 = k as f64 * l;
+            let moments = |p: i32| {
+                table.integrate(s0, s0 + l, 0.0, |s, v, w| {
+                    rho * v.area * (s - s0).powi(p) * w
+                })
+            };
+            let (mut mk, mut fk, mut jk) = (moments(0), moments(1), moments(2));
+            if k == 0 {
+                mk += def.big_end.mass;
+                jk += def.big_end.inertia;
+            }
+            if k == n - 1 {
+                let c = def.small_end;
+                mk += c.mass;
+                fk += c.mass * l;
+                jk += c.mass * l * l + c.inertia;
+            }
+            let ck = fk / mk;
+            rod.masses.push(mk);
+            rod.centroids.push(ck);
+            rod.inertias.push(jk - mk * ck * ck);
+            rod.first.push(fk);
+            rod.second.push(jk);
+            rod.weights.push(mk);
+            rod.weighted_first.push(fk);
+        }
+        rod.weight_scale = 1.0;
+        rod.total = rod.masses.iter().sum();
+        rod.beyond = (0..n).map(|j| rod.masses[j + 1..].iter().sum()).collect();
+        for j in 0..n - 1 {
+            let (a, b) = ((j as f64 + 0.5) * l, (j as f64 + 1.5) * l);
+            rod.k_rot
+                .push(e_mod / table.compliance_integral(a, b, |v| v.area_moment));
+            rod.k_ax.push(if axial_springs {
+                e_mod / table.compliance_integral(a, b, |v| v.area)
             } else {
                 0.0
-            },
-            c_ax: 0.0,
+            });
+        }
+        rod.total_mass = def.total_mass();
+        rod.finish(damping_ratio, |rod| {
+            let f = LinearizedChain::new(rod).free_free_axial_hz()?;
+            Ok(2.0 * std::f64::consts::PI * f.first().copied().unwrap_or(1.0))
+        })?;
+        Ok(rod)
+    }
+
+    /// A chain with its geometry set and no masses or springs yet.
+    fn empty(length: f64, n: usize, axial: bool) -> SegmentRod {
+        let l = length / n as f64;
+        let half = 0.5 * length;
+        let k_mid = ((half / l).floor() as usize).min(n - 1);
+        SegmentRod {
+            n_seg: n,
+            axial,
+            length,
+            seg_len: l,
+            masses: Vec::with_capacity(n),
+            centroids: Vec::with_capacity(n),
+            inertias: Vec::with_capacity(n),
+            first: Vec::with_capacity(n),
+            second: Vec::with_capacity(n),
+            beyond: Vec::with_capacity(n),
+            total: 0.0,
+            weights: Vec::with_capacity(n),
+            weight_scale: 1.0,
+            weighted_first: Vec::with_capacity(n),
+            k_rot: Vec::with_capacity(n),
+            c_rot: Vec::new(),
+            k_ax: Vec::with_capacity(n),
+            c_ax: Vec::new(),
+            total_mass: 0.0,
             mid: (k_mid, half - k_mid as f64 * l),
             frequencies: Vec::new(),
             bending: Vec::new(),
             axial_modes: Vec::new(),
-        };
-        let chain = LinearizedChain::new(&rod);
-        rod.bending = chain.pinned_bending_hz()?;
-        if axial_springs {
-            rod.axial_modes = chain.pinned_axial_hz()?;
         }
-        let mut all: Vec<f64> = rod
+    }
+
+    /// Frequencies of the linearized chain and the dampers (`first_axial` gives the first
+    /// free-free axial circular frequency of the chain, rad/s).
+    fn finish<F>(&mut self, damping_ratio: f64, first_axial: F) -> Result<(), ModelError>
+    where
+        F: FnOnce(&SegmentRod) -> Result<f64, ModelError>,
+    {
+        let n = self.n_seg;
+        self.c_rot = vec![0.0; n - 1];
+        self.c_ax = vec![0.0; n - 1];
+        let chain = LinearizedChain::new(self);
+        self.bending = chain.pinned_bending_hz()?;
+        if self.axial {
+            self.axial_modes = chain.pinned_axial_hz()?;
+        }
+        let mut all: Vec<f64> = self
             .bending
             .iter()
-            .chain(&rod.axial_modes)
+            .chain(&self.axial_modes)
             .copied()
             .collect();
         all.sort_by(|a, b| a.total_cmp(b));
-        rod.frequencies = all;
-        if let Some(f1) = rod.bending.first() {
-            rod.c_rot = 2.0 * damping_ratio / (2.0 * std::f64::consts::PI * f1) * rod.k_rot;
+        self.frequencies = all;
+        if let Some(f1) = self.bending.first() {
+            let f1 = *f1;
+            for (c, k) in self.c_rot.iter_mut().zip(&self.k_rot) {
+                *c = 2.0 * damping_ratio / (2.0 * std::f64::consts::PI * f1) * k;
+            }
         }
-        if axial_springs && n >= 2 {
-            let w1 = 2.0 * (rod.k_ax / m).sqrt() * (std::f64::consts::PI / (2.0 * n as f64)).sin();
-            rod.c_ax = 2.0 * damping_ratio / w1 * rod.k_ax;
+        if self.axial && n >= 2 {
+            let w1 = first_axial(self)?;
+            for (c, k) in self.c_ax.iter_mut().zip(&self.k_ax) {
+                *c = 2.0 * damping_ratio / w1 * k;
+            }
         }
-        Ok(rod)
+        Ok(())
     }
 
     /// Number of segments N.
@@ -193,19 +347,43 @@ impl SegmentRod {
         self.axial
     }
 
-    /// Segment length l, m; segment mass m, kg.
+    /// Segment length l, m; mass of the first segment, kg (every segment's, for the uniform
+    /// rod; see [`Self::segment_masses`]).
     pub fn segment(&self) -> (f64, f64) {
-        (self.seg_len, self.seg_mass)
+        (self.seg_len, self.masses[0])
     }
 
-    /// Joint spring constants `(k_r, k_a)`: N m/rad and N/m (`k_a = 0` without axial springs).
+    /// Per segment: mass (kg), centroid offset from its B-side joint (m), centroidal inertia
+    /// (kg m^2).
+    pub fn segment_masses(&self) -> (&[f64], &[f64], &[f64]) {
+        (&self.masses, &self.centroids, &self.inertias)
+    }
+
+    /// Mass of the rod with its end bodies, kg (the FMU's `rod.mass`).
+    pub fn total_mass(&self) -> f64 {
+        self.total_mass
+    }
+
+    /// Joint spring constants `(k_r, k_a)` of the first joint: N m/rad and N/m (`k_a = 0`
+    /// without axial springs; `(0, 0)` for one segment). Every joint's: [`Self::joint_springs`].
     pub fn spring_constants(&self) -> (f64, f64) {
-        (self.k_rot, self.k_ax)
+        (
+            self.k_rot.first().copied().unwrap_or(0.0),
+            self.k_ax.first().copied().unwrap_or(0.0),
+        )
     }
 
-    /// Joint damper constants `(c_r, c_a)`: N m s/rad and N s/m.
+    /// Every joint's springs `(k_r, k_a)`, N - 1 each.
+    pub fn joint_springs(&self) -> (&[f64], &[f64]) {
+        (&self.k_rot, &self.k_ax)
+    }
+
+    /// Joint damper constants `(c_r, c_a)` of the first joint: N m s/rad and N s/m.
     pub fn damper_constants(&self) -> (f64, f64) {
-        (self.c_rot, self.c_ax)
+        (
+            self.c_rot.first().copied().unwrap_or(0.0),
+            self.c_ax.first().copied().unwrap_or(0.0),
+        )
     }
 
     /// Pinned-pinned bending frequencies of the linearized chain, Hz, ascending (N - 1).
