@@ -120,7 +120,9 @@ class Runner:
         if status > 1:
             msgs = [m for s, m in self.messages if s >= 2] or [m for _, m in self.messages]
             text = msgs[-1] if msgs else f"{what} returned {STATUS_NAMES.get(status, status)}"
-            raise RunFailed(STATUS_NAMES.get(status, str(status)), f"{what}: {text}")
+            if not text.startswith(what.split(" ")[0]):
+                text = f"{what}: {text}"
+            raise RunFailed(STATUS_NAMES.get(status, str(status)), text)
         return max(worst, status)
 
     def _set_value(self, name, value):
@@ -142,6 +144,12 @@ class Runner:
     # -- one run -------------------------------------------------------------------------
 
     def run(self, values, drive, metrics, record, outputs, abort):
+        try:
+            return self._run(values, drive, metrics, record, outputs, abort)
+        except RunFailed as e:
+            return e.status, e.message, {}, {}
+
+    def _run(self, values, drive, metrics, record, outputs, abort):
         """Simulate one run. `values`: FMU variable name -> value already converted for the
         FMU (enumerations as integers). Returns (status, message, metrics dict, record dict)."""
         self.messages.clear()
@@ -219,7 +227,10 @@ class Runner:
             message = warn[0] if warn else "fmi2Warning"
         # Revolution boundaries inside the measured window, for growth().
         marks = [m - n_start_measure for m in rev_marks]
-        return status, message, compute_metrics(metrics, outputs, data, marks), rec
+        series = {name: data[:, i] for i, name in enumerate(outputs)}
+        if any(parse_metric(m)[1] in DERIVED for m in metrics):
+            series.update(derived(series, self.get(["crank.length"])[0]))
+        return status, message, compute_metrics(metrics, series, marks), rec
 
 
 class CrankLaw:
@@ -269,14 +280,33 @@ class CrankLaw:
         return n_total, n_meas0, [n_meas0, n_total]
 
 
+# Derived outputs a metric may name besides the FMU's own: name -> FMU variables it needs.
+DERIVED = {
+    # Axial force of the rod (tension > 0), the mean of its two ends along the chord B -> C:
+    # N = (F_B . e - F_C . e) / 2, F the force of the rod on the pin, e the unit chord.
+    "rod.axial_force": ["pinB.force_x", "pinB.force_y", "pinC.force_x", "pinC.force_y",
+                        "crank.angle", "slider.position"],
+}
+
+
+def derived(s, r):
+    bx, by = r * np.cos(s["crank.angle"]), r * np.sin(s["crank.angle"])
+    ex, ey = s["slider.position"] - bx, -by
+    n = np.hypot(ex, ey)
+    ex, ey = ex / n, ey / n
+    nb = s["pinB.force_x"] * ex + s["pinB.force_y"] * ey
+    nc = -(s["pinC.force_x"] * ex + s["pinC.force_y"] * ey)
+    return {"rod.axial_force": 0.5 * (nb + nc)}
+
+
 METRIC_KINDS = ("max_abs", "max", "min", "mean", "range", "rms", "growth")
 
 
-def compute_metrics(metrics, outputs, data, marks):
+def compute_metrics(metrics, series, marks):
     out = {}
     for m in metrics:
         kind, name = parse_metric(m)
-        x = data[:, outputs.index(name)]
+        x = series[name]
         if kind == "max_abs":
             v = np.max(np.abs(x))
         elif kind == "max":

@@ -47,7 +47,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .runner import parse_metric
+from .runner import DERIVED, parse_metric
 
 
 class SpecError(Exception):
@@ -227,8 +227,13 @@ class Spec:
                 self._check_value(v, types, value)
         for m in self.metrics:
             _, out = parse_metric(m)
+            if out in DERIVED:
+                missing = [x for x in DERIVED[out] + ["crank.length"] if x not in variables]
+                if missing:
+                    raise SpecError(f"metric {m!r}: the FMU lacks {missing}, which {out} needs")
+                continue
             if out not in variables or variables[out].causality != "output":
-                outs = [n for n, v in variables.items() if v.causality == "output"]
+                outs = [n for n, v in variables.items() if v.causality == "output"] + list(DERIVED)
                 raise SpecError(f"metric {m!r}: {out!r} is not an output of the FMU; outputs: {', '.join(outs)}")
         for r in self.record:
             if r not in variables:

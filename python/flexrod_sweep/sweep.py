@@ -127,6 +127,10 @@ def run_sweep(spec_path, out, scheduler=None, workers=None, chunks_per_worker=4,
                             f"({old} vs {meta}); choose another --out or delete it")
     meta_path.write_text(json.dumps(meta, indent=1))
     shutil.copyfile(spec_path, out / "spec.toml")
+    import zipfile
+
+    with zipfile.ZipFile(fmu_path) as z:  # the FMU's description, for the record and the analysis
+        (out / "modelDescription.xml").write_bytes(z.read("modelDescription.xml"))
 
     names = spec.swept_names()
     existing = read_results(results_path)
@@ -173,13 +177,14 @@ def run_sweep(spec_path, out, scheduler=None, workers=None, chunks_per_worker=4,
 
 
 def _outputs(spec):
-    from .runner import parse_metric
+    from .runner import DERIVED, parse_metric
 
     outs = []
     for m in spec.metrics:
         o = parse_metric(m)[1]
-        if o not in outs:
-            outs.append(o)
+        for x in DERIVED.get(o, [o]):
+            if x not in outs:
+                outs.append(x)
     for o in spec.abort:
         if o not in outs:
             outs.append(o)
@@ -225,7 +230,9 @@ def _dask(fmu_bytes, todo, args, results_path, cols, progress, scheduler, worker
         info["workers"] = n_workers
         # The FMU goes to every worker once (works across machines: no shared file system).
         fmu_future = client.scatter(fmu_bytes, broadcast=True)
-        chunks = make_chunks(todo, n_workers * cpw)
+        # Small chunks (about 10 runs) keep the progress bar moving; the FMU still loads once
+        # per worker (the instance is cached in the worker process).
+        chunks = make_chunks(todo, max(n_workers * cpw, math.ceil(len(todo) / 10)))
         futures = [client.submit(_runner.run_chunk, fmu_future, chunk, *args, pure=False)
                    for chunk in chunks]
         with _bar(len(todo), progress) as bar:
@@ -240,6 +247,15 @@ def _dask(fmu_bytes, todo, args, results_path, cols, progress, scheduler, worker
                 _append(results_path, cols, rows)
                 bar.update(len(rows))
     finally:
+        import logging
+
+        # Closing a LocalCluster can log heartbeat errors of workers already gone: noise.
+        quiet = [logging.getLogger(n) for n in ("distributed", "distributed.worker", "distributed.nanny")]
+        levels = [q.level for q in quiet]
+        for q in quiet:
+            q.setLevel(logging.CRITICAL)
         client.close()
         if cluster is not None:
             cluster.close()
+        for q, lv in zip(quiet, levels):
+            q.setLevel(lv)
