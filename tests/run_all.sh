@@ -1,15 +1,16 @@
 #!/usr/bin/env bash
 # The whole test suite: Rust unit and integration tests, then the packaged FMU through FMPy.
-# Creates .venv (fmpy, pytest, numpy from PyPI) on first use.
+# Creates .venv (fmpy, pytest, numpy, dask[distributed], tqdm, matplotlib from PyPI; the sweep
+# tool python/ installed editable) on first use.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 if [ ! -x .venv/bin/python ]; then
     python3 -m venv .venv
 fi
-if ! .venv/bin/python -c "import fmpy, pytest, numpy" 2>/dev/null; then
+if ! .venv/bin/python -c "import fmpy, pytest, numpy, dask.distributed, tqdm, matplotlib, flexrod_sweep" 2>/dev/null; then
     .venv/bin/python -m pip install --quiet --upgrade pip
-    .venv/bin/python -m pip install --quiet fmpy pytest numpy
+    .venv/bin/python -m pip install --quiet fmpy pytest numpy "dask[distributed]" tqdm matplotlib -e python
 fi
 
 cargo test --release --workspace

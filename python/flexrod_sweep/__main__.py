@@ -40,6 +40,10 @@ def main(argv=None):
     rate = info["ran"] / info["elapsed"] if info["ran"] and info["elapsed"] > 0 else float("nan")
     print(f"{info['runs']} runs: {info['ran']} ran, {info['skipped']} already done; "
           f"{info['elapsed']:.2f} s ({rate:.3g} runs/s); status {counts}")
+    if "startup" in info and info["ran"]:
+        net = info["elapsed"] - info["startup"]
+        print(f"Dask: {info.get('workers')} workers, start-up {info['startup']:.2f} s, runs {net:.2f} s "
+              f"({info['ran'] / net:.3g} runs/s after start-up)")
     print(f"wrote {a.out}/results.csv" + "".join(f", {p}" for p in info.get("plots", [])))
     return 0
 

@@ -87,6 +87,10 @@ def main(argv=None):
         if peak is None:
             print(f"| {name} | {k} | {target:.1f} | no local maximum within 8 % | | | | | |")
             continue
+        if shifted is None:
+            print(f"| {name} | {k} | {target:.1f} | {peak:.1f} | {100 * (peak / target - 1):+.2f} % | "
+                  f"(no {AXIAL} metric) | | | {val:.4g} |")
+            continue
         print(f"| {name} | {k} | {target:.1f} | {peak:.1f} | {100 * (peak / target - 1):+.2f} % | "
               f"{n:.1f} | {shifted:.1f} | {100 * (peak / shifted - 1):+.2f} % | {val:.4g} |")
 

@@ -125,15 +125,20 @@ def heatmaps(spec, rows, out, cfg):
                     warn.append((xs[ix], ys[iy]))
             else:
                 bad.append((xs[ix], ys[iy]))
+        # Unevenly spaced (or categorical) y values: equal rows, labelled with the values.
+        cat_y = len(ys) > 2 and np.ptp(np.diff(ys)) > 1e-9 * max(abs(ys[-1]), 1)
+        ypos = list(range(len(ys))) if cat_y else ys
+        warn = [(wx, ypos[ys.index(wy)]) for wx, wy in warn]
+        bad = [(bx, ypos[ys.index(by)]) for bx, by in bad]
         fig, ax = plt.subplots(figsize=(8, 5))
         finite = z[np.isfinite(z)]
         norm = LogNorm(vmin=max(finite[finite > 0].min(), 1e-12), vmax=finite.max()) if log and (finite > 0).any() else None
-        mesh = ax.pcolormesh(_edges(xs), _edges(ys), z, shading="flat", cmap=cfg.get("cmap", "viridis"), norm=norm)
+        mesh = ax.pcolormesh(_edges(xs), _edges(ypos), z, shading="flat", cmap=cfg.get("cmap", "viridis"), norm=norm)
         fig.colorbar(mesh, ax=ax, label=metric)
         if cfg.get("contour") is not None and np.isfinite(z).sum() > 3:
-            ax.contour(xs, ys, z, levels=[cfg["contour"]], colors="w", linewidths=1.5)
+            ax.contour(xs, ypos, z, levels=[cfg["contour"]], colors="w", linewidths=1.5)
         if warn:
-            ax.plot(*zip(*warn), "s", mfc="none", mec="orange", ms=5, label="large-deflection warning")
+            ax.plot(*zip(*warn), ".", color="orange", ms=3, label="large-deflection warning (|v/L| > 0.05)")
         if bad:
             ax.plot(*zip(*bad), "x", color="red", ms=7, label="failed (discard / error / diverged)")
         if "frequency" in cfg and x == "crank.speed":
@@ -145,6 +150,9 @@ def heatmaps(spec, rows, out, cfg):
                                 ha="center", va="bottom", fontsize=8)
         ax.set_xlabel(x + (" (rad/s)" if x == "crank.speed" else ""))
         ax.set_ylabel(y)
+        if cat_y:
+            ax.set_yticks(ypos)
+            ax.set_yticklabels([f"{v:g}" for v in ys])
         if warn or bad:
             ax.legend(fontsize=8, loc="upper left")
         ax.set_title(cfg.get("title", f"{spec.name}: {metric}") + (f"\n{_label(key)}" if key else ""), fontsize=10)

@@ -218,6 +218,7 @@ def _dask(fmu_bytes, todo, args, results_path, cols, progress, scheduler, worker
     from dask.distributed import Client, LocalCluster, as_completed
 
     cluster = None
+    t_up = time.perf_counter()
     if scheduler is None:
         n = workers or os.cpu_count() or 1
         cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
@@ -230,6 +231,7 @@ def _dask(fmu_bytes, todo, args, results_path, cols, progress, scheduler, worker
         info["workers"] = n_workers
         # The FMU goes to every worker once (works across machines: no shared file system).
         fmu_future = client.scatter(fmu_bytes, broadcast=True)
+        info["startup"] = time.perf_counter() - t_up
         # Small chunks (about 10 runs) keep the progress bar moving; the FMU still loads once
         # per worker (the instance is cached in the worker process).
         chunks = make_chunks(todo, max(n_workers * cpw, math.ceil(len(todo) / 10)))
