@@ -67,8 +67,14 @@ fn revolutions(c: &mut Criterion) {
     );
     two_revolutions(
         c,
-        "2 revolutions at 150 rad/s, default scene: RK4, 8 el, 3 modes, h 3e-4 (pointwise 0.16 %)",
+        "2 revolutions at 150 rad/s, default scene: auto (Dormand-Prince, tolerance 1e-3), 8 el, 3 modes, outputs every 3e-4",
         Scene::benchmark(),
+        3e-4,
+    );
+    two_revolutions(
+        c,
+        "2 revolutions at 150 rad/s, RK4, 8 el, 3 modes, h 3e-4 (the previous default), outputs every 3e-4",
+        with(SolverMethod::Rk4, 3e-4),
         3e-4,
     );
     two_revolutions(

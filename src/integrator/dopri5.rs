@@ -18,7 +18,7 @@ use super::failure::{StepError, StepFailure};
 use super::partitioned::PartitionedRhs;
 use super::state::DaeState;
 use super::system::DaeSystem;
-use super::Integrator;
+use super::{quantize_step, Integrator};
 
 const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
 const A: [[f64; 6]; 7] = [
@@ -232,7 +232,7 @@ impl Integrator for Dopri5 {
                 let t1 = state.t + h;
                 let r = &self.rhs;
                 state.accept(t1, &r.q, &r.v, &r.qdd, &r.qdd, &r.lambda);
-                state.step_hint = next;
+                state.step_hint = quantize_step(next);
                 self.fresh = false;
                 return Ok(work);
             }
@@ -242,7 +242,7 @@ impl Integrator for Dopri5 {
             } else {
                 0.25
             };
-            h *= shrink;
+            h = quantize_step(h * shrink);
             if h < 1e-14 * (1.0 + state.t.abs()) {
                 break;
             }

@@ -22,7 +22,7 @@ use super::dense_lu::DenseLu;
 use super::failure::{StepError, StepFailure};
 use super::state::DaeState;
 use super::system::DaeSystem;
-use super::Integrator;
+use super::{quantize_step, Integrator};
 
 /// Method coefficients.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -181,15 +181,17 @@ impl GeneralizedAlpha {
                 }
                 let tr = &self.trial;
                 state.accept(state.t + h, &tr.q, &tr.v, &tr.qdd, &tr.acc, &tr.lambda);
-                state.step_hint = next;
+                state.step_hint = quantize_step(next);
                 return Ok(work);
             }
             rejected = true;
-            h *= if err.is_finite() {
-                (0.9 * err.powf(-1.0 / 3.0)).clamp(0.2, 0.9)
-            } else {
-                0.5
-            };
+            h = quantize_step(
+                h * if err.is_finite() {
+                    (0.9 * err.powf(-1.0 / 3.0)).clamp(0.2, 0.9)
+                } else {
+                    0.5
+                },
+            );
             if h < 1e-14 * (1.0 + state.t.abs()) {
                 break;
             }

@@ -36,6 +36,17 @@ pub use small_lu::SmallLu;
 pub use state::DaeState;
 pub use system::DaeSystem;
 
+/// A step size rounded down to the grid `2^(k/8)` (eight steps per octave): adaptive step
+/// choices then do not follow round-off-level differences in the error estimate, so the same
+/// run driven by different importers (communication points computed in other ways, Newton
+/// iterations stopping one iteration apart) takes the same steps.
+pub fn quantize_step(h: f64) -> f64 {
+    if !(h.is_finite() && h > 0.0) {
+        return h;
+    }
+    ((h.log2() * 8.0).floor() / 8.0).exp2()
+}
+
 /// A one-step method for a [`DaeSystem`].
 pub trait Integrator: Send {
     /// Advance `state` from `state.t` by `h`. On success returns the work done (Newton
