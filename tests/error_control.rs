@@ -194,3 +194,77 @@ fn explore_case() {
         );
     }
 }
+
+/// The error-controlled formulations give the previous formulations' results at a converged
+/// step: the FFR rod on its independent coordinates (Dormand-Prince) against the constrained
+/// index-1 form (RK4, h 1e-5), and the segment chain with adaptive generalized-alpha against
+/// fixed steps of 2.5e-7 s, over a quarter revolution: every output of the FFR rod within 1e-6
+/// of its peak (measured: 8e-8 at most); the chain's deflection within 1e-6, its joint forces
+/// within 5e-6 (measured 1.7e-6: the Newton tolerance floor over 40,000 fixed steps).
+#[test]
+fn new_formulations_equal_the_previous_ones_at_a_converged_step() {
+    let duration = 0.25 * 2.0 * std::f64::consts::PI / 150.0;
+    let compare = |name: &str, new: &Scene, old: &Scene, force_bound: f64| {
+        let (a, b) = (
+            run(new, 150.0, 1e-4, duration),
+            run(old, 150.0, 1e-4, duration),
+        );
+        let fields = |o: &flexrod::Outputs| {
+            [
+                o.deflection_rel,
+                o.pin_b_force[0],
+                o.pin_b_force[1],
+                o.pin_c_force[0],
+                o.pin_c_force[1],
+                o.crank_torque,
+                o.slider_velocity,
+            ]
+        };
+        for j in 0..7 {
+            let peak = b
+                .outputs
+                .iter()
+                .map(|o| fields(o)[j].abs())
+                .fold(0.0, f64::max);
+            let diff = a
+                .outputs
+                .iter()
+                .zip(&b.outputs)
+                .map(|(x, y)| (fields(x)[j] - fields(y)[j]).abs())
+                .fold(0.0, f64::max);
+            if peak == 0.0 {
+                // pinC.force_x of a massless slider without a force: zero in both.
+                assert!(diff < 1e-9, "{name}, output {j}: {diff:e} with a zero peak");
+                continue;
+            }
+            println!("{name}, output {j}: {:.2e} of the peak", diff / peak);
+            let bound = if j == 0 { 1e-6 } else { force_bound };
+            assert!(
+                diff <= bound * peak,
+                "{name}, output {j}: {diff:e} of peak {peak:e}"
+            );
+        }
+    };
+    let mut new = Scene::benchmark();
+    new.solver.method = SolverMethod::Dopri5;
+    new.solver.tolerance = 1e-9;
+    let mut old = Scene::benchmark();
+    old.solver.method = SolverMethod::Rk4;
+    old.solver.step = 1e-5;
+    compare("FFR: Dormand-Prince vs RK4", &new, &old, 1e-6);
+    let mut new = Scene::benchmark();
+    new.rod.model = RodModelKind::Segments;
+    new.rod.elements = 8;
+    new.solver.tolerance = 1e-8;
+    // At such small steps the Newton tolerance, not the step, limits the accuracy.
+    new.solver.newton_tolerance = 1e-13;
+    let mut old = new.clone();
+    old.solver.method = SolverMethod::GeneralizedAlpha;
+    old.solver.step = 2.5e-7;
+    compare(
+        "segments: adaptive vs fixed-step generalized-alpha",
+        &new,
+        &old,
+        5e-6,
+    );
+}

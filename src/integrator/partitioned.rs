@@ -112,6 +112,13 @@ impl PartitionedRhs {
         for (a, &i) in self.independent.iter().enumerate() {
             self.q[i] = z[a];
         }
+        if system.solve_dependent_positions(t, &mut self.q) {
+            system.constraints(t, &self.q, &mut self.phi);
+            let residual = self.phi.iter().fold(0.0f64, |r, x| r.max(x.abs()));
+            if residual <= 1e3 * self.position_tolerance {
+                return self.factor_jacobian(system);
+            }
+        }
         let mut converged = false;
         for _ in 0..12 {
             system.constraints(t, &self.q, &mut self.phi);

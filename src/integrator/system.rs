@@ -26,6 +26,13 @@ pub trait DaeSystem {
     fn constraint_rate(&self, t: f64, q: &[f64], out: &mut [f64]);
     /// `gamma` into `out` (m): the acceleration constraint is `Phi_q q'' = gamma`.
     fn constraint_acceleration_rhs(&self, t: f64, q: &[f64], v: &[f64], out: &mut [f64]);
+    /// For a partitioned integration: the dependent coordinates (all but the independent ones
+    /// the integrator holds) written into `q` in closed form so that `Phi(q, t) = 0`, from
+    /// the independent ones already in `q`. Returns false where the system has no closed form
+    /// (the integrator then solves by Newton).
+    fn solve_dependent_positions(&self, _t: f64, _q: &mut [f64]) -> bool {
+        false
+    }
     /// Add `c_k (K_t + d(Phi_q^T lambda)/dq) + c_d C_t` to `out` (n x n), with `K_t = -dQ/dq`
     /// and `C_t = -dQ/dq'` (approximations are fine: they only steer Newton).
     fn add_tangent(

@@ -101,6 +101,60 @@ impl DaeSystem for SliderCrankDae<'_> {
         out[3] = c.y;
     }
 
+    /// Closed form for a rod with one body frame (FFR): with the frame at the origin the points
+    /// give the body-frame chord `d = u_C - u_B`; pin B gives `R = r_pin - A(phi) u_B`, pin C's
+    /// line constraint `y_pin + (A(phi) d)_y = y_line`, i.e. `sin(phi + beta) = (y_line -
+    /// y_pin) / |d|` with `beta = atan2(d_y, d_x)` (the root nearest the current angle: the
+    /// assembly mode does not change), and the slider `x_s = x_pin + (A(phi) d)_x`. The pin
+    /// position and the line come from the constraint residuals at the current `q`, so the
+    /// closed form follows whatever the constraints say.
+    fn solve_dependent_positions(&self, t: f64, q: &mut [f64]) -> bool {
+        let Some([ix, iy, iphi]) = self.rod.frame_coordinates() else {
+            return false;
+        };
+        let nr = self.nr();
+        let mut residual = [0.0; 4];
+        self.constraints(t, q, &mut residual);
+        let b_now = self.rod.point(RodPoint::B, q);
+        let c_now = self.rod.point(RodPoint::C, q);
+        let pin = b_now - Vector2::new(residual[0], residual[1]);
+        let y_line = c_now.y - residual[3];
+        let (rx, ry, phi0) = (q[ix], q[iy], q[iphi]);
+        q[ix] = 0.0;
+        q[iy] = 0.0;
+        q[iphi] = 0.0;
+        let u_b = self.rod.point(RodPoint::B, q);
+        let d = self.rod.point(RodPoint::C, q) - u_b;
+        let rho = d.norm();
+        let sine = (y_line - pin.y) / rho;
+        if !(rho > 0.0 && sine.abs() <= 1.0) {
+            q[ix] = rx;
+            q[iy] = ry;
+            q[iphi] = phi0;
+            return false;
+        }
+        let beta = d.y.atan2(d.x);
+        let a = sine.asin();
+        let nearest = |x: f64| {
+            let k = ((phi0 - x) / std::f64::consts::TAU).round();
+            x + k * std::f64::consts::TAU
+        };
+        let (p1, p2) = (nearest(a - beta), nearest(std::f64::consts::PI - a - beta));
+        let phi = if (p1 - phi0).abs() <= (p2 - phi0).abs() {
+            p1
+        } else {
+            p2
+        };
+        let (s, c) = phi.sin_cos();
+        let rotate = |v: Vector2<f64>| Vector2::new(c * v.x - s * v.y, s * v.x + c * v.y);
+        let r = pin - rotate(u_b);
+        q[ix] = r.x;
+        q[iy] = r.y;
+        q[iphi] = phi;
+        q[nr] = pin.x + rotate(d).x;
+        true
+    }
+
     fn add_tangent(
         &self,
         q: &[f64],

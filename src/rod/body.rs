@@ -45,6 +45,12 @@ pub trait RodBody: Send {
     fn elastic_circular_frequencies(&self) -> Option<Vec<f64>> {
         None
     }
+    /// Indices of the body frame's origin `R` (x, y) and angle `phi` among the coordinates,
+    /// where the model has one frame carrying all points (the FFR rod): a point is then
+    /// `R + A(phi) u(q_elastic)`.
+    fn frame_coordinates(&self) -> Option<[usize; 3]> {
+        None
+    }
     /// Mass matrix (n x n) into `m`.
     fn mass(&self, q: &[f64], m: MatMut<'_, f64>);
     /// Generalized forces: quadratic velocity terms, elastic and damping forces, and the

@@ -170,6 +170,10 @@ impl RodBody for FfrRod {
         v[2] = omega;
     }
 
+    fn frame_coordinates(&self) -> Option<[usize; 3]> {
+        Some([0, 1, 2])
+    }
+
     fn elastic_circular_frequencies(&self) -> Option<Vec<f64>> {
         Some(self.stiffness.iter().map(|w2| w2.sqrt()).collect())
     }
