@@ -64,6 +64,8 @@ impl Simulation {
     /// Set the crank input that holds from the current time on.
     pub fn set_input(&mut self, input: CrankInput) -> Result<(), ModelError> {
         check_input(input, self.state.slider_force)?;
+        self.state.previous_input = self.state.input;
+        self.state.previous_input_time = self.state.input_time;
         self.state.input = input;
         self.state.input_time = self.state.time;
         Ok(())

@@ -52,6 +52,8 @@ impl Mechanism {
             },
             input,
             input_time: t0,
+            previous_input: input,
+            previous_input_time: t0,
             slider_force,
             ..Default::default()
         };

@@ -26,6 +26,10 @@ pub struct MechanismState {
     /// Crank input and the time it was set at.
     pub input: CrankInput,
     pub input_time: f64,
+    /// The crank input and its time before the last `set_input` (an adaptive integrator
+    /// restarts where the new input leaves the previous law).
+    pub previous_input: CrankInput,
+    pub previous_input_time: f64,
     /// External slider force, N.
     pub slider_force: f64,
     /// Outputs at `time`.
@@ -43,6 +47,10 @@ impl MechanismState {
         let mut put = |x: f64| out.extend_from_slice(&x.to_le_bytes());
         put(self.time);
         put(self.input_time);
+        put(self.previous_input_time);
+        put(self.previous_input.angle);
+        put(self.previous_input.speed);
+        put(self.previous_input.acceleration);
         put(self.input.angle);
         put(self.input.speed);
         put(self.input.acceleration);
@@ -89,7 +97,7 @@ impl MechanismState {
     pub fn read_bytes(&mut self, bytes: &[u8]) -> Result<(), String> {
         let n = self.dae.q.len();
         let m = self.dae.lambda.len();
-        let expected = 8 * (18 + 4 * n + m) + 8 * 3 + 1;
+        let expected = 8 * (22 + 4 * n + m) + 8 * 3 + 1;
         if bytes.len() != expected {
             return Err(format!(
                 "{} bytes of state, this model needs {expected} (truncated or from another model)",
@@ -104,6 +112,10 @@ impl MechanismState {
         };
         self.time = get();
         self.input_time = get();
+        self.previous_input_time = get();
+        self.previous_input.angle = get();
+        self.previous_input.speed = get();
+        self.previous_input.acceleration = get();
         self.input.angle = get();
         self.input.speed = get();
         self.input.acceleration = get();
@@ -143,6 +155,10 @@ impl MechanismState {
         self.stats.halvings = count();
         self.large_deflection_warned = bytes[expected - 1] != 0;
         let finite = self.time.is_finite()
+            && self.previous_input_time.is_finite()
+            && self.previous_input.angle.is_finite()
+            && self.previous_input.speed.is_finite()
+            && self.previous_input.acceleration.is_finite()
             && self.dae.step_hint.is_finite()
             && self.dae.step_hint >= 0.0
             && self.dae.amplitude.is_finite()

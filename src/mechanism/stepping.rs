@@ -2,9 +2,11 @@
 //! solver step, each halved on failure up to `solver.max_halvings` times, then a typed error
 //! with the state from before the communication step restored.
 
+use super::crank::CrankLaw;
 use super::slider_crank::{dae_context, Mechanism, OutputSolve};
 use super::state::MechanismState;
 use crate::error::ModelError;
+use crate::integrator::DaeSystem;
 
 /// |v_mid| / L above which the small-deformation assumption is flagged.
 pub const LARGE_DEFLECTION_WARNING: f64 = 0.05;
@@ -21,6 +23,7 @@ impl Mechanism {
         let adaptive = self.integrator.is_adaptive();
         let result = (|| {
             if adaptive {
+                self.restart_consistently(state)?;
                 return self.adaptive_steps(state, t_end);
             }
             for k in 0..n_sub {
@@ -77,6 +80,70 @@ impl Mechanism {
                 })
             }
         }
+    }
+
+    /// Before the steps of an adaptive integrator: where the inputs set at this communication
+    /// point moved the crank off the law the state followed (a sampled motion's new angle,
+    /// speed and acceleration), the positions and velocities move onto the new law's
+    /// constraints by the M-weighted least change (the index-1 projection, as the fixed-step
+    /// RK4 does after every step), and the accelerations and multipliers are recomputed: the
+    /// jump is not charged to the error control as a local error.
+    fn restart_consistently(
+        &mut self,
+        state: &mut MechanismState,
+    ) -> Result<(), (f64, f64, String)> {
+        let t = state.dae.t;
+        let sys = dae_context(
+            self.rod.as_ref(),
+            self.crank_length,
+            self.slider_mass,
+            state,
+        );
+        let mut phi = [0.0; 4];
+        sys.constraints(t, &state.dae.q, &mut phi);
+        let tolerance = 1e-14 * self.rod.length();
+        let mut work = self
+            .output_solve
+            .take()
+            .unwrap_or_else(|| OutputSolve::new(self.rod.n_coordinates() + 1));
+        let fail = |f: crate::integrator::StepFailure| {
+            (t, 0.0, format!("restart at the communication point: {f}"))
+        };
+        let result = (|| {
+            let positions_off = phi.iter().any(|x| x.abs() > tolerance);
+            let mut rate = [0.0; 4];
+            sys.constraint_rate(t, &state.dae.q, &mut rate);
+            let mut velocities_off = positions_off;
+            if !velocities_off {
+                let previous = CrankLaw {
+                    length: self.crank_length,
+                    t_k: state.previous_input_time,
+                    input: state.previous_input,
+                };
+                let (_, v_new, a_new) = sys.crank.pin(t);
+                let (_, v_old, a_old) = previous.pin(t);
+                velocities_off = (v_new - v_old).norm() > 1e-14 * (1.0 + v_new.norm())
+                    || (a_new - a_old).norm() > 1e-12 * (1.0 + a_new.norm());
+            }
+            if !velocities_off {
+                return Ok(());
+            }
+            work.solve
+                .project_positions(&sys, t, &mut state.dae.q, tolerance, 4)
+                .map_err(fail)?;
+            work.solve.factor(&sys, &state.dae.q).map_err(fail)?;
+            work.solve
+                .project_velocities(&sys, t, &state.dae.q, &mut state.dae.v);
+            work.solve
+                .accelerations(&sys, t, &state.dae.q, &state.dae.v)
+                .map_err(fail)?;
+            state.dae.qdd.copy_from_slice(&work.solve.qdd);
+            state.dae.acc.copy_from_slice(&work.solve.qdd);
+            state.dae.lambda.copy_from_slice(&work.solve.lambda);
+            Ok(())
+        })();
+        self.output_solve = Some(work);
+        result
     }
 
     /// Accepted steps of an adaptive integrator until `t_end` (the last one lands on it).

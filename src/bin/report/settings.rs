@@ -17,6 +17,12 @@ pub enum Model {
     Segments,
     /// FFR with axial stiffening, explicit RK4 with projection (`solver.method = "rk4"`).
     FfrRk4,
+    /// FFR with axial stiffening, error-controlled (`solver.method = "auto"`: Dormand-Prince
+    /// on the modal coordinates); `h` of the setting is `solver.tolerance`.
+    FfrAuto,
+    /// The segment chain, error-controlled (`auto`: adaptive generalized-alpha); `h` is the
+    /// tolerance.
+    SegmentsAuto,
 }
 
 impl Model {
@@ -27,6 +33,8 @@ impl Model {
             Model::FfrStiffened => "ffr_stiffened",
             Model::Segments => "segments",
             Model::FfrRk4 => "ffr_stiffened_rk4",
+            Model::FfrAuto => "ffr_stiffened_auto",
+            Model::SegmentsAuto => "segments_auto",
         }
     }
 
@@ -79,6 +87,22 @@ impl Setting {
         }
     }
 
+    /// Error-controlled FFR (stiffened) with `solver.tolerance = tolerance`.
+    pub fn auto(elements: usize, modes: usize, tolerance: f64) -> Setting {
+        Setting {
+            model: Model::FfrAuto,
+            ..Setting::ffr(true, elements, modes, tolerance)
+        }
+    }
+
+    /// Error-controlled segment chain with `solver.tolerance = tolerance`.
+    pub fn seg_auto(n: usize, tolerance: f64) -> Setting {
+        Setting {
+            model: Model::SegmentsAuto,
+            ..Setting::seg(n, tolerance)
+        }
+    }
+
     pub fn seg(n: usize, h: f64) -> Setting {
         Setting {
             model: Model::Segments,
@@ -107,35 +131,28 @@ impl Setting {
             && self.elements == other.elements
             && self.h == other.h
             && (self.model == Model::FfrRk4 || self.rho_inf == other.rho_inf)
-            && (self.model == Model::Segments
+            && (matches!(self.model, Model::Segments | Model::SegmentsAuto)
                 || (self.modes == other.modes && self.reference == other.reference))
     }
 
-    /// The setting of the default scene (`scenes/benchmark.toml`), its solver `auto` resolved
-    /// the way the library resolves it.
+    /// The setting of the default scene (`scenes/benchmark.toml`): its solver is `auto`, so
+    /// the error-controlled setting of its model at its tolerance.
     pub fn default_scene() -> Result<Setting, ModelError> {
         let scene = Scene::benchmark();
-        let model = match scene.rod.model {
-            RodModelKind::Segments => Model::Segments,
-            RodModelKind::Ffr => {
-                let simulation = Simulation::new(&scene)?;
-                let explicit = simulation
-                    .mechanism()
-                    .integrator_name()
-                    .0
-                    .starts_with("RK4");
-                match (scene.rod.axial_stiffening, explicit) {
-                    (true, true) => Model::FfrRk4,
-                    (true, false) => Model::FfrStiffened,
-                    (false, false) => Model::FfrLinear,
-                    (false, true) => {
-                        return Err(ModelError::InvalidParameter {
-                            name: "default scene",
-                            value: 0.0,
-                            allowed: "a setting the report has (RK4 with axial stiffening)".into(),
-                        })
-                    }
-                }
+        Simulation::new(&scene)?;
+        let model = match (
+            scene.rod.model,
+            scene.solver.method,
+            scene.rod.axial_stiffening,
+        ) {
+            (RodModelKind::Segments, SolverMethod::Auto, _) => Model::SegmentsAuto,
+            (RodModelKind::Ffr, SolverMethod::Auto, true) => Model::FfrAuto,
+            _ => {
+                return Err(ModelError::InvalidParameter {
+                    name: "default scene",
+                    value: 0.0,
+                    allowed: "solver.method = auto (with axial stiffening for the FFR rod)".into(),
+                })
             }
         };
         Ok(Setting {
@@ -143,9 +160,18 @@ impl Setting {
             elements: scene.rod.elements,
             modes: scene.rod.modes,
             reference: scene.rod.reference,
-            h: scene.solver.step,
+            h: scene.solver.tolerance,
             rho_inf: scene.solver.rho_inf,
         })
+    }
+
+    /// The communication step the report samples this setting at: its solver step, or for the
+    /// error-controlled settings (whose `h` is the tolerance) 3e-4 s, the default scene's.
+    pub fn communication_step(&self) -> f64 {
+        match self.model {
+            Model::FfrAuto | Model::SegmentsAuto => 3e-4,
+            _ => self.h,
+        }
     }
 
     pub fn label(&self) -> String {
@@ -159,6 +185,8 @@ impl Setting {
         match self.model {
             Model::Segments => format!("segments N={el} h={h:.0e} rho={rho}"),
             Model::FfrRk4 => format!("FFR stiffened RK4 {el}el/{modes}m {r} h={h:.1e}"),
+            Model::FfrAuto => format!("FFR stiffened auto {el}el/{modes}m {r} tol={h:.0e}"),
+            Model::SegmentsAuto => format!("segments auto N={el} tol={h:.0e}"),
             Model::FfrLinear => format!("FFR linear {el}el/{modes}m {r} h={h:.0e} rho={rho}"),
             Model::FfrStiffened => {
                 format!("FFR stiffened {el}el/{modes}m {r} h={h:.0e} rho={rho}")
@@ -178,6 +206,12 @@ impl Setting {
         s.solver.method = SolverMethod::GeneralizedAlpha;
         match self.model {
             Model::Segments => s.rod.model = RodModelKind::Segments,
+            Model::SegmentsAuto => {
+                s.rod.model = RodModelKind::Segments;
+                s.solver.method = SolverMethod::Auto;
+                s.solver.step = 3e-4;
+                s.solver.tolerance = self.h;
+            }
             m => {
                 s.rod.model = RodModelKind::Ffr;
                 s.rod.modes = self.modes;
@@ -185,6 +219,11 @@ impl Setting {
                 s.rod.axial_stiffening = m != Model::FfrLinear;
                 if m == Model::FfrRk4 {
                     s.solver.method = SolverMethod::Rk4;
+                }
+                if m == Model::FfrAuto {
+                    s.solver.method = SolverMethod::Auto;
+                    s.solver.step = 3e-4;
+                    s.solver.tolerance = self.h;
                 }
             }
         }

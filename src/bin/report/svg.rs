@@ -18,13 +18,17 @@ pub struct Panel {
     pub points: Vec<Point>,
 }
 
-const MODEL_NAMES: [&str; 4] = [
+const MODEL_NAMES: [&str; 6] = [
     "FFR linear",
     "FFR stiffened",
     "segments",
     "FFR stiffened, RK4",
+    "FFR stiffened, auto (error control)",
+    "segments, auto (error control)",
 ];
-const COLOURS: [&str; 4] = ["#d62728", "#1f77b4", "#2ca02c", "#9467bd"];
+const COLOURS: [&str; 6] = [
+    "#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b",
+];
 
 fn marker(model: usize, x: f64, y: f64) -> String {
     let c = COLOURS[model];

@@ -26,12 +26,13 @@ const TIME_BUDGET: f64 = 0.3;
 const MAX_REPEATS: usize = 30;
 
 /// Run `setting` on `case` at least `min_repeats` times (more, up to [`MAX_REPEATS`], while
-/// the total stays under [`TIME_BUDGET`]): communication step = solver step, from t = 0 for
+/// the total stays under [`TIME_BUDGET`]): communication step = solver step (3e-4 s for the
+/// error-controlled settings, whose internal steps the tolerance chooses), from t = 0 for
 /// the case's duration (two revolutions of the final speed after the start). Each run is
 /// `drive::run`: `Simulation::start`, then per communication point `set_input`, `advance` and
 /// the outputs read and recorded; `Simulation::new` (the preprocessing) is not timed.
 pub fn timed_runs(setting: &Setting, case: &Case, min_repeats: usize) -> Result<Timed, ModelError> {
-    let h = setting.h;
+    let h = setting.communication_step();
     let mut simulation = Simulation::new(&setting.scene(case))?;
     let steps = (case.duration() / h * (1.0 + 1e-12)).floor() as usize;
     let grid = communication_grid(0.0, h, steps);

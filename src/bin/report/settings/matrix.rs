@@ -23,6 +23,8 @@ pub fn matrix(quick: bool) -> Vec<Setting> {
         v.push(Setting::ffr(true, 8, 4, 1e-4));
         v.push(Setting::seg(16, 1e-4));
         v.push(Setting::rk4(8, 3, 3e-4));
+        v.push(Setting::auto(8, 3, 1e-3));
+        v.push(Setting::seg_auto(16, 1e-3));
         v.push(reference_setting(true));
         return v;
     }
@@ -58,6 +60,17 @@ pub fn matrix(quick: bool) -> Vec<Setting> {
         }
     }
     v.push(Setting::rk4(4, 3, 3e-4));
+    // The error-controlled path (`auto`): the cost of each tolerance.
+    for (modes, tolerances) in [(3, &[1e-2, 3e-3, 1e-3, 3e-4, 1e-4][..]), (4, &[1e-3][..])] {
+        for &tol in tolerances {
+            v.push(Setting::auto(8, modes, tol));
+        }
+    }
+    for n in [16, 32] {
+        for tol in [1e-2, 1e-3] {
+            v.push(Setting::seg_auto(n, tol));
+        }
+    }
     // Linear FFR modes (1985).
     for (el, modes) in [(8, 3), (8, 4)] {
         for h in [1e-4, 3e-4] {
