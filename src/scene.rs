@@ -14,7 +14,8 @@ use crate::error::ModelError;
 
 pub use crate::beam::MassKind;
 pub use crate::mechanism::spec::{
-    CrankSpec, MechanismSpec, SliderSpec, SolverMethod, SolverSpec, StartDeflection, StartSpec,
+    CrankSpec, MechanismSpec, MechanismTable, SliderSpec, SolverMethod, SolverSpec,
+    StartDeflection, StartSpec,
 };
 pub use crate::modal::ReferenceKind;
 pub use crate::rod::{RodModelKind, RodSpec};
@@ -40,6 +41,10 @@ pub struct Scene {
     pub experiment: ExperimentSpec,
     #[serde(default)]
     pub start: StartSpec,
+    /// `[mechanism]`: slider line offset and gravity (left out when neither is used, so the
+    /// scenes without it keep their fingerprint).
+    #[serde(default, skip_serializing_if = "MechanismTable::is_default")]
+    pub mechanism: MechanismTable,
 }
 
 /// Which optional variables the exported FMU declares.
@@ -142,6 +147,7 @@ impl Scene {
             slider: self.slider.clone(),
             solver: self.solver.clone(),
             start: self.start.clone(),
+            mechanism: self.mechanism.clone(),
         }
     }
 

@@ -246,6 +246,20 @@ impl RodBody for FfrRod {
         }
     }
 
+    fn add_gravity(&self, q: &[f64], g: Vector2<f64>, f: &mut [f64]) {
+        // r = R + A ubar: dr/dR = I, dr/dphi = A I~ ubar, dr/dp = A S_hat; integrated with the
+        // mass (rod and end bodies): Q_R = m g, Q_phi = (A I~ (I1 + I2 p)) . g,
+        // Q_p = (A I2)^T g (the first block row of the mass matrix, applied to g).
+        let (c, s) = rot(q[2]);
+        f[0] += self.mass * g.x;
+        f[1] += self.mass * g.y;
+        f[2] += rotate(c, s, tilde(self.first_moment(q))).dot(&g);
+        let ig = &self.integrals;
+        for j in 0..self.n {
+            f[3 + j] += rotate(c, s, Vector2::new(ig.i2[(0, j)], ig.i2[(1, j)])).dot(&g);
+        }
+    }
+
     fn add_tangent(&self, _q: &[f64], v: &[f64], c_k: f64, c_d: f64, mut out: MatMut<'_, f64>) {
         let n = self.n;
         let w = v[2];

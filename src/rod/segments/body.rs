@@ -45,6 +45,22 @@ impl RodBody for SegmentRod {
         }
     }
 
+    fn add_gravity(&self, q: &[f64], g: Vector2<f64>, f: &mut [f64]) {
+        // Sum over the segment centroids of m_k g . d g_k / dq: Q_B = m g,
+        // Q_theta_i = (f_i + a_i L_i) n_i . g, Q_s_j = a_j e_j . g.
+        f[0] += self.total * g.x;
+        f[1] += self.total * g.y;
+        for i in 0..self.n_seg {
+            let t = self.theta_index(i);
+            let (e, n) = axes(q[t]);
+            let h = self.first[i] + self.beyond[i] * self.lever_q(i, q);
+            f[t] += h * n.dot(&g);
+            if self.axial && i + 1 < self.n_seg {
+                f[self.stretch_index(i)] += self.beyond[i] * e.dot(&g);
+            }
+        }
+    }
+
     fn mass(&self, q: &[f64], mut mm: MatMut<'_, f64>) {
         let n = self.n_seg;
         let ns = self.n_stretch();

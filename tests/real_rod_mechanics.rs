@@ -1,0 +1,190 @@
+//! Real connecting rods, phase 2 (issue 11): the mechanism around the rod. Slider line offset
+//! and gravity against the closed-form rigid slider-crank inverse dynamics (`rod.modes = 0`).
+
+use flexrod::mechanism::Mechanism;
+use flexrod::scene::Scene;
+use flexrod::CrankInput;
+use nalgebra::Vector2;
+
+/// A rigid (no modes) uniform rod with end bodies, slider mass, offset line and gravity.
+const RIGID: &str = r#"
+name = "RigidRealRod"
+[crank]
+length = 0.045
+[rod]
+model = "ffr"
+length = 0.145
+youngs_modulus = 2.1e11
+density = 7850.0
+area = 2.4e-4
+area_moment = 4.0e-9
+elements = 8
+reference = "simply_supported"
+modes = 0
+axial_stiffening = true
+[rod.big_end]
+mass = 0.31
+inertia = 2.2e-4
+[rod.small_end]
+mass = 0.09
+inertia = 1.3e-5
+[slider]
+mass = 0.45
+[mechanism]
+slider_offset = 0.012
+gravity = [3.0, -9.81]
+"#;
+
+/// Closed-form inverse dynamics of the rigid slider-crank: crank angle `th`, speed `w`,
+/// acceleration `al`; slider line `y = e`; rod of mass `m`, centre of mass at `s_cm` from B
+/// along B->C, inertia `j_cm` about it; slider mass `ms` with force `fs` along +x; gravity `g`.
+/// Returns (force of the rod on the crank pin, force of the rod on the slider, crank torque).
+#[allow(clippy::too_many_arguments)]
+fn rigid_inverse_dynamics(
+    (r, l, e): (f64, f64, f64),
+    (m, s_cm, j_cm): (f64, f64, f64),
+    (ms, fs): (f64, f64),
+    g: Vector2<f64>,
+    (th, w, al): (f64, f64, f64),
+) -> (Vector2<f64>, Vector2<f64>, f64) {
+    let (s, c) = th.sin_cos();
+    let b = Vector2::new(r * c, r * s);
+    // sin(beta) = (e - r sin th) / L.
+    let beta = ((e - r * s) / l).asin();
+    let (sb, cb) = beta.sin_cos();
+    let d = Vector2::new(cb, sb);
+    let bd = -r * c * w / (l * cb);
+    let bdd = (r * s * w * w - r * c * al + l * sb * bd * bd) / (l * cb);
+    let ab = Vector2::new(-s * al - c * w * w, c * al - s * w * w) * r;
+    let perp = |v: Vector2<f64>| Vector2::new(-v.y, v.x);
+    let ag = ab + perp(d) * (s_cm * bdd) - d * (s_cm * bd * bd);
+    let ac_x = ab.x - l * (sb * bdd + cb * bd * bd);
+    // Slider: ms a_C = fs + ms g_x + lambda_C.x (lambda_C: force of the rod on the slider).
+    let lcx = ms * ac_x - fs - ms * g.x;
+    // Rod: m a_G = m g - lambda_B - lambda_C; about G:
+    // j_cm beta'' = (B - G) x (-lambda_B) + (C - G) x (-lambda_C).
+    let p = (g - ag) * m; // lambda_B + lambda_C
+    let u = -d * s_cm; // B - G
+    let cross = |a: Vector2<f64>, b: Vector2<f64>| a.x * b.y - a.y * b.x;
+    // -u x (p - lc) - w x lc = j bdd, w - u = L d: -u x p - (L d) x lc = j bdd.
+    let ld = d * l;
+    // (L d) x lc = ld.x lc.y - ld.y lc.x.
+    let lcy = (-cross(u, p) - j_cm * bdd + ld.y * lcx) / ld.x;
+    let lc = Vector2::new(lcx, lcy);
+    let lb = p - lc;
+    let torque = -cross(b, lb);
+    (lb, lc, torque)
+}
+
+#[test]
+fn rigid_rod_with_end_masses_offset_and_gravity_matches_closed_form() {
+    let scene = Scene::from_toml_str(RIGID, "RIGID").unwrap();
+    let spec = scene.mechanism_spec();
+    let mech = Mechanism::new(&spec).unwrap();
+    let rod = &scene.rod;
+    let (r, l) = (scene.crank.length, rod.length);
+    let e = scene.mechanism.slider_offset;
+    let m_rod = rod.density * rod.area * l;
+    let (mb, jb) = (0.31, 2.2e-4);
+    let (mc, jc) = (0.09, 1.3e-5);
+    let m = m_rod + mb + mc;
+    let s_cm = (m_rod * l / 2.0 + mc * l) / m;
+    let j_b = m_rod * l * l / 3.0 + jb + jc + mc * l * l;
+    let j_cm = j_b - m * s_cm * s_cm;
+    assert!((mech.rod.total_mass() - m).abs() < 1e-12 * m);
+    let g = Vector2::from(scene.mechanism.gravity);
+    let mut worst: f64 = 0.0;
+    for (k, &(w, al, fs)) in [
+        (0.0, 0.0, 0.0),
+        (628.0, 0.0, 0.0),
+        (300.0, 5.0e3, -2.0e3),
+        (-150.0, -1.0e4, 1.5e4),
+    ]
+    .iter()
+    .enumerate()
+    {
+        for i in 0..12 {
+            let th = 0.3 * k as f64 + i as f64 * std::f64::consts::TAU / 12.0;
+            let input = CrankInput {
+                angle: th,
+                speed: w,
+                acceleration: al,
+            };
+            let state = mech.initial_state(0.0, input, fs).unwrap();
+            let o = state.outputs;
+            let (lb, lc, torque) = rigid_inverse_dynamics(
+                (r, l, e),
+                (m, s_cm, j_cm),
+                (scene.slider.mass, fs),
+                g,
+                (th, w, al),
+            );
+            // Scale: the largest force of the case (gravity alone at standstill).
+            let fscale = lb.norm().max(lc.norm()).max(m * g.norm());
+            let errs = [
+                (o.pin_b_force[0] - lb.x).abs() / fscale,
+                (o.pin_b_force[1] - lb.y).abs() / fscale,
+                (o.pin_c_force[0] - lc.x).abs() / fscale,
+                (o.pin_c_force[1] - lc.y).abs() / fscale,
+                (o.crank_torque - torque).abs() / (fscale * r),
+                (state.dae.q[state.dae.q.len() - 1]
+                    - (r * th.cos() + (l * l - (e - r * th.sin()).powi(2)).sqrt()))
+                .abs()
+                    / l,
+            ];
+            let err = errs.iter().cloned().fold(0.0, f64::max);
+            assert!(
+                err < 1e-10,
+                "w {w} al {al} fs {fs} th {th}: errors {errs:?}; flexrod B {:?} C {:?} T {}, closed form B {lb:?} C {lc:?} T {torque}",
+                o.pin_b_force, o.pin_c_force, o.crank_torque
+            );
+            worst = worst.max(err);
+        }
+    }
+    println!(
+        "rigid rod, end masses, offset {e} m, gravity {g:?}: worst relative error {worst:.2e}"
+    );
+}
+
+/// `Q_g . v = g . p(q, v)` for any state: the generalized gravity forces are the work rates of
+/// gravity on the rod's momentum (both rod models, tapered rod with end bodies).
+#[test]
+fn gravity_forces_are_the_work_rate_on_the_momentum() {
+    for (model, axial) in [("ffr", false), ("segments", false), ("segments", true)] {
+        let text = RIGID
+            .replace("modes = 0", "modes = 3")
+            .replace("model = \"ffr\"", &format!("model = \"{model}\""))
+            .replace(
+                "axial_stiffening = true",
+                &format!("axial_stiffening = true\naxial_springs = {axial}"),
+            );
+        let scene = Scene::from_toml_str(&text, "gravity").unwrap();
+        let rod = flexrod::rod::build(&scene.rod).unwrap();
+        let n = rod.n_coordinates();
+        let g = Vector2::new(3.0, -9.81);
+        let mut worst: f64 = 0.0;
+        for k in 0..5 {
+            let x = |i: usize, a: f64| ((i * 7 + k * 13) as f64 * 0.37 + a).sin();
+            let q: Vec<f64> = (0..n)
+                .map(|i| {
+                    x(i, 0.1)
+                        * if i < 2 { 0.1 } else { 1.0 }
+                        * if i >= 2 + 8 && model == "segments" {
+                            1e-4
+                        } else {
+                            1.0
+                        }
+                })
+                .collect();
+            let v: Vec<f64> = (0..n).map(|i| x(i, 1.3) * 10.0).collect();
+            let mut f = vec![0.0; n];
+            rod.add_gravity(&q, g, &mut f);
+            let power: f64 = f.iter().zip(&v).map(|(a, b)| a * b).sum();
+            let expected = g.dot(&rod.linear_momentum(&q, &v));
+            let err = (power - expected).abs() / expected.abs().max(1e-300);
+            assert!(err < 1e-12, "{model} axial {axial}: {power} vs {expected}");
+            worst = worst.max(err);
+        }
+        println!("{model} (axial springs {axial}): Q_g . v vs g . p, worst {worst:.1e}");
+    }
+}
