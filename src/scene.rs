@@ -66,6 +66,15 @@ pub struct OutputSpec {
     /// How many `rod.frequency[k]` calculated parameters (capped at the number that exist).
     #[serde(default = "default_frequencies")]
     pub frequencies: usize,
+    /// `rod.axial_force_mid`, `rod.bending_moment_mid`, `rod.stress_max`,
+    /// `rod.stress_max_position` outputs (needs `fibre_distance` at every `[[rod.section]]`
+    /// station). Left out of a written scene when false.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub stress: bool,
+}
+
+fn is_false(b: &bool) -> bool {
+    !*b
 }
 
 impl Default for OutputSpec {
@@ -76,6 +85,7 @@ impl Default for OutputSpec {
             pin_forces: true,
             crank_torque: true,
             frequencies: default_frequencies(),
+            stress: false,
         }
     }
 }
@@ -148,6 +158,7 @@ impl Scene {
             solver: self.solver.clone(),
             start: self.start.clone(),
             mechanism: self.mechanism.clone(),
+            section_loads: self.outputs.stress,
         }
     }
 

@@ -188,3 +188,97 @@ fn gravity_forces_are_the_work_rate_on_the_momentum() {
         println!("{model} (axial springs {axial}): Q_g . v vs g . p, worst {worst:.1e}");
     }
 }
+
+/// A uniform steel rod as a two-station table with fibre distances (stress outputs on).
+fn statics_scene(offset: f64, gravity: [f64; 2], model: &str) -> Scene {
+    let text = format!(
+        r#"
+name = "Statics"
+[crank]
+length = 0.045
+[rod]
+model = "{model}"
+length = 0.145
+youngs_modulus = 2.1e11
+density = 7850.0
+elements = 8
+reference = "simply_supported"
+modes = 6
+axial_stiffening = true
+shear_deformation = {shear}
+[[rod.section]]
+position = 0.0
+area = 2.4e-4
+area_moment = 4.0e-9
+fibre_distance = 0.008
+[[rod.section]]
+position = 0.145
+area = 2.4e-4
+area_moment = 4.0e-9
+fibre_distance = 0.008
+[mechanism]
+slider_offset = {offset}
+gravity = [{gx}, {gy}]
+[start]
+deflection = "{start}"
+[outputs]
+stress = true
+"#,
+        shear = model == "ffr",
+        start = if model == "ffr" {
+            "quasi_static"
+        } else {
+            "undeformed"
+        },
+        gx = gravity[0],
+        gy = gravity[1],
+    );
+    Scene::from_toml_str(&text, "statics").unwrap()
+}
+
+/// At standstill, the rod under its own weight is a simply supported beam:
+/// `M_mid = q L^2 / 8`, `q = rho A g cos(beta)`, no axial force at the midpoint (the slider
+/// guide takes vertical forces only); under a slider force alone, `N = F` all along.
+#[test]
+fn statics_midpoint_moment_axial_force_and_stress_match_beam_theory() {
+    let (l, rho, a, i, c) = (0.145, 7850.0, 2.4e-4, 4.0e-9, 0.008);
+    let rest = CrankInput {
+        angle: 0.0,
+        speed: 0.0,
+        acceleration: 0.0,
+    };
+    for offset in [0.0, 0.03] {
+        let g = 9.81;
+        let scene = statics_scene(offset, [0.0, -g], "ffr");
+        let mech = Mechanism::new(&scene.mechanism_spec()).unwrap();
+        let state = mech.initial_state(0.0, rest, 0.0).unwrap();
+        let o = state.outputs.section;
+        let beta = (offset / l).asin();
+        let q = rho * a * g * beta.cos();
+        let m_mid = q * l * l / 8.0;
+        let sigma = m_mid * c / i;
+        let e_m = (o.bending_moment_mid - m_mid).abs() / m_mid;
+        let e_n = o.axial_force_mid.abs() / (rho * a * g * l);
+        let e_s = (o.stress_max - sigma).abs() / sigma;
+        println!(
+            "own weight, offset {offset} m: M_mid {:.9e} vs q L^2/8 {m_mid:.9e} ({e_m:.1e}); N_mid {:.2e} N; stress_max {:.9e} vs {sigma:.9e} ({e_s:.1e}) at {} m",
+            o.bending_moment_mid, o.axial_force_mid, o.stress_max, o.stress_max_position
+        );
+        assert!(e_m < 1e-6 && e_n < 1e-6 && e_s < 1e-6);
+        assert!((o.stress_max_position - 0.5 * l).abs() < 1e-12);
+    }
+    for force in [2.0e4, -2.0e4] {
+        let scene = statics_scene(0.0, [0.0, 0.0], "ffr");
+        let mech = Mechanism::new(&scene.mechanism_spec()).unwrap();
+        let state = mech.initial_state(0.0, rest, force).unwrap();
+        let o = state.outputs.section;
+        let e_n = (o.axial_force_mid - force).abs() / force.abs();
+        let e_s = (o.stress_max - force.abs() / a).abs() / (force.abs() / a);
+        println!(
+            "slider force {force} N: N_mid {:.9e} ({e_n:.1e}), M_mid {:.2e} N m, stress_max {:.9e} vs F/A ({e_s:.1e})",
+            o.axial_force_mid, o.bending_moment_mid, o.stress_max
+        );
+        assert!(e_n < 1e-6 && e_s < 1e-6);
+        assert!(o.bending_moment_mid.abs() < 1e-6 * force.abs() * l);
+    }
+}

@@ -158,6 +158,8 @@ pub struct MechanismSpec {
     pub start: StartSpec,
     /// Slider line offset and gravity.
     pub mechanism: MechanismTable,
+    /// Recover the section forces and stress with the outputs (`[outputs] stress = true`).
+    pub section_loads: bool,
 }
 
 impl MechanismSpec {
@@ -167,6 +169,9 @@ impl MechanismSpec {
     pub fn validate(&self) -> Result<(), ModelError> {
         let rod = &self.rod;
         rod.validate()?;
+        if self.section_loads {
+            rod.require_fibre_distance()?;
+        }
         require_positive("crank.length", self.crank.length)?;
         if self.crank.length >= rod.length {
             return Err(ModelError::InvalidParameter {

@@ -41,6 +41,8 @@ pub struct FfrRod {
     pub(super) rho_a: f64,
     pub(super) mass: f64,
     pub(super) n: usize,
+    /// Mass samples and cuts of the section-force recovery.
+    pub(super) sampling: super::sections::Sampling,
 }
 
 impl FfrRod {
@@ -62,6 +64,7 @@ impl FfrRod {
         };
         let mass = integrals.mass;
         FfrRod {
+            sampling: super::sections::Sampling::new(&modes),
             acceleration_stiffness,
             coupling_scale,
             n: modes.n_modes(),
@@ -258,6 +261,17 @@ impl RodBody for FfrRod {
         for j in 0..self.n {
             f[3 + j] += rotate(c, s, Vector2::new(ig.i2[(0, j)], ig.i2[(1, j)])).dot(&g);
         }
+    }
+
+    fn section_loads(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        qdd: &[f64],
+        g: Vector2<f64>,
+        force_c: Vector2<f64>,
+    ) -> crate::rod::SectionLoads {
+        self.section_loads_ffr(q, v, qdd, g, force_c)
     }
 
     fn add_tangent(&self, _q: &[f64], v: &[f64], c_k: f64, c_d: f64, mut out: MatMut<'_, f64>) {
