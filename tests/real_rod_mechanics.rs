@@ -282,3 +282,33 @@ fn statics_midpoint_moment_axial_force_and_stress_match_beam_theory() {
         assert!(o.bending_moment_mid.abs() < 1e-6 * force.abs() * l);
     }
 }
+
+/// The stress outputs and `rod.mass` are in the FMU only when the scene uses them, at value
+/// references 130-134; the benchmark scene's table is unchanged.
+#[test]
+fn stress_variables_present_only_when_asked() {
+    use flexrod::fmi::variables::VariableTable;
+    let names = [
+        ("rod.axial_force_mid", 130),
+        ("rod.bending_moment_mid", 131),
+        ("rod.stress_max", 132),
+        ("rod.stress_max_position", 133),
+        ("rod.mass", 134),
+    ];
+    let with = VariableTable::new(&statics_scene(0.0, [0.0, -9.81], "ffr"), 0);
+    for (name, vr) in names {
+        let v = with
+            .by_name(name)
+            .unwrap_or_else(|| panic!("{name} missing"));
+        assert_eq!(v.value_reference, vr);
+    }
+    let without = VariableTable::new(&Scene::benchmark(), 0);
+    for (name, _) in names {
+        assert!(
+            without.by_name(name).is_none(),
+            "{name} in the benchmark FMU"
+        );
+    }
+    let o = Scene::from_toml_str(RIGID, "RIGID").unwrap();
+    assert!(VariableTable::new(&o, 0).by_name("rod.mass").is_some());
+}

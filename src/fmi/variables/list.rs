@@ -134,6 +134,43 @@ impl VariableTable {
             );
         }
 
+        // Real connecting rods (fmu-contract.md, "Real connecting rods"; value references
+        // 130-149): section forces and stress, with `[outputs] stress = true`.
+        if out.stress {
+            b.output(
+                "rod.axial_force_mid",
+                130,
+                real("N"),
+                |o| o.section.axial_force_mid,
+                D::All,
+                "Axial force at the material midpoint, tension positive",
+            );
+            b.output(
+                "rod.bending_moment_mid",
+                131,
+                real("N.m"),
+                |o| o.section.bending_moment_mid,
+                D::All,
+                "Bending moment at the midpoint, positive when it bends the rod towards +v",
+            );
+            b.output(
+                "rod.stress_max",
+                132,
+                real("Pa"),
+                |o| o.section.stress_max,
+                D::All,
+                "Largest abs(N/A) + abs(M) c / I over the rod at this time",
+            );
+            b.output(
+                "rod.stress_max_position",
+                133,
+                real("m"),
+                |o| o.section.stress_max_position,
+                D::All,
+                "Where rod.stress_max occurs, distance from B",
+            );
+        }
+
         // Parameters (fixed: settable until fmi2ExitInitializationMode).
         b.real_parameter(
             "crank.length",
@@ -292,6 +329,17 @@ impl VariableTable {
                 format!(
                     "Natural frequency {k} of the rod under its reference conditions (retained or not)"
                 ),
+            );
+        }
+        let rod = &scene.rod;
+        if !rod.section.is_empty() || !rod.big_end.is_empty() || !rod.small_end.is_empty() {
+            b.calculated_parameter(
+                "rod.mass".into(),
+                134,
+                real("kg"),
+                Access::RodMass,
+                D::Named(&["rod.length", "rod.density"]),
+                "Mass of the rod with its end bodies".into(),
             );
         }
         b.finish()
