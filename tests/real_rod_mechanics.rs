@@ -379,3 +379,35 @@ fn automotive_rod_runs_two_revolutions_at_6000_rpm_with_a_gas_force_pulse() {
     let m = sim.mechanism().rod.total_mass();
     assert!(m > 0.4 && m < 0.6, "{m}");
 }
+
+/// The segment chain's section moment from the force summation at the middle joint equals the
+/// joint's spring moment `k_r (theta_{j+1} - theta_j)` (`k_r = E I / l`, no damping) at every
+/// step of a run at 600 rad/s with gravity and an offset: the summation is the joint's own
+/// equilibrium (the joint is massless).
+#[test]
+fn segment_chain_summation_moment_equals_the_joint_spring_moment() {
+    let mut scene = statics_scene(0.01, [0.0, -9.81], "segments");
+    scene.rod.elements = 8;
+    scene.solver.method = flexrod::scene::SolverMethod::GeneralizedAlpha;
+    scene.solver.step = 2e-6;
+    let mut sim = flexrod::Simulation::new(&scene).unwrap();
+    let w = 600.0;
+    let input = CrankInput {
+        angle: 0.0,
+        speed: w,
+        acceleration: 0.0,
+    };
+    sim.start(0.0, input, 0.0).unwrap();
+    let k_r = scene.rod.youngs_modulus * 4.0e-9 / (scene.rod.length / 8.0);
+    let (mut worst, mut peak): (f64, f64) = (0.0, 0.0);
+    for _ in 0..200 {
+        sim.advance(1e-5).unwrap();
+        let q = &sim.state().dae.q;
+        let spring = k_r * (q[2 + 4] - q[2 + 3]);
+        let m = sim.outputs().section.bending_moment_mid;
+        worst = worst.max((m - spring).abs());
+        peak = peak.max(spring.abs());
+    }
+    println!("chain: summation vs spring moment at the middle joint, worst {worst:.2e} N m of peak {peak:.3e} N m");
+    assert!(worst < 1e-6 * peak, "{worst} vs {peak}");
+}
