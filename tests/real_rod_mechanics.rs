@@ -310,7 +310,19 @@ fn stress_variables_present_only_when_asked() {
         );
     }
     let o = Scene::from_toml_str(RIGID, "RIGID").unwrap();
-    assert!(VariableTable::new(&o, 0).by_name("rod.mass").is_some());
+    let table = VariableTable::new(&o, 0);
+    assert!(table.by_name("rod.mass").is_some());
+    for (name, vr) in [
+        ("slider.offset", 135),
+        ("gravity.x", 136),
+        ("gravity.y", 137),
+    ] {
+        assert_eq!(table.by_name(name).unwrap().value_reference, vr);
+        assert!(
+            without.by_name(name).is_none(),
+            "{name} in the benchmark FMU"
+        );
+    }
 }
 
 /// The shipped automotive rod (scenes/automotive_rod.toml) runs two revolutions at 6000 rpm

@@ -279,6 +279,35 @@ impl VariableTable {
         );
         b.bounds(Some(Value::Integer(0)), None);
 
+        // Slider line and gravity (fmu-contract.md, "Real connecting rods"), in scenes with a
+        // `[mechanism]` table.
+        if !scene.mechanism.is_default() {
+            b.real_parameter(
+                "slider.offset",
+                135,
+                real("m"),
+                |s| s.mechanism.slider_offset,
+                |s, v| s.mechanism.slider_offset = v,
+                "Slider line offset: the slider moves along y = slider.offset",
+            );
+            b.real_parameter(
+                "gravity.x",
+                136,
+                real("m/s2"),
+                |s| s.mechanism.gravity[0],
+                |s, v| s.mechanism.gravity[0] = v,
+                "Gravity, global x",
+            );
+            b.real_parameter(
+                "gravity.y",
+                137,
+                real("m/s2"),
+                |s| s.mechanism.gravity[1],
+                |s, v| s.mechanism.gravity[1] = v,
+                "Gravity, global y",
+            );
+        }
+
         // Integer twins of the Enumeration parameters: masters that ignore Enumeration
         // variables (libcosim, among others) can still switch the model and the reference
         // conditions. Same getter and setter as the Enumeration: one value, two names.
