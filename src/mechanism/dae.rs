@@ -1,7 +1,9 @@
 //! The slider-crank as an index-3 DAE for the integrator.
 //!
 //! Coordinates `q = [q_rod..., x_s]` (x_s: slider position, m). Constraints (4):
-//! pin B `r_B(q) - r_crank(t) = 0` (2), pin C `r_C(q) - (x_s, 0) = 0` (2).
+//! pin B `r_B(q) - r_crank(t) = 0` (2), pin C `r_C(q) - (x_s, e) = 0` (2), `e` the slider
+//! line offset. Gravity `g` acts on the rod ([`RodBody::add_gravity`]) and on the slider
+//! (`m_s g_x` along its line; the guide takes `m_s g_y`).
 //! Multipliers `lambda = [B_x, B_y, C_x, C_y]`: with `M q'' + Phi_q^T lambda = Q`, the force
 //! of the rod on the crank pin is `lambda_B` and on the slider `lambda_C` (global, N).
 
@@ -21,6 +23,10 @@ pub struct SliderCrankDae<'a> {
     pub slider_mass: f64,
     /// External force on the slider along +x, N.
     pub slider_force: f64,
+    /// The slider line `y = slider_offset`, m.
+    pub slider_offset: f64,
+    /// Gravity, m/s^2, global frame.
+    pub gravity: Vector2<f64>,
 }
 
 impl SliderCrankDae<'_> {
@@ -60,13 +66,17 @@ impl DaeSystem for SliderCrankDae<'_> {
         let nr = self.nr();
         self.rod.forces(q, v, &mut f[..nr]);
         f[nr] = self.slider_force;
+        if self.gravity != Vector2::zeros() {
+            self.rod.add_gravity(q, self.gravity, &mut f[..nr]);
+            f[nr] += self.slider_mass * self.gravity.x;
+        }
     }
 
     fn constraints(&self, t: f64, q: &[f64], phi: &mut [f64]) {
         let nr = self.nr();
         let (pin, _, _) = self.crank.pin(t);
         let b = self.rod.point(RodPoint::B, q) - pin;
-        let c = self.rod.point(RodPoint::C, q) - Vector2::new(q[nr], 0.0);
+        let c = self.rod.point(RodPoint::C, q) - Vector2::new(q[nr], self.slider_offset);
         phi[0] = b.x;
         phi[1] = b.y;
         phi[2] = c.x;

@@ -18,6 +18,10 @@ pub struct Outputs {
     pub slider_position: f64,
     /// Slider velocity, m/s.
     pub slider_velocity: f64,
+    /// Section forces and stress (`rod.axial_force_mid`, `rod.bending_moment_mid`,
+    /// `rod.stress_max`, `rod.stress_max_position`); zero unless the spec asks for them
+    /// (`MechanismSpec::section_loads`).
+    pub section: crate::rod::SectionLoads,
 }
 
 use super::slider_crank::{Mechanism, OutputSolve};
@@ -90,6 +94,22 @@ impl Mechanism {
         let fc = [lambda[2], lambda[3]];
         let (pin, _, _) = self.crank_law(state).pin(state.time);
         let torque = -(pin.x * fb[1] - pin.y * fb[0]);
+        let section = if self.spec.section_loads {
+            let qdd = if reuse {
+                &state.dae.qdd
+            } else {
+                &work.solve.qdd
+            };
+            self.rod.section_loads(
+                &q[..nr],
+                &work.v[..nr],
+                &qdd[..nr],
+                nalgebra::Vector2::from(self.spec.mechanism.gravity),
+                -nalgebra::Vector2::new(fc[0], fc[1]),
+            )
+        } else {
+            Default::default()
+        };
         Ok(Outputs {
             deflection,
             deflection_rel: deflection / self.rod.length(),
@@ -98,6 +118,7 @@ impl Mechanism {
             crank_torque: torque,
             slider_position: q[nr],
             slider_velocity: work.v[nr],
+            section,
         })
     }
 }

@@ -2,6 +2,8 @@
 //! solver settings choose. Starting is in [`super::start`], stepping in [`super::stepping`],
 //! the outputs in [`super::outputs`].
 
+use nalgebra::Vector2;
+
 use super::crank::{CrankInput, CrankLaw};
 use super::dae::SliderCrankDae;
 use super::spec::{MechanismSpec, SolverMethod};
@@ -67,19 +69,20 @@ impl OutputSolve {
 /// The DAE evaluation context of `state`: the rod, the crank law in force, the slider.
 pub(super) fn dae_context<'a>(
     rod: &'a dyn RodBody,
-    crank_length: f64,
-    slider_mass: f64,
+    spec: &MechanismSpec,
     state: &MechanismState,
 ) -> SliderCrankDae<'a> {
     SliderCrankDae {
         rod,
         crank: CrankLaw {
-            length: crank_length,
+            length: spec.crank.length,
             t_k: state.input_time,
             input: state.input,
         },
-        slider_mass,
+        slider_mass: spec.slider.mass,
         slider_force: state.slider_force,
+        slider_offset: spec.mechanism.slider_offset,
+        gravity: Vector2::from(spec.mechanism.gravity),
     }
 }
 
@@ -113,6 +116,8 @@ impl Mechanism {
             },
             slider_mass: spec.slider.mass,
             slider_force: 0.0,
+            slider_offset: spec.mechanism.slider_offset,
+            gravity: Vector2::from(spec.mechanism.gravity),
         };
         let (integrator, max_step): (Box<dyn Integrator>, f64) = match method {
             SolverMethod::Dopri5 => {
@@ -199,12 +204,7 @@ impl Mechanism {
 
     /// The DAE of `state` (the crank law in force, the slider force).
     pub fn system(&self, state: &MechanismState) -> SliderCrankDae<'_> {
-        dae_context(
-            self.rod.as_ref(),
-            self.crank_length,
-            self.slider_mass,
-            state,
-        )
+        dae_context(self.rod.as_ref(), &self.spec, state)
     }
 
     /// The crank law in force in `state`.

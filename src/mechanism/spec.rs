@@ -28,6 +28,25 @@ impl Default for SliderSpec {
     }
 }
 
+/// The `[mechanism]` table of a scene: the slider line and gravity (docs/real-rods.md, phase 2).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct MechanismTable {
+    /// The slider moves along the line `y = slider_offset`, m (0: through the crank centre A).
+    #[serde(default)]
+    pub slider_offset: f64,
+    /// Gravitational acceleration `[g_x, g_y]`, m/s^2, global frame (default none).
+    #[serde(default)]
+    pub gravity: [f64; 2],
+}
+
+impl MechanismTable {
+    /// No offset, no gravity (the table is then left out of a written scene).
+    pub fn is_default(&self) -> bool {
+        *self == MechanismTable::default()
+    }
+}
+
 /// The rod's state at the start time.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "snake_case")]
@@ -137,6 +156,10 @@ pub struct MechanismSpec {
     pub slider: SliderSpec,
     pub solver: SolverSpec,
     pub start: StartSpec,
+    /// Slider line offset and gravity.
+    pub mechanism: MechanismTable,
+    /// Recover the section forces and stress with the outputs (`[outputs] stress = true`).
+    pub section_loads: bool,
 }
 
 impl MechanismSpec {
@@ -146,6 +169,9 @@ impl MechanismSpec {
     pub fn validate(&self) -> Result<(), ModelError> {
         let rod = &self.rod;
         rod.validate()?;
+        if self.section_loads {
+            rod.require_fibre_distance()?;
+        }
         require_positive("crank.length", self.crank.length)?;
         if self.crank.length >= rod.length {
             return Err(ModelError::InvalidParameter {
@@ -159,6 +185,29 @@ impl MechanismSpec {
         }
         require_non_negative("rod.damping_ratio", rod.damping_ratio)?;
         require_non_negative("slider.mass", self.slider.mass)?;
+        let offset = self.mechanism.slider_offset;
+        if !(offset.is_finite() && self.crank.length + offset.abs() < rod.length) {
+            return Err(ModelError::InvalidParameter {
+                name: "mechanism.slider_offset",
+                value: offset,
+                allowed: format!(
+                    "abs(mechanism.slider_offset) < rod.length - crank.length = {} m (else the crank cannot turn)",
+                    rod.length - self.crank.length
+                ),
+            });
+        }
+        for (name, g) in [
+            ("mechanism.gravity[0]", self.mechanism.gravity[0]),
+            ("mechanism.gravity[1]", self.mechanism.gravity[1]),
+        ] {
+            if !g.is_finite() {
+                return Err(ModelError::InvalidParameter {
+                    name,
+                    value: g,
+                    allowed: "a finite acceleration, m/s2".into(),
+                });
+            }
+        }
         require_positive("solver.step", self.solver.step)?;
         let rho = self.solver.rho_inf;
         if !(rho.is_finite() && (0.0..=1.0).contains(&rho)) {

@@ -25,11 +25,13 @@ impl Mechanism {
         let n = nr + 1;
         let r = self.crank_length;
         let l = self.rod.length();
-        // Rigid slider-crank: B on the crank, C on the slider line y = 0, |C - B| = L.
+        // Rigid slider-crank: B on the crank, C on the slider line y = e, |C - B| = L.
+        let e = self.spec.mechanism.slider_offset;
         let (s, c) = input.angle.sin_cos();
         let b = Vector2::new(r * c, r * s);
-        let dx = (l * l - r * r * s * s).sqrt();
-        let cpt = Vector2::new(b.x + dx, 0.0);
+        let dy = e - b.y;
+        let dx = (l * l - dy * dy).sqrt();
+        let cpt = Vector2::new(b.x + dx, e);
         let vb = Vector2::new(-r * s, r * c) * input.speed;
         let omega = -vb.y / dx;
         let vc_x = vb.x - omega * (cpt.y - b.y);

@@ -154,12 +154,7 @@ impl Mechanism {
     ) -> Result<(), (f64, f64, String)> {
         while state.dae.t < t_end {
             let h_max = t_end - state.dae.t;
-            let sys = dae_context(
-                self.rod.as_ref(),
-                self.crank_length,
-                self.slider_mass,
-                state,
-            );
+            let sys = dae_context(self.rod.as_ref(), &self.spec, state);
             match self.integrator.step(&sys, &mut state.dae, h_max) {
                 Ok(work) => {
                     state.stats.steps += 1;
@@ -185,12 +180,7 @@ impl Mechanism {
         depth: usize,
     ) -> Result<(), (f64, f64, String)> {
         let h = target - state.dae.t;
-        let sys = dae_context(
-            self.rod.as_ref(),
-            self.crank_length,
-            self.slider_mass,
-            state,
-        );
+        let sys = dae_context(self.rod.as_ref(), &self.spec, state);
         match self.integrator.step(&sys, &mut state.dae, h) {
             Ok(work) => {
                 state.dae.t = target;

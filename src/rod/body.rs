@@ -56,6 +56,20 @@ pub trait RodBody: Send {
     /// Generalized forces: quadratic velocity terms, elastic and damping forces, and the
     /// velocity part of the axial-force (geometric) stiffening.
     fn forces(&self, q: &[f64], v: &[f64], f: &mut [f64]);
+    /// Add the generalized gravity forces `int dm g . dr/dq` (rod and end bodies) into `f`
+    /// (n entries); `g` global, m/s^2.
+    fn add_gravity(&self, q: &[f64], g: Vector2<f64>, f: &mut [f64]);
+    /// Section forces by force summation ([`crate::rod::sections`]) at positions `q`,
+    /// velocities `v` and accelerations `qdd`, with `force_c` the force on the rod at C and `g`
+    /// gravity (global).
+    fn section_loads(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        qdd: &[f64],
+        g: Vector2<f64>,
+        force_c: Vector2<f64>,
+    ) -> crate::rod::SectionLoads;
     /// Add `c_k K_t + c_d C_t` (approximate `-dQ/dq`, `-dQ/dq'`) into `out` (n x n).
     fn add_tangent(&self, q: &[f64], v: &[f64], c_k: f64, c_d: f64, out: MatMut<'_, f64>);
     /// Global position of a material point.

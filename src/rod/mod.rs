@@ -9,10 +9,12 @@
 
 pub mod body;
 pub mod ffr;
+pub mod sections;
 pub mod segments;
 pub mod spec;
 
 pub use body::{RodBody, RodPoint};
+pub use sections::SectionLoads;
 pub use spec::{RodModelKind, RodSpec};
 
 use crate::error::ModelError;

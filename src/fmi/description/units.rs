@@ -12,7 +12,7 @@ struct UnitDef {
     display: &'static [(&'static str, &'static str)],
 }
 
-const UNITS: [UnitDef; 12] = [
+const UNITS: [UnitDef; 13] = [
     UnitDef {
         name: "m",
         base: &[("m", "1")],
@@ -21,6 +21,11 @@ const UNITS: [UnitDef; 12] = [
     UnitDef {
         name: "m/s",
         base: &[("m", "1"), ("s", "-1")],
+        display: &[],
+    },
+    UnitDef {
+        name: "m/s2",
+        base: &[("m", "1"), ("s", "-2")],
         display: &[],
     },
     UnitDef {

@@ -98,6 +98,11 @@ impl Instance {
                 Access::Frequency(i) => *frequencies.get(i).ok_or_else(|| {
                     FmiError::rejected(format!("{} does not exist for these parameters", v.name))
                 })?,
+                Access::RodMass => {
+                    self.scene.rod.total_mass().map_err(|e| {
+                        FmiError::rejected(format!("{} is not available: {e}", v.name))
+                    })?
+                }
                 Access::IntegerParameter { .. } => unreachable!("family checked"),
             };
         }

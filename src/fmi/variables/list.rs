@@ -134,6 +134,43 @@ impl VariableTable {
             );
         }
 
+        // Real connecting rods (fmu-contract.md, "Real connecting rods"; value references
+        // 130-149): section forces and stress, with `[outputs] stress = true`.
+        if out.stress {
+            b.output(
+                "rod.axial_force_mid",
+                130,
+                real("N"),
+                |o| o.section.axial_force_mid,
+                D::All,
+                "Axial force at the material midpoint, tension positive",
+            );
+            b.output(
+                "rod.bending_moment_mid",
+                131,
+                real("N.m"),
+                |o| o.section.bending_moment_mid,
+                D::All,
+                "Bending moment at the midpoint, positive when it bends the rod towards +v",
+            );
+            b.output(
+                "rod.stress_max",
+                132,
+                real("Pa"),
+                |o| o.section.stress_max,
+                D::All,
+                "Largest abs(N/A) + abs(M) c / I over the rod at this time",
+            );
+            b.output(
+                "rod.stress_max_position",
+                133,
+                real("m"),
+                |o| o.section.stress_max_position,
+                D::All,
+                "Where rod.stress_max occurs, distance from B",
+            );
+        }
+
         // Parameters (fixed: settable until fmi2ExitInitializationMode).
         b.real_parameter(
             "crank.length",
@@ -242,6 +279,35 @@ impl VariableTable {
         );
         b.bounds(Some(Value::Integer(0)), None);
 
+        // Slider line and gravity (fmu-contract.md, "Real connecting rods"), in scenes with a
+        // `[mechanism]` table.
+        if !scene.mechanism.is_default() {
+            b.real_parameter(
+                "slider.offset",
+                135,
+                real("m"),
+                |s| s.mechanism.slider_offset,
+                |s, v| s.mechanism.slider_offset = v,
+                "Slider line offset: the slider moves along y = slider.offset",
+            );
+            b.real_parameter(
+                "gravity.x",
+                136,
+                real("m/s2"),
+                |s| s.mechanism.gravity[0],
+                |s, v| s.mechanism.gravity[0] = v,
+                "Gravity, global x",
+            );
+            b.real_parameter(
+                "gravity.y",
+                137,
+                real("m/s2"),
+                |s| s.mechanism.gravity[1],
+                |s, v| s.mechanism.gravity[1] = v,
+                "Gravity, global y",
+            );
+        }
+
         // Integer twins of the Enumeration parameters: masters that ignore Enumeration
         // variables (libcosim, among others) can still switch the model and the reference
         // conditions. Same getter and setter as the Enumeration: one value, two names.
@@ -292,6 +358,17 @@ impl VariableTable {
                 format!(
                     "Natural frequency {k} of the rod under its reference conditions (retained or not)"
                 ),
+            );
+        }
+        let rod = &scene.rod;
+        if !rod.section.is_empty() || !rod.big_end.is_empty() || !rod.small_end.is_empty() {
+            b.calculated_parameter(
+                "rod.mass".into(),
+                134,
+                real("kg"),
+                Access::RodMass,
+                D::Named(&["rod.length", "rod.density"]),
+                "Mass of the rod with its end bodies".into(),
             );
         }
         b.finish()

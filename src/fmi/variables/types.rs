@@ -139,6 +139,8 @@ pub enum Access {
     },
     /// `rod.frequency[k]`: index k - 1 into `Simulation::frequencies_hz`.
     Frequency(usize),
+    /// `rod.mass`: the rod with its end bodies, from the instance's scene.
+    RodMass,
 }
 
 /// Which knowns an unknown depends on during initialization (`ModelStructure/InitialUnknowns`).

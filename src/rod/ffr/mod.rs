@@ -3,6 +3,7 @@
 
 pub mod points;
 pub mod rod;
+pub mod sections;
 pub mod stiffening;
 
 pub use rod::FfrRod;

@@ -41,6 +41,8 @@ pub struct FfrRod {
     pub(super) rho_a: f64,
     pub(super) mass: f64,
     pub(super) n: usize,
+    /// Mass samples and cuts of the section-force recovery.
+    pub(super) sampling: super::sections::Sampling,
 }
 
 impl FfrRod {
@@ -62,6 +64,7 @@ impl FfrRod {
         };
         let mass = integrals.mass;
         FfrRod {
+            sampling: super::sections::Sampling::new(&modes),
             acceleration_stiffness,
             coupling_scale,
             n: modes.n_modes(),
@@ -248,6 +251,31 @@ impl RodBody for FfrRod {
             }
             f[3 + i] = fi;
         }
+    }
+
+    fn add_gravity(&self, q: &[f64], g: Vector2<f64>, f: &mut [f64]) {
+        // r = R + A ubar: dr/dR = I, dr/dphi = A I~ ubar, dr/dp = A S_hat; integrated with the
+        // mass (rod and end bodies): Q_R = m g, Q_phi = (A I~ (I1 + I2 p)) . g,
+        // Q_p = (A I2)^T g (the first block row of the mass matrix, applied to g).
+        let (c, s) = rot(q[2]);
+        f[0] += self.mass * g.x;
+        f[1] += self.mass * g.y;
+        f[2] += rotate(c, s, tilde(self.first_moment(q))).dot(&g);
+        let ig = &self.integrals;
+        for j in 0..self.n {
+            f[3 + j] += rotate(c, s, Vector2::new(ig.i2[(0, j)], ig.i2[(1, j)])).dot(&g);
+        }
+    }
+
+    fn section_loads(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        qdd: &[f64],
+        g: Vector2<f64>,
+        force_c: Vector2<f64>,
+    ) -> crate::rod::SectionLoads {
+        self.section_loads_ffr(q, v, qdd, g, force_c)
     }
 
     fn add_tangent(&self, _q: &[f64], v: &[f64], c_k: f64, c_d: f64, mut out: MatMut<'_, f64>) {

@@ -7,6 +7,7 @@ use nalgebra::Vector2;
 use super::kinematics::axes;
 use super::rod::SegmentRod;
 use crate::rod::body::{RodBody, RodPoint};
+use crate::rod::sections::LoadWalk;
 
 impl RodBody for SegmentRod {
     fn n_coordinates(&self) -> usize {
@@ -43,6 +44,56 @@ impl RodBody for SegmentRod {
             q[self.theta_index(k)] = theta;
             v[self.theta_index(k)] = omega;
         }
+    }
+
+    fn add_gravity(&self, q: &[f64], g: Vector2<f64>, f: &mut [f64]) {
+        // Sum over the segment centroids of m_k g . d g_k / dq: Q_B = m g,
+        // Q_theta_i = (f_i + a_i L_i) n_i . g, Q_s_j = a_j e_j . g.
+        f[0] += self.total * g.x;
+        f[1] += self.total * g.y;
+        for i in 0..self.n_seg {
+            let t = self.theta_index(i);
+            let (e, n) = axes(q[t]);
+            let h = self.first[i] + self.beyond[i] * self.lever_q(i, q);
+            f[t] += h * n.dot(&g);
+            if self.axial && i + 1 < self.n_seg {
+                f[self.stretch_index(i)] += self.beyond[i] * e.dot(&g);
+            }
+        }
+    }
+
+    fn section_loads(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        qdd: &[f64],
+        g: Vector2<f64>,
+        force_c: Vector2<f64>,
+    ) -> crate::rod::SectionLoads {
+        // Walk from C: the pin force, then segment k (its centroid's d'Alembert force and
+        // couple) before the cut at its B-side joint (cut k; cut N is C). The end bodies are
+        // part of the first and last segments.
+        let n = self.n_seg;
+        let mut walk = LoadWalk::new();
+        let r_c = self.material_point(n - 1, self.seg_len, q);
+        walk.add(r_c, force_c, 0.0);
+        let (e_last, _) = axes(q[self.theta_index(n - 1)]);
+        walk.cut(&self.cuts[n], r_c, e_last, self.mid_cut == n);
+        for k in (0..n).rev() {
+            let t = self.theta_index(k);
+            let ck = self.centroids[k];
+            let r = self.material_point(k, ck, q);
+            let a = self.material_velocity(k, ck, q, qdd) + self.bias_at(k, ck, q, v);
+            walk.add(r, (g - a) * self.masses[k], -self.inertias[k] * qdd[t]);
+            let (e, _) = axes(q[t]);
+            walk.cut(
+                &self.cuts[k],
+                self.material_point(k, 0.0, q),
+                e,
+                self.mid_cut == k,
+            );
+        }
+        walk.out
     }
 
     fn mass(&self, q: &[f64], mut mm: MatMut<'_, f64>) {

@@ -138,6 +138,10 @@ pub struct SegmentRod {
     pub(super) frequencies: Vec<f64>,
     pub(super) bending: Vec<f64>,
     pub(super) axial_modes: Vec<f64>,
+    /// Cuts of the section-force recovery: B, the joints, C (N + 1, ascending), and the
+    /// index of the one nearest the midpoint.
+    pub(super) cuts: Vec<crate::rod::sections::CutSection>,
+    pub(super) mid_cut: usize,
 }
 
 impl SegmentRod {
@@ -176,6 +180,11 @@ impl SegmentRod {
         rod.k_rot = vec![k_rot; n - 1];
         rod.k_ax = vec![k_ax; n - 1];
         rod.total_mass = props.mass();
+        rod.set_cuts(&crate::beam::SectionTable::uniform(
+            props.length,
+            props.area,
+            props.area_moment,
+        ));
         rod.finish(damping_ratio, |_| {
             Ok(2.0 * (k_ax / m).sqrt() * (std::f64::consts::PI / (2.0 * n as f64)).sin())
         })?;
@@ -261,11 +270,20 @@ impl SegmentRod {
             });
         }
         rod.total_mass = def.total_mass();
+        rod.set_cuts(&table);
         rod.finish(damping_ratio, |rod| {
             let f = LinearizedChain::new(rod).free_free_axial_hz()?;
             Ok(2.0 * std::f64::consts::PI * f.first().copied().unwrap_or(1.0))
         })?;
         Ok(rod)
+    }
+
+    /// The cuts at B, the joints and C.
+    fn set_cuts(&mut self, table: &crate::beam::SectionTable) {
+        let l = self.seg_len;
+        self.cuts = (0..=self.n_seg)
+            .map(|i| crate::rod::sections::CutSection::new(table, i as f64 * l))
+            .collect();
     }
 
     /// A chain with its geometry set and no masses or springs yet.
@@ -297,6 +315,8 @@ impl SegmentRod {
             frequencies: Vec::new(),
             bending: Vec::new(),
             axial_modes: Vec::new(),
+            cuts: Vec::new(),
+            mid_cut: n / 2,
         }
     }
 
