@@ -88,8 +88,9 @@ pub(super) fn dae_context<'a>(
 
 impl Mechanism {
     /// Validate `spec`, build and preprocess the rod, choose the integrator
-    /// (`solver.method = "auto"`: RK4 while the step is within its stability limit
-    /// `2 pi f_max h <= 2.5`, else generalized-alpha).
+    /// (`solver.method = "auto"`: Dormand-Prince on the modal coordinates while the explicit
+    /// stability step `2.5 / w_max` is at least [`AUTO_EXPLICIT_MIN_STEP`], else adaptive
+    /// generalized-alpha).
     pub fn new(spec: &MechanismSpec) -> Result<Mechanism, ModelError> {
         spec.validate()?;
         let rod = crate::rod::build(&spec.rod)?;

@@ -93,12 +93,7 @@ impl Mechanism {
         state: &mut MechanismState,
     ) -> Result<(), (f64, f64, String)> {
         let t = state.dae.t;
-        let sys = dae_context(
-            self.rod.as_ref(),
-            self.crank_length,
-            self.slider_mass,
-            state,
-        );
+        let sys = dae_context(self.rod.as_ref(), &self.spec, state);
         let mut phi = [0.0; 4];
         sys.constraints(t, &state.dae.q, &mut phi);
         let tolerance = 1e-14 * self.rod.length();
