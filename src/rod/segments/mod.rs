@@ -2,11 +2,102 @@
 //! "Rod model 2: finite segments"): `N` rigid segments joined by revolute joints with
 //! rotational springs and dampers, optionally with prismatic joints carrying axial springs.
 //!
-//! - [`rod`]: the body ([`SegmentRod`]): coordinates, mass matrix, quadratic velocity vector,
+//! - [`rod`]: the chain's data and construction ([`SegmentRod`]); [`kinematics`], [`body`]: its points and the [`RodBody`](crate::rod::RodBody) equations,
 //!   joint forces, points, energies (the derivation is in its module documentation);
 //! - [`linear`]: the chain linearized about the straight configuration: pinned-pinned
 //!   bending and axial frequencies, and the free-free axial chain of seed 002's convergence
 //!   table ([`axial_chain_frequencies_hz`]).
+//!
+//! The finite segment rod body (seed 002, `002_e6c2c81d944c25fc.txt`, "Flexibility effects"
+//! and "Illustrations/convergence"; docs/physics.md, "Rod model 2: finite segments").
+//!
+//! # Model
+//! The rod of length `L` (m) is cut into `N` rigid segments `k = 0..N-1` (0-based here; seed
+//! 002 counts from 1) of length `l = L/N`, mass `m = rho A l` (kg) and centroidal inertia
+//! `I_c = m l^2 / 12` (kg m^2). Segment `k` and `k+1` meet in joint `k` (`k = 0..N-2`): a
+//! revolute joint with a rotational spring `k_r` (N m/rad) and damper `c_r` (N m s/rad) and,
+//! with `rod.axial_springs`, a prismatic joint along segment `k` with an axial spring
+//! `k_a = E A / l` (N/m) and damper `c_a` (N s/m). As in seed 002, flexibility and damping live
+//! in the joints only ("a lumped parameter method with the flexibility and damping modelled at
+//! the joints"); planar, so one angle per segment and no Euler parameters (seed 002 says so).
+//!
+//! # Coordinates
+//! `q = [x_B, y_B, theta_0, .., theta_{N-1}, s_0, .., s_{N-2}]`: the free end B of segment 0
+//! (global, m), the absolute segment angles (rad, counter-clockwise from global x), and with
+//! axial springs the slide `s_j` (m) of joint `j` (its extension). With
+//! `e_k = (cos theta_k, sin theta_k)`, `n_k = (-sin theta_k, cos theta_k)` and the joint-to-joint
+//! lengths `L_j = l + s_j` (`L_j = l` without axial springs), the material point at distance
+//! `xi` in `[0, l]` from the start of segment `k` is
+//! `r_k(xi) = B + sum_{j<k} L_j e_j + xi e_k`.
+//! B is `r_0(0)`, C is `r_{N-1}(l)`, the midpoint is the material point at arc length `L/2`
+//! (the centre of the middle segment for odd `N`, the start of segment `N/2` for even `N`).
+//!
+//! Seed 002 uses relative coordinates (the joint rotations `phi_k = theta_k - theta_{k-1}`) as
+//! generalized speeds with Kane's equations. Absolute angles are the linear change
+//! `theta = T phi` (`T` lower triangular of ones); Kane's equations in the relative speeds are
+//! `T^T` times the equations here, so the dynamics are the same. The joint springs, single
+//! entries in relative coordinates (seed 002's decoupling), are tridiagonal here; in exchange
+//! the mass matrix stays as well conditioned as the chain itself and the pin constraint rows
+//! are plain.
+//!
+//! # Equations (Lagrange, equivalently Kane)
+//! The centroid of segment `k` is `g_k = r_k(l/2)`, its velocity `g_k' = J_k q'` with the
+//! columns of the partial velocities `J_k` (Kane's `v_{kl}`):
+//! `d g_k / d(x_B, y_B) = I`, `d g_k / d theta_j = L_j n_j` (`j < k`), `= (l/2) n_k` (`j = k`),
+//! `d g_k / d s_j = e_j` (`j < k`), zero otherwise; the partial angular velocity of segment `k`
+//! is the unit vector of `theta_k`. Kinetic energy
+//! `T = 1/2 sum_k (m |g_k'|^2 + I_c theta_k'^2) = 1/2 q'^T M q'` with
+//! `M = sum_k (m J_k^T J_k + I_c u_k u_k^T)`, dense in the angles. With `a_j = m (N - 1 - j)`
+//! (mass beyond segment `j`), `h_j = m l / 2 + a_j L_j` and `c_ij = cos(theta_i - theta_j)`:
+//! - `M_BB = N m I`, `M_{B theta_j} = h_j n_j`, `M_{B s_j} = a_j e_j`;
+//! - `M_{theta_i theta_i} = m l^2 / 3 + a_i L_i^2`, `M_{theta_i theta_j} = L_i h_j c_ij` (`i < j`);
+//! - `M_{theta_i s_j} = a_j L_i sin(theta_j - theta_i)` (`i < j`), `0` (`i = j`),
+//!   `h_i sin(theta_j - theta_i)` (`i > j`);
+//! - `M_{s_i s_j} = a_{max(i,j)} c_ij`.
+//!
+//! Quadratic velocity vector (Kane's generalized inertia force minus its `M q''` part):
+//! `Q_v = -sum_k m J_k^T gamma_k`, with the velocity-product acceleration of the centroid
+//! `gamma_k = (J_k' q') = sum_{j<k} (2 s_j' theta_j' n_j - L_j theta_j'^2 e_j) - (l/2) theta_k'^2 e_k`
+//! (a rigid planar segment has no gyroscopic moment). With the downstream sums
+//! `G_i = sum_{k>i} gamma_k`:
+//! `Q_v,B = -m sum_k gamma_k`, `Q_v,theta_i = -m n_i . ((l/2) gamma_i + L_i G_i)`,
+//! `Q_v,s_j = -m e_j . G_j`, computed in O(N). It equals `-(M' q' - dT/dq)` of Lagrange's
+//! equations (checked in tests/segments.rs).
+//!
+//! Joint forces (seed 002 eq. 33-36: one spring or damper component per generalized force in
+//! relative coordinates): the moment of joint `j` on segment `j`,
+//! `tau_j = k_r (theta_{j+1} - theta_j) + c_r (theta_{j+1}' - theta_j')`, enters
+//! `Q_theta_j += tau_j`, `Q_theta_{j+1} -= tau_j`; the axial force `-(k_a s_j + c_a s_j')`
+//! enters `Q_s_j`. Strain energy
+//! `U = sum_j (k_r (theta_{j+1} - theta_j)^2 + k_a s_j^2) / 2`.
+//!
+//! # Spring and damper constants
+//! `k_r = E I / l` (docs/physics.md): the joint rotation `theta_{j+1} - theta_j` is the curvature
+//! integrated over the length `l` a joint stands for, so `k_r (Delta theta)^2 / 2 =
+//! E I (Delta theta / l)^2 l / 2` is the beam's bending energy of that length. With the joint
+//! deflections `w_j`, the joint rotations are the central second difference of `w` times `l`,
+//! and the segments' kinetic energy is the consistent mass of a piecewise linear `w`; the
+//! errors of the two cancel at second order. Pinned-pinned, the modes are sinusoidal and
+//! `omega_n^2 = 48 E I sin^4(n pi / 2N) / (rho A l^4 (2 + cos(n pi / N)))
+//! = (n pi / L)^4 E I / (rho A) (1 + O((n pi / N)^4))`: fourth order in `l` (tests/segments.rs
+//! checks the closed form and the order), so no other spring constant is needed. A clamped end
+//! (not used by the mechanism, whose ends are pinned) needs a root spring `2 E I / l` to the
+//! support for second order (mirror ghost segment; tests/segments.rs, rotating cantilever).
+//! `k_a = E A / l` is the exact stiffness of a bar of length `l`.
+//!
+//! Dampers are stiffness proportional, `c_r = beta_r k_r`, `c_a = beta_a k_a`. In the
+//! linearized chain `C = beta K`, so mode `n` has damping ratio `beta omega_n / 2`; choosing
+//! `beta_r = 2 zeta / omega_1` (first pinned-pinned bending mode of the chain, computed in
+//! [`SegmentRod::new`]) gives that mode exactly `rod.damping_ratio = zeta`, and the higher modes
+//! more (as in a material with Kelvin-Voigt damping). `beta_a = 2 zeta / omega_a1` with the first
+//! free-free axial mode of the chain (the closed form of [`super::axial_chain_frequencies_hz`]).
+//!
+//! Geometric exactness: the segments move rigidly with the exact kinematics, so the axial
+//! force in the chain (carried by the joints) acts on bending by itself: [`RodBody::forces`]
+//! ignores its `a` and `end_force_c` arguments.
+//!
+//! No allocation in the per-iteration methods: everything is precomputed in [`SegmentRod::new`]
+//! and the loops recompute `cos`/`sin` of the angles on the fly.
 
 pub mod body;
 pub mod kinematics;
