@@ -2,14 +2,14 @@
 //! "Rod model 2: finite segments"): `N` rigid segments joined by revolute joints with
 //! rotational springs and dampers, optionally with prismatic joints carrying axial springs.
 //!
-//! - [`rod`]: the chain's data and construction ([`SegmentRod`]); [`kinematics`], [`body`]: its points and the [`RodBody`](crate::rod::RodBody) equations,
-//!   joint forces, points, energies (the derivation is in its module documentation);
+//! - [`rod`]: the chain's data and construction ([`SegmentRod`]); [`kinematics`]: its points;
+//!   [`body`]: mass matrix, quadratic velocity vector, joint forces, energies (the derivation
+//!   follows below);
 //! - [`linear`]: the chain linearized about the straight configuration: pinned-pinned
 //!   bending and axial frequencies, and the free-free axial chain of seed 002's convergence
 //!   table ([`axial_chain_frequencies_hz`]).
 //!
-//! The finite segment rod body (seed 002, `002_e6c2c81d944c25fc.txt`, "Flexibility effects"
-//! and "Illustrations/convergence"; docs/physics.md, "Rod model 2: finite segments").
+//! # The derivation (seed 002, "Flexibility effects" and "Illustrations/convergence")
 //!
 //! # Model
 //! The rod of length `L` (m) is cut into `N` rigid segments `k = 0..N-1` (0-based here; seed
