@@ -25,6 +25,13 @@ pub enum ModelError {
         step: f64,
         reason: String,
     },
+    /// A communication step that would need more internal steps than allowed
+    /// (`mechanism::MAX_INTERNAL_STEPS`); nothing changed.
+    TooMuchWork {
+        time: f64,
+        step: f64,
+        message: String,
+    },
     /// A call that the model cannot serve in its current state (e.g. bad state bytes).
     State { message: String },
 }
@@ -52,6 +59,14 @@ impl fmt::Display for ModelError {
             ModelError::StepFailed { time, step, reason } => write!(
                 f,
                 "step from t = {time} s with h = {step:e} s failed: {reason}; the state before the step is kept"
+            ),
+            ModelError::TooMuchWork {
+                time,
+                step,
+                message,
+            } => write!(
+                f,
+                "communication step from t = {time} s with h = {step:e} s refused: {message}; the state before the step is kept, take smaller communication steps"
             ),
             ModelError::State { message } => write!(f, "{message}"),
         }
