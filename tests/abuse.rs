@@ -101,3 +101,40 @@ fn huge_communication_steps_are_refused_with_the_state_kept() {
         }
     }
 }
+
+/// Issue 14, 1d: core state bytes with a correct header and fingerprint but fields out of range
+/// are rejected, the state unchanged (offsets: 20 header bytes, then f64 fields in the order of
+/// `MechanismState::write_bytes`).
+#[test]
+fn crafted_state_bytes_are_rejected_field_by_field() {
+    let mut sim = started(&Scene::benchmark(), 150.0);
+    for _ in 0..3 {
+        sim.advance(1e-3).unwrap();
+    }
+    let good = sim.snapshot_to_bytes();
+    let before = sim.state().clone();
+    let f = |k: usize| 20 + 8 * k;
+    let cases: [(&str, usize, f64, &str); 8] = [
+        ("time NaN", f(0), f64::NAN, "the time is NaN"),
+        ("input time after time", f(1), 1.0, "input law starts"),
+        ("infinite speed", f(3), f64::INFINITY, "crank.speed is inf"),
+        ("NaN slider force", f(5), f64::NAN, "slider.force"),
+        ("NaN output", f(8), f64::NAN, "pinB.force.x is NaN"),
+        ("integrator time differs", f(15), 0.5, "integrator time"),
+        ("negative step proposal", f(16), -1e-4, "step proposal"),
+        ("NaN coordinate", f(18), f64::NAN, "a coordinate is NaN"),
+    ];
+    for (label, at, x, expected) in cases {
+        let mut bytes = good.clone();
+        bytes[at..at + 8].copy_from_slice(&x.to_le_bytes());
+        let e = sim.restore_from_bytes(&bytes).expect_err(label).to_string();
+        println!("{label}: {e}");
+        assert!(e.contains(expected), "{label}: {e}");
+        assert_eq!(sim.state(), &before);
+    }
+    let mut flag = good.clone();
+    *flag.last_mut().unwrap() = 7;
+    assert!(sim.restore_from_bytes(&flag).is_err());
+    sim.restore_from_bytes(&good)
+        .expect("the original bytes are accepted");
+}
