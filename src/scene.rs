@@ -17,7 +17,7 @@ pub use crate::mechanism::spec::{
     CrankSpec, MechanismSpec, SliderSpec, SolverMethod, SolverSpec, StartDeflection, StartSpec,
 };
 pub use crate::modal::ReferenceKind;
-pub use crate::rod::{RodModelKind, RodSpec};
+pub use crate::rod::{DeflectionPolicy, RodModelKind, RodSpec};
 
 /// The whole scene.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

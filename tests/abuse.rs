@@ -119,7 +119,7 @@ fn crafted_state_bytes_are_rejected_field_by_field() {
         ("input time after time", f(1), 1.0, "input law starts"),
         ("infinite speed", f(3), f64::INFINITY, "crank.speed is inf"),
         ("NaN slider force", f(5), f64::NAN, "slider.force"),
-        ("NaN output", f(8), f64::NAN, "pinB.force.x is NaN"),
+        ("NaN output", f(8), f64::NAN, "pinB.force_x is NaN"),
         ("integrator time differs", f(15), 0.5, "integrator time"),
         ("negative step proposal", f(16), -1e-4, "step proposal"),
         ("NaN coordinate", f(18), f64::NAN, "a coordinate is NaN"),
@@ -137,4 +137,53 @@ fn crafted_state_bytes_are_rejected_field_by_field() {
     assert!(sim.restore_from_bytes(&flag).is_err());
     sim.restore_from_bytes(&good)
         .expect("the original bytes are accepted");
+}
+
+/// Issue 14, 2: the deflection policy in the core. Beyond `rod.deflection_limit`: warn continues
+/// with one warning; discard and error refuse the step with the state from before it kept.
+#[test]
+fn deflection_policy_warn_discard_error() {
+    use flexrod::scene::DeflectionPolicy;
+    let run = |policy: DeflectionPolicy, limit: f64| {
+        let mut s = Scene::benchmark();
+        s.rod.deflection_policy = policy;
+        s.rod.deflection_limit = limit;
+        let mut sim = started(&s, 150.0);
+        let mut rows = vec![sim.outputs()];
+        let mut warnings = 0;
+        for _ in 0..150 {
+            let before = sim.state().clone();
+            match sim.advance(1e-4) {
+                Ok(_) => rows.push(sim.outputs()),
+                Err(e) => {
+                    assert_eq!(sim.state(), &before, "state kept");
+                    return (rows, warnings, Some(e));
+                }
+            }
+            warnings += sim.take_warnings().len();
+        }
+        (rows, warnings, None)
+    };
+    let (reference, w, e) = run(DeflectionPolicy::Warn, 1.0);
+    assert!(e.is_none() && w == 0);
+    let peak = reference
+        .iter()
+        .map(|o| o.deflection_rel.abs())
+        .fold(0.0, f64::max);
+    let limit = 0.5 * peak;
+    let first = reference
+        .iter()
+        .position(|o| o.deflection_rel.abs() > limit)
+        .unwrap();
+    let (rows, w, e) = run(DeflectionPolicy::Warn, limit);
+    assert!(e.is_none() && w == 1 && rows == reference);
+    for policy in [DeflectionPolicy::Discard, DeflectionPolicy::Error] {
+        let (rows, _, e) = run(policy, limit);
+        let e = e.expect("refused");
+        println!("{policy:?}: {e}");
+        assert!(matches!(e, ModelError::DeflectionLimit { .. }));
+        assert!(e.to_string().contains("rod.deflection_limit"));
+        assert_eq!(rows.len(), first);
+        assert_eq!(rows[..], reference[..first]);
+    }
 }

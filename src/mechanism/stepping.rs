@@ -5,6 +5,7 @@
 use super::slider_crank::{dae_context, Mechanism, OutputSolve};
 use super::state::MechanismState;
 use crate::error::ModelError;
+use crate::rod::DeflectionPolicy;
 
 /// |v_mid| / L above which the small-deformation assumption is flagged.
 pub const LARGE_DEFLECTION_WARNING: f64 = 0.05;
@@ -72,12 +73,17 @@ impl Mechanism {
                     .and_then(|o| check_finite(state, &o, t_start, h).map(|()| o));
                 self.output_solve = Some(work);
                 match outputs {
-                    Ok(o) => {
-                        state.outputs = o;
-                        state.dae.amplitude = state.dae.amplitude.max(o.deflection_rel.abs());
-                        self.check_large_deflection(state);
-                        Ok(())
-                    }
+                    Ok(o) => match self.check_large_deflection(state, &o) {
+                        Ok(()) => {
+                            state.outputs = o;
+                            state.dae.amplitude = state.dae.amplitude.max(o.deflection_rel.abs());
+                            Ok(())
+                        }
+                        Err(e) => {
+                            restore(self, state);
+                            Err(e)
+                        }
+                    },
                     Err(e) => {
                         restore(self, state);
                         Err(e)
@@ -182,14 +188,35 @@ impl Mechanism {
         }
     }
 
-    fn check_large_deflection(&self, state: &mut MechanismState) {
-        let d = state.outputs.deflection_rel.abs();
-        if d > LARGE_DEFLECTION_WARNING && !state.large_deflection_warned {
-            state.large_deflection_warned = true;
-            state.warnings.push(format!(
-                "rod deflection |v_mid/L| = {d:.3e} at t = {} s exceeds {LARGE_DEFLECTION_WARNING} (the small-deformation range of the rod model); results beyond it are not accurate",
-                state.time
-            ));
+    /// The deflection policy (`rod.deflection_limit`, `rod.deflection_policy`) on the outputs
+    /// `o` of a step: warn once, or refuse the step.
+    fn check_large_deflection(
+        &self,
+        state: &mut MechanismState,
+        o: &super::outputs::Outputs,
+    ) -> Result<(), ModelError> {
+        let d = o.deflection_rel.abs();
+        let limit = self.spec.rod.deflection_limit;
+        if d <= limit {
+            return Ok(());
+        }
+        match self.spec.rod.deflection_policy {
+            DeflectionPolicy::Warn => {
+                if !state.large_deflection_warned {
+                    state.large_deflection_warned = true;
+                    state.warnings.push(format!(
+                        "rod deflection |v_mid/L| = {d:.3e} at t = {} s exceeds rod.deflection_limit = {limit} (the small-deformation range of the rod model); results beyond it are not accurate",
+                        state.time
+                    ));
+                }
+                Ok(())
+            }
+            policy => Err(ModelError::DeflectionLimit {
+                time: state.time,
+                deflection: d,
+                limit,
+                discard: policy == DeflectionPolicy::Discard,
+            }),
         }
     }
 }
@@ -224,10 +251,10 @@ fn check_finite(
     let named = [
         ("rod.deflection", o.deflection),
         ("rod.deflection_rel", o.deflection_rel),
-        ("pinB.force.x", o.pin_b_force[0]),
-        ("pinB.force.y", o.pin_b_force[1]),
-        ("pinC.force.x", o.pin_c_force[0]),
-        ("pinC.force.y", o.pin_c_force[1]),
+        ("pinB.force_x", o.pin_b_force[0]),
+        ("pinB.force_y", o.pin_b_force[1]),
+        ("pinC.force_x", o.pin_c_force[0]),
+        ("pinC.force_y", o.pin_c_force[1]),
         ("crank.torque", o.crank_torque),
         ("slider.position", o.slider_position),
         ("slider.velocity", o.slider_velocity),
@@ -264,7 +291,7 @@ mod tests {
         huge.pin_b_force[0] = 1e254;
         let e = check_finite(&state, &huge, 0.5, 1e-3).unwrap_err();
         assert!(matches!(e, ModelError::StepFailed { .. }));
-        assert!(e.to_string().contains("pinB.force.x = 1e254"), "{e}");
+        assert!(e.to_string().contains("pinB.force_x = 1e254"), "{e}");
         let mut nan = good;
         nan.crank_torque = f64::NAN;
         assert!(check_finite(&state, &nan, 0.5, 1e-3)

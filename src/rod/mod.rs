@@ -13,7 +13,7 @@ pub mod segments;
 pub mod spec;
 
 pub use body::{RodBody, RodPoint};
-pub use spec::{RodModelKind, RodSpec};
+pub use spec::{DeflectionPolicy, RodModelKind, RodSpec};
 
 use crate::error::ModelError;
 use crate::modal::{ComponentModes, ModeSelection, ReferenceConditions};
