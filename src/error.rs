@@ -25,6 +25,22 @@ pub enum ModelError {
         step: f64,
         reason: String,
     },
+    /// A communication step that would need more internal steps than allowed
+    /// (`mechanism::MAX_INTERNAL_STEPS`); nothing changed.
+    TooMuchWork {
+        time: f64,
+        step: f64,
+        message: String,
+    },
+    /// A step whose rod deflection exceeds `rod.deflection_limit` under the policy "discard"
+    /// or "error"; the state before the step is kept.
+    DeflectionLimit {
+        time: f64,
+        deflection: f64,
+        limit: f64,
+        /// Policy "discard" (fmi2Discard); false: "error" (fmi2Error).
+        discard: bool,
+    },
     /// A call that the model cannot serve in its current state (e.g. bad state bytes).
     State { message: String },
 }
@@ -52,6 +68,24 @@ impl fmt::Display for ModelError {
             ModelError::StepFailed { time, step, reason } => write!(
                 f,
                 "step from t = {time} s with h = {step:e} s failed: {reason}; the state before the step is kept"
+            ),
+            ModelError::TooMuchWork {
+                time,
+                step,
+                message,
+            } => write!(
+                f,
+                "communication step from t = {time} s with h = {step:e} s refused: {message}; the state before the step is kept, take smaller communication steps"
+            ),
+            ModelError::DeflectionLimit {
+                time,
+                deflection,
+                limit,
+                discard,
+            } => write!(
+                f,
+                "the step to t = {time} s reaches rod deflection |v_mid/L| = {deflection:.4e}, beyond rod.deflection_limit = {limit} (rod.deflection_policy = {}): the step is refused and the state before it kept",
+                if *discard { "discard" } else { "error" }
             ),
             ModelError::State { message } => write!(f, "{message}"),
         }

@@ -18,7 +18,7 @@ pub use crate::mechanism::spec::{
     StartDeflection, StartSpec,
 };
 pub use crate::modal::ReferenceKind;
-pub use crate::rod::{RodModelKind, RodSpec};
+pub use crate::rod::{DeflectionPolicy, RodModelKind, RodSpec};
 
 /// The whole scene.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -10,7 +10,7 @@
 
 use flexrod::drive::{communication_grid, CrankDrive};
 use flexrod::rod::RodPoint;
-use flexrod::scene::{RodModelKind, SolverMethod};
+use flexrod::scene::{DeflectionPolicy, RodModelKind, SolverMethod};
 use flexrod::{CrankInput, ModelError, Scene, Simulation};
 
 mod common;
@@ -34,6 +34,7 @@ static TABLE: Fragment = Fragment::new(
         "all_modes",
         "long_1e3",
         "long_1e4",
+        "deflection_policy",
     ],
 );
 
@@ -53,6 +54,8 @@ fn scene(f: impl FnOnce(&mut Scene)) -> Scene {
 
 fn benchmark_rk4() -> Scene {
     let mut s = Scene::benchmark();
+    // These cases characterize the model beyond its small-deformation range: warn, continue.
+    s.rod.deflection_policy = DeflectionPolicy::Warn;
     s.solver.method = SolverMethod::Rk4;
     s.solver.step = 3e-4;
     s
@@ -786,6 +789,7 @@ fn default_integrator_refuses_out_of_range_steps() {
     let dt = 1e-4;
     let n = runs::steps_for(W, 2.0, dt);
     let mut s = Scene::benchmark();
+    s.rod.deflection_policy = DeflectionPolicy::Warn;
     s.rod.youngs_modulus /= 100.0;
     let run = drive(&s, dt, n, 0.0, |_, t| constant(t, W));
     println!(
@@ -812,4 +816,61 @@ fn default_integrator_refuses_out_of_range_steps() {
     assert!(run.first_warning().unwrap() < run.sim.time());
     assert!(run.finite());
     assert!(run.peak() > 0.05 && run.peak() < 0.5, "{}", run.peak());
+}
+
+/// Issue 14: the deflection policy on the very flexible rod (E / 100, 150 rad/s, fixed-step
+/// RK4 3e-4 s, communication step 1e-4 s): warn continues, discard and error refuse the first
+/// step beyond `rod.deflection_limit` = 0.05 with the state from before it kept.
+#[test]
+fn deflection_policy_at_work() {
+    let dt = 1e-4;
+    let mut cells = Vec::new();
+    for policy in [
+        DeflectionPolicy::Warn,
+        DeflectionPolicy::Discard,
+        DeflectionPolicy::Error,
+    ] {
+        let s = scene(|s| {
+            s.rod.youngs_modulus /= 100.0;
+            s.rod.deflection_policy = policy;
+        });
+        let mut sim = Simulation::new(&s).unwrap();
+        sim.start(0.0, constant(0.0, W), 0.0).unwrap();
+        let mut outcome = String::new();
+        for _ in 0..runs::steps_for(W, 1.0, dt) {
+            let before = sim.state().clone();
+            match sim.advance(dt) {
+                Ok(_) => {
+                    let w = sim.take_warnings();
+                    if outcome.is_empty() && !w.is_empty() {
+                        outcome = format!("warning at t = {}, run continues", ms(sim.time()));
+                    }
+                }
+                Err(e) => {
+                    assert!(matches!(e, ModelError::DeflectionLimit { .. }), "{e}");
+                    assert_eq!(sim.state(), &before, "state kept");
+                    let ModelError::DeflectionLimit { deflection, .. } = e else {
+                        unreachable!()
+                    };
+                    outcome = format!(
+                        "step to t = {} refused at v/L = {}, state at t = {} kept",
+                        ms(sim.time() + dt),
+                        sig(deflection, 3),
+                        ms(sim.time())
+                    );
+                    break;
+                }
+            }
+        }
+        println!("{}: {outcome}", policy.name());
+        assert!(!outcome.is_empty());
+        cells.push(format!("{}: {outcome}", policy.name()));
+    }
+    TABLE.add(
+        "deflection_policy",
+        format!(
+            "| E / 100 at 150 rad/s, rod.deflection_limit 0.05, each rod.deflection_policy (issue 14) | warn continues; discard / error refuse the step | {} |",
+            cells.join("; ")
+        ),
+    );
 }

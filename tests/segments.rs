@@ -202,7 +202,7 @@ fn body_equations_are_consistent() {
 
 #[test]
 fn segment_count_is_validated() {
-    for bad in [0usize, 513] {
+    for bad in [0usize, 129] {
         let err = SegmentRod::new(benchmark_props(), bad, 0.0, false)
             .err()
             .unwrap();
@@ -216,7 +216,7 @@ fn segment_count_is_validated() {
             }
         ));
         assert!(
-            text.contains("rod.elements") && text.contains("1..=512"),
+            text.contains("rod.elements") && text.contains("1..=128"),
             "{text}"
         );
         let mut scene = Scene::benchmark();

@@ -217,6 +217,41 @@ pub(crate) fn deserialize<'a>(guid: &str, bytes: &'a [u8]) -> Result<Parsed<'a>,
             r.at
         ));
     }
+    for (name, x) in [
+        ("the start time", start_time),
+        ("crank.angle", angle),
+        ("crank.speed", speed),
+        ("slider.force", slider_force),
+        ("the crank acceleration", acceleration),
+    ] {
+        if !x.is_finite() {
+            return Err(format!("{name} is {x}, allowed a finite value"));
+        }
+    }
+    if stop_defined && !(stop.is_finite() && stop >= start_time) {
+        return Err(format!(
+            "the stop time {stop} s is not finite or before the start time {start_time} s"
+        ));
+    }
+    if !matches!(last_step, Status::Ok | Status::Discard)
+        || (machine == MachineState::StepFailed && last_step != Status::Discard)
+    {
+        return Err(format!(
+            "the last step status {} does not fit the machine state {} (allowed fmi2OK, or fmi2Discard in StepFailed)",
+            last_step.code(),
+            machine.name()
+        ));
+    }
+    let stepping = matches!(
+        machine,
+        MachineState::StepComplete | MachineState::StepFailed | MachineState::Terminated
+    );
+    if stepping && simulation_bytes.is_none() {
+        return Err(format!(
+            "machine state {} without a simulation (a state after initialization always holds one, with its model fingerprint)",
+            machine.name()
+        ));
+    }
     let inputs = Inputs {
         angle,
         speed,
@@ -311,6 +346,54 @@ mod tests {
             let mut corrupted = bytes.clone();
             corrupted[at] ^= 0x10;
             assert!(deserialize("{g}", &corrupted).is_err(), "byte {at} flipped");
+        }
+    }
+
+    /// Issue 14, 1d: the checksum is unkeyed, so bytes with a valid checksum but values out of
+    /// range are crafted easily; every field is validated after reading.
+    #[test]
+    fn crafted_values_with_a_valid_checksum_are_rejected() {
+        type Case = (&'static str, fn(&mut FmuState), &'static str);
+        let cases: [Case; 6] = [
+            (
+                "NaN input",
+                |s| s.inputs.speed = f64::NAN,
+                "crank.speed is NaN",
+            ),
+            (
+                "infinite start",
+                |s| s.experiment.start_time = f64::INFINITY,
+                "start time",
+            ),
+            (
+                "stop before start",
+                |s| s.experiment.stop_time = Some(-1.0),
+                "stop time",
+            ),
+            (
+                "error status",
+                |s| s.last_step = Status::Error,
+                "last step status",
+            ),
+            (
+                "StepFailed with fmi2OK",
+                |s| s.machine = MachineState::StepFailed,
+                "last step status",
+            ),
+            ("no simulation", |_| {}, "without a simulation"),
+        ];
+        for (label, change, expected) in cases {
+            let mut state = sample();
+            change(&mut state);
+            let sim: Option<&[u8]> = if label == "no simulation" {
+                None
+            } else {
+                Some(&[1, 2, 3])
+            };
+            let e = deserialize("{g}", &serialize("{g}", &state, sim))
+                .err()
+                .unwrap_or_else(|| panic!("{label} accepted"));
+            assert!(e.contains(expected), "{label}: {e}");
         }
     }
 }

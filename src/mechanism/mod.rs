@@ -15,4 +15,4 @@ pub use outputs::Outputs;
 pub use slider_crank::Mechanism;
 pub use spec::MechanismSpec;
 pub use state::{MechanismState, StepStats};
-pub use stepping::LARGE_DEFLECTION_WARNING;
+pub use stepping::{LARGE_DEFLECTION_WARNING, MAX_INTERNAL_STEPS, MAX_OUTPUT_MAGNITUDE};

@@ -153,26 +153,87 @@ impl MechanismState {
         self.stats.steps = count();
         self.stats.newton_iterations = count();
         self.stats.halvings = count();
-        self.large_deflection_warned = bytes[expected - 1] != 0;
-        let finite = self.time.is_finite()
-            && self.previous_input_time.is_finite()
-            && self.previous_input.angle.is_finite()
-            && self.previous_input.speed.is_finite()
-            && self.previous_input.acceleration.is_finite()
-            && self.dae.step_hint.is_finite()
-            && self.dae.step_hint >= 0.0
-            && self.dae.amplitude.is_finite()
-            && self
-                .dae
-                .q
-                .iter()
-                .chain(&self.dae.v)
-                .chain(&self.dae.lambda)
-                .all(|x| x.is_finite());
-        if !finite {
-            return Err("it holds non-finite numbers".into());
-        }
+        self.large_deflection_warned = match bytes[expected - 1] {
+            0 => false,
+            1 => true,
+            b => {
+                return Err(format!(
+                    "the deflection warning flag is {b}, allowed 0 or 1"
+                ))
+            }
+        };
+        self.validate()?;
         self.warnings.clear();
+        Ok(())
+    }
+
+    /// Every field of a state read from bytes in range (issue 14: the checksum of the byte form
+    /// is unkeyed, so crafted bytes must not get in): all numbers finite, the step proposal
+    /// and the amplitude >= 0, `dae.t == time`, `input_time <= time`.
+    pub fn validate(&self) -> Result<(), String> {
+        let o = &self.outputs;
+        let named = [
+            ("the time", self.time),
+            ("the input time", self.input_time),
+            ("the previous input time", self.previous_input_time),
+            ("the previous crank angle", self.previous_input.angle),
+            ("the previous crank speed", self.previous_input.speed),
+            (
+                "the previous crank acceleration",
+                self.previous_input.acceleration,
+            ),
+            ("crank.angle", self.input.angle),
+            ("crank.speed", self.input.speed),
+            ("the crank acceleration", self.input.acceleration),
+            ("slider.force", self.slider_force),
+            ("rod.deflection", o.deflection),
+            ("rod.deflection_rel", o.deflection_rel),
+            ("pinB.force_x", o.pin_b_force[0]),
+            ("pinB.force_y", o.pin_b_force[1]),
+            ("pinC.force_x", o.pin_c_force[0]),
+            ("pinC.force_y", o.pin_c_force[1]),
+            ("crank.torque", o.crank_torque),
+            ("slider.position", o.slider_position),
+            ("slider.velocity", o.slider_velocity),
+            ("the integrator time", self.dae.t),
+            ("the step proposal", self.dae.step_hint),
+            ("the deflection amplitude", self.dae.amplitude),
+        ];
+        for (name, x) in named {
+            if !x.is_finite() {
+                return Err(format!("{name} is {x}, allowed a finite value"));
+            }
+        }
+        let d = &self.dae;
+        for (name, v) in [
+            ("a coordinate", &d.q),
+            ("a velocity", &d.v),
+            ("an acceleration", &d.qdd),
+            ("an integrator acceleration", &d.acc),
+            ("a joint force", &d.lambda),
+        ] {
+            if let Some(x) = v.iter().find(|x| !x.is_finite()) {
+                return Err(format!("{name} is {x}, allowed a finite value"));
+            }
+        }
+        if d.step_hint < 0.0 || d.amplitude < 0.0 {
+            return Err(format!(
+                "the step proposal {:e} s or the amplitude {:e} is negative, allowed >= 0",
+                d.step_hint, d.amplitude
+            ));
+        }
+        if d.t != self.time {
+            return Err(format!(
+                "the integrator time {} s differs from the time {} s (they are equal in every saved state)",
+                d.t, self.time
+            ));
+        }
+        if self.input_time > self.time {
+            return Err(format!(
+                "the input law starts at {} s, after the time {} s (allowed <= the time)",
+                self.input_time, self.time
+            ));
+        }
         Ok(())
     }
 }

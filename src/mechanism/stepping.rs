@@ -7,9 +7,19 @@ use super::slider_crank::{dae_context, Mechanism, OutputSolve};
 use super::state::MechanismState;
 use crate::error::ModelError;
 use crate::integrator::DaeSystem;
+use crate::rod::DeflectionPolicy;
 
 /// |v_mid| / L above which the small-deformation assumption is flagged.
 pub const LARGE_DEFLECTION_WARNING: f64 = 0.05;
+
+/// Most internal steps one communication step may take (fixed-step sub-steps before it starts,
+/// accepted adaptive steps while it runs; about 1 to 10 s of work at the benchmark sizes).
+/// A longer communication step is refused with the state kept (`ModelError::TooMuchWork`).
+pub const MAX_INTERNAL_STEPS: u64 = 100_000;
+
+/// Largest magnitude of an accepted output, in its SI unit (N, N m, m, m/s): anything larger is
+/// a diverged integration, refused like a failed step.
+pub const MAX_OUTPUT_MAGNITUDE: f64 = 1e12;
 
 impl Mechanism {
     /// Integrate `state` over `[t, t + h]`; on failure `state` is restored and the error says why.
@@ -19,8 +29,20 @@ impl Mechanism {
         let backup_stats = state.stats;
         let t_start = state.time;
         let t_end = t_start + h;
-        let n_sub = ((h / self.max_step) * (1.0 - 1e-12)).ceil().max(1.0) as usize;
+        let n_sub_f = ((h / self.max_step) * (1.0 - 1e-12)).ceil().max(1.0);
         let adaptive = self.integrator.is_adaptive();
+        if !adaptive && n_sub_f > MAX_INTERNAL_STEPS as f64 {
+            return Err(ModelError::TooMuchWork {
+                time: t_start,
+                step: h,
+                message: format!(
+                    "it needs {n_sub_f:e} internal steps of at most {:e} s, allowed at most {MAX_INTERNAL_STEPS} per communication step (h <= {:e} s)",
+                    self.max_step,
+                    self.max_step * MAX_INTERNAL_STEPS as f64
+                ),
+            });
+        }
+        let n_sub = n_sub_f as usize;
         let result = (|| {
             if adaptive {
                 self.restart_consistently(state)?;
@@ -49,20 +71,37 @@ impl Mechanism {
                     .output_solve
                     .take()
                     .unwrap_or_else(|| OutputSolve::new(self.rod.n_coordinates() + 1));
-                let outputs = self.compute_outputs(&mut work, state);
+                let outputs = self
+                    .compute_outputs(&mut work, state)
+                    .and_then(|o| check_finite(state, &o, t_start, h).map(|()| o));
                 self.output_solve = Some(work);
                 match outputs {
-                    Ok(o) => {
-                        state.outputs = o;
-                        state.dae.amplitude = state.dae.amplitude.max(o.deflection_rel.abs());
-                        self.check_large_deflection(state);
-                        Ok(())
-                    }
+                    Ok(o) => match self.check_large_deflection(state, &o) {
+                        Ok(()) => {
+                            state.outputs = o;
+                            state.dae.amplitude = state.dae.amplitude.max(o.deflection_rel.abs());
+                            Ok(())
+                        }
+                        Err(e) => {
+                            restore(self, state);
+                            Err(e)
+                        }
+                    },
                     Err(e) => {
                         restore(self, state);
                         Err(e)
                     }
                 }
+            }
+            Err((t_fail, _, reason)) if reason == TOO_MANY_STEPS => {
+                restore(self, state);
+                Err(ModelError::TooMuchWork {
+                    time: t_start,
+                    step: h,
+                    message: format!(
+                        "the error control took {MAX_INTERNAL_STEPS} internal steps and reached only t = {t_fail} s of t = {t_end} s, allowed at most {MAX_INTERNAL_STEPS} per communication step"
+                    ),
+                })
             }
             Err((t_fail, h_fail, reason)) => {
                 restore(self, state);
@@ -147,7 +186,12 @@ impl Mechanism {
         state: &mut MechanismState,
         t_end: f64,
     ) -> Result<(), (f64, f64, String)> {
+        let mut taken = 0u64;
         while state.dae.t < t_end {
+            if taken >= MAX_INTERNAL_STEPS {
+                return Err((state.dae.t, t_end - state.dae.t, TOO_MANY_STEPS.to_string()));
+            }
+            taken += 1;
             let h_max = t_end - state.dae.t;
             let sys = dae_context(self.rod.as_ref(), &self.spec, state);
             match self.integrator.step(&sys, &mut state.dae, h_max) {
@@ -196,14 +240,120 @@ impl Mechanism {
         }
     }
 
-    fn check_large_deflection(&self, state: &mut MechanismState) {
-        let d = state.outputs.deflection_rel.abs();
-        if d > LARGE_DEFLECTION_WARNING && !state.large_deflection_warned {
-            state.large_deflection_warned = true;
-            state.warnings.push(format!(
-                "rod deflection |v_mid/L| = {d:.3e} at t = {} s exceeds {LARGE_DEFLECTION_WARNING} (the small-deformation range of the rod model); results beyond it are not accurate",
-                state.time
-            ));
+    /// The deflection policy (`rod.deflection_limit`, `rod.deflection_policy`) on the outputs
+    /// `o` of a step: warn once, or refuse the step.
+    fn check_large_deflection(
+        &self,
+        state: &mut MechanismState,
+        o: &super::outputs::Outputs,
+    ) -> Result<(), ModelError> {
+        let d = o.deflection_rel.abs();
+        let limit = self.spec.rod.deflection_limit;
+        if d <= limit {
+            return Ok(());
         }
+        match self.spec.rod.deflection_policy {
+            DeflectionPolicy::Warn => {
+                if !state.large_deflection_warned {
+                    state.large_deflection_warned = true;
+                    state.warnings.push(format!(
+                        "rod deflection |v_mid/L| = {d:.3e} at t = {} s exceeds rod.deflection_limit = {limit} (the small-deformation range of the rod model); results beyond it are not accurate",
+                        state.time
+                    ));
+                }
+                Ok(())
+            }
+            policy => Err(ModelError::DeflectionLimit {
+                time: state.time,
+                deflection: d,
+                limit,
+                discard: policy == DeflectionPolicy::Discard,
+            }),
+        }
+    }
+}
+
+/// Reason of an adaptive loop stopped by [`MAX_INTERNAL_STEPS`] (turned into `TooMuchWork`).
+const TOO_MANY_STEPS: &str = "too many internal steps";
+
+/// An accepted step's state and outputs must be finite and its outputs below
+/// [`MAX_OUTPUT_MAGNITUDE`]; else the integration diverged and the step is refused.
+fn check_finite(
+    state: &MechanismState,
+    o: &super::outputs::Outputs,
+    t_start: f64,
+    h: f64,
+) -> Result<(), ModelError> {
+    let fail = |reason: String| ModelError::StepFailed {
+        time: t_start,
+        step: h,
+        reason,
+    };
+    let d = &state.dae;
+    if let Some(x) =
+        d.q.iter()
+            .chain(&d.v)
+            .chain(&d.lambda)
+            .find(|x| !x.is_finite())
+    {
+        return Err(fail(format!(
+            "the integration diverged: a state coordinate is {x} after the step (state coordinates must be finite)"
+        )));
+    }
+    let named = [
+        ("rod.deflection", o.deflection),
+        ("rod.deflection_rel", o.deflection_rel),
+        ("pinB.force_x", o.pin_b_force[0]),
+        ("pinB.force_y", o.pin_b_force[1]),
+        ("pinC.force_x", o.pin_c_force[0]),
+        ("pinC.force_y", o.pin_c_force[1]),
+        ("crank.torque", o.crank_torque),
+        ("slider.position", o.slider_position),
+        ("slider.velocity", o.slider_velocity),
+    ];
+    for (name, x) in named {
+        if !(x.is_finite() && x.abs() < MAX_OUTPUT_MAGNITUDE) {
+            return Err(fail(format!(
+                "the integration diverged: output {name} = {x:e} after the step (allowed finite and |value| < {MAX_OUTPUT_MAGNITUDE:e} in SI units)"
+            )));
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mechanism::Outputs;
+
+    /// Issue 14, 1a: a diverged segment chain once returned NaN and 1e254 N with fmi2OK. The
+    /// check every accepted step passes refuses both (and non-finite state coordinates).
+    #[test]
+    fn diverged_states_and_outputs_are_refused() {
+        let mut state = MechanismState::default();
+        state.dae.q = vec![0.1, 0.2];
+        state.dae.v = vec![0.0, 1.0];
+        state.dae.lambda = vec![1.0; 4];
+        let good = Outputs {
+            pin_b_force: [120.0, -3.0],
+            ..Outputs::default()
+        };
+        assert!(check_finite(&state, &good, 0.5, 1e-3).is_ok());
+        let mut huge = good;
+        huge.pin_b_force[0] = 1e254;
+        let e = check_finite(&state, &huge, 0.5, 1e-3).unwrap_err();
+        assert!(matches!(e, ModelError::StepFailed { .. }));
+        assert!(e.to_string().contains("pinB.force_x = 1e254"), "{e}");
+        let mut nan = good;
+        nan.crank_torque = f64::NAN;
+        assert!(check_finite(&state, &nan, 0.5, 1e-3)
+            .unwrap_err()
+            .to_string()
+            .contains("crank.torque = NaN"));
+        state.dae.v[1] = f64::INFINITY;
+        assert!(check_finite(&state, &good, 0.5, 1e-3)
+            .unwrap_err()
+            .to_string()
+            .contains("state coordinate is inf"));
     }
 }

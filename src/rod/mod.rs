@@ -15,7 +15,7 @@ pub mod spec;
 
 pub use body::{RodBody, RodPoint};
 pub use sections::SectionLoads;
-pub use spec::{RodModelKind, RodSpec};
+pub use spec::{DeflectionPolicy, RodModelKind, RodSpec};
 
 use crate::error::ModelError;
 use crate::modal::{ComponentModes, ModeSelection, ReferenceConditions};

@@ -130,7 +130,7 @@ mod tests {
             "{xml}"
         );
         assert!(
-            xml.contains("<Integer min=\"1\" max=\"4096\" start=\"8\"/>"),
+            xml.contains("<Integer min=\"1\" max=\"128\" start=\"8\"/>"),
             "{xml}"
         );
     }

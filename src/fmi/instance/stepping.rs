@@ -64,6 +64,19 @@ impl Instance {
                     "{e}. Restore a state saved before the step (fmi2SetFMUstate) and retry with a smaller communication step, or terminate"
                 )))
             }
+            Err(e @ ModelError::DeflectionLimit { discard: true, .. }) => {
+                self.state = MachineState::StepFailed;
+                self.last_step = Status::Discard;
+                self.take_warnings();
+                Err(FmiError::discard(format!(
+                    "{e}. Restore a state saved before the step (fmi2SetFMUstate) and continue, switch the model, or terminate"
+                )))
+            }
+            Err(e @ ModelError::TooMuchWork { .. }) => {
+                // Refused before or without changing anything: the instance stays usable.
+                self.take_warnings();
+                Err(FmiError::rejected(model_error(e)))
+            }
             Err(e) => {
                 self.take_warnings();
                 Err(FmiError::failed(model_error(e)))

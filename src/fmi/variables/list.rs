@@ -8,6 +8,7 @@ use super::ranges::{
 };
 use super::types::{Access, InitialDependencies, InputSlot, Value, ValueType};
 use super::{ValueReference, VariableTable, FREQUENCY_VR_BASE};
+use crate::rod::DeflectionPolicy;
 use crate::scene::Scene;
 
 /// Parameters the rod's natural frequencies depend on.
@@ -346,6 +347,30 @@ impl VariableTable {
             "Accuracy of the integration (solver.method auto or dopri5): pointwise error of the deflection relative to its peak, in (0, 0.1]",
         );
         b.bounds(Some(Value::Real(0.0)), Some(Value::Real(0.1)));
+
+        // Issue 14: what a step beyond the small-deformation range does.
+        b.real_parameter(
+            "rod.deflection_limit",
+            120,
+            DIMENSIONLESS,
+            |s| s.rod.deflection_limit,
+            |s, v| s.rod.deflection_limit = v,
+            "|v_mid/L| beyond which rod.deflection_policy applies, in (0, 1]",
+        );
+        b.bounds(Some(Value::Real(0.0)), Some(Value::Real(1.0)));
+        b.integer_parameter(
+            "rod.deflection_policy",
+            121,
+            ValueType::Integer,
+            |s| s.rod.deflection_policy.code(),
+            |s, v| {
+                DeflectionPolicy::from_code(v)
+                    .map(|p| s.rod.deflection_policy = p)
+                    .ok_or_else(|| "1 (warn), 2 (discard) or 3 (error)".to_string())
+            },
+            "What a step beyond rod.deflection_limit does: 1 = warn (one warning, continue; default), 2 = discard (fmi2Discard, the state before the step kept), 3 = error (fmi2Error, the state before the step kept)",
+        );
+        b.bounds(Some(Value::Integer(1)), Some(Value::Integer(3)));
 
         // Calculated parameters.
         for k in 1..=n_frequencies {

@@ -23,7 +23,9 @@ pub fn non_negative(value: i32) -> Result<usize, String> {
 pub fn element_count(value: i32) -> Result<usize, String> {
     match usize::try_from(value) {
         Ok(n) if (1..=MAX_ELEMENTS).contains(&n) => Ok(n),
-        _ => Err(format!("an integer in 1..={MAX_ELEMENTS}")),
+        _ => Err(format!(
+            "an integer in 1..={MAX_ELEMENTS} (beam elements or rigid segments; both models are limited to {MAX_ELEMENTS})"
+        )),
     }
 }
 
