@@ -110,30 +110,8 @@ fn cases() -> Vec<Case> {
     ]
 }
 
-const OUTPUT_NAMES: [&str; 9] = [
-    "rod.deflection",
-    "rod.deflection_rel",
-    "pinB.force_x",
-    "pinB.force_y",
-    "pinC.force_x",
-    "pinC.force_y",
-    "crank.torque",
-    "slider.position",
-    "slider.velocity",
-];
-
 fn output_values(o: &Outputs) -> [f64; 9] {
-    [
-        o.deflection,
-        o.deflection_rel,
-        o.pin_b_force[0],
-        o.pin_b_force[1],
-        o.pin_c_force[0],
-        o.pin_c_force[1],
-        o.crank_torque,
-        o.slider_position,
-        o.slider_velocity,
-    ]
+    o.named().map(|(_, x)| x)
 }
 
 /// Run a case: returns the text block of the data file.
@@ -217,7 +195,7 @@ fn reference_runs_are_unchanged() {
         }
         println!(
             "{name}: largest change {worst:.2e} of peak (output {}); {}",
-            OUTPUT_NAMES[worst_output],
+            Outputs::default().named()[worst_output].0,
             new[new.len() - 1]
         );
         assert!(

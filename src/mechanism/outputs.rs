@@ -24,6 +24,24 @@ pub struct Outputs {
     pub section: crate::rod::SectionLoads,
 }
 
+impl Outputs {
+    /// The scalar outputs with their FMU names (the section loads excepted), in one order for
+    /// every check and record that lists them.
+    pub fn named(&self) -> [(&'static str, f64); 9] {
+        [
+            ("rod.deflection", self.deflection),
+            ("rod.deflection_rel", self.deflection_rel),
+            ("pinB.force_x", self.pin_b_force[0]),
+            ("pinB.force_y", self.pin_b_force[1]),
+            ("pinC.force_x", self.pin_c_force[0]),
+            ("pinC.force_y", self.pin_c_force[1]),
+            ("crank.torque", self.crank_torque),
+            ("slider.position", self.slider_position),
+            ("slider.velocity", self.slider_velocity),
+        ]
+    }
+}
+
 use super::slider_crank::{Mechanism, OutputSolve};
 use super::state::MechanismState;
 use crate::error::ModelError;

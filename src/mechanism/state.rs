@@ -186,20 +186,11 @@ impl MechanismState {
             ("crank.speed", self.input.speed),
             ("the crank acceleration", self.input.acceleration),
             ("slider.force", self.slider_force),
-            ("rod.deflection", o.deflection),
-            ("rod.deflection_rel", o.deflection_rel),
-            ("pinB.force_x", o.pin_b_force[0]),
-            ("pinB.force_y", o.pin_b_force[1]),
-            ("pinC.force_x", o.pin_c_force[0]),
-            ("pinC.force_y", o.pin_c_force[1]),
-            ("crank.torque", o.crank_torque),
-            ("slider.position", o.slider_position),
-            ("slider.velocity", o.slider_velocity),
             ("the integrator time", self.dae.t),
             ("the step proposal", self.dae.step_hint),
             ("the deflection amplitude", self.dae.amplitude),
         ];
-        for (name, x) in named {
+        for (name, x) in named.into_iter().chain(o.named()) {
             if !x.is_finite() {
                 return Err(format!("{name} is {x}, allowed a finite value"));
             }

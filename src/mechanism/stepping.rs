@@ -300,17 +300,7 @@ fn check_finite(
             "the integration diverged: a state coordinate is {x} after the step (state coordinates must be finite)"
         )));
     }
-    let named = [
-        ("rod.deflection", o.deflection),
-        ("rod.deflection_rel", o.deflection_rel),
-        ("pinB.force_x", o.pin_b_force[0]),
-        ("pinB.force_y", o.pin_b_force[1]),
-        ("pinC.force_x", o.pin_c_force[0]),
-        ("pinC.force_y", o.pin_c_force[1]),
-        ("crank.torque", o.crank_torque),
-        ("slider.position", o.slider_position),
-        ("slider.velocity", o.slider_velocity),
-    ];
+    let named = o.named();
     for (name, x) in named {
         if !(x.is_finite() && x.abs() < MAX_OUTPUT_MAGNITUDE) {
             return Err(fail(format!(
