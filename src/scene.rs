@@ -71,6 +71,21 @@ pub struct OutputSpec {
     /// station). Left out of a written scene when false.
     #[serde(default, skip_serializing_if = "is_false")]
     pub stress: bool,
+    /// FMI 3.0 only: number N of points of the `rod.shape` array output (0 = no such output,
+    /// else 2..=1001). Left out of a written scene when it is the default.
+    #[serde(
+        default = "default_shape_points",
+        skip_serializing_if = "is_default_shape_points"
+    )]
+    pub shape_points: usize,
+}
+
+fn default_shape_points() -> usize {
+    11
+}
+
+fn is_default_shape_points(n: &usize) -> bool {
+    *n == default_shape_points()
 }
 
 fn is_false(b: &bool) -> bool {
@@ -86,6 +101,7 @@ impl Default for OutputSpec {
             crank_torque: true,
             frequencies: default_frequencies(),
             stress: false,
+            shape_points: default_shape_points(),
         }
     }
 }

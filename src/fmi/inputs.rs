@@ -8,6 +8,9 @@
 //! - `alpha_k`: the crank acceleration set at `t_k` with `fmi2SetRealInputDerivatives` (order 1
 //!   of `crank.speed`, or order 2 of `crank.angle`), and 0 if none was set at `t_k`.
 //!
+//! FMI 3.0 has no input derivatives: there `alpha_k` is the input `crank.acceleration`, which,
+//! like every input, holds its value until it is set again.
+//!
 //! After the step, `fmi2GetReal` of `crank.angle` and `crank.speed` returns the values the law
 //! had at `t_k + h` (read back from the core's law, so they are exactly those the integrator
 //! used there).
@@ -24,6 +27,10 @@ pub enum AccelerationSource {
     Speed,
     /// Order 2 of `crank.angle`.
     Angle,
+    /// FMI 3.0: the input `crank.acceleration`. An input keeps its value until it is set
+    /// again, so unlike an FMI 2.0 input derivative it carries over to the next
+    /// communication points.
+    Input,
 }
 
 impl AccelerationSource {
@@ -33,6 +40,7 @@ impl AccelerationSource {
             AccelerationSource::None => 0,
             AccelerationSource::Speed => 1,
             AccelerationSource::Angle => 2,
+            AccelerationSource::Input => 3,
         }
     }
 
@@ -42,6 +50,7 @@ impl AccelerationSource {
             AccelerationSource::None,
             AccelerationSource::Speed,
             AccelerationSource::Angle,
+            AccelerationSource::Input,
         ]
         .into_iter()
         .find(|s| s.code() == code)
@@ -90,6 +99,10 @@ impl Inputs {
             InputSlot::CrankAngle => self.angle,
             InputSlot::CrankSpeed => self.speed,
             InputSlot::SliderForce => self.slider_force,
+            InputSlot::CrankAcceleration => match self.source {
+                AccelerationSource::Input => self.acceleration,
+                _ => 0.0,
+            },
         }
     }
 
@@ -100,6 +113,10 @@ impl Inputs {
             InputSlot::SliderForce => {
                 self.slider_force = x;
                 self.force_changed = true;
+            }
+            InputSlot::CrankAcceleration => {
+                self.acceleration = x;
+                self.source = AccelerationSource::Input;
             }
         }
     }
@@ -119,12 +136,15 @@ impl Inputs {
     }
 
     /// After a step: the current values are the law's values at the new time; nothing is set
-    /// at the new communication point yet.
+    /// at the new communication point yet (an FMI 2.0 input derivative does not carry over;
+    /// the FMI 3.0 input `crank.acceleration` keeps its value, as every input does).
     pub fn after_step(&mut self, angle: f64, speed: f64) {
         self.angle = angle;
         self.speed = speed;
-        self.acceleration = 0.0;
-        self.source = AccelerationSource::None;
+        if self.source != AccelerationSource::Input {
+            self.acceleration = 0.0;
+            self.source = AccelerationSource::None;
+        }
         self.force_changed = false;
     }
 }

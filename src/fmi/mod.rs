@@ -1,4 +1,8 @@
-//! FMI 2.0 Co-Simulation layer: the FMU's C ABI around [`crate::Simulation`].
+//! FMI 2.0 and FMI 3.0 Co-Simulation layer: the FMU's C ABI around [`crate::Simulation`].
+//!
+//! Both standards share everything but the C shells (`ffi/` for FMI 2.0, `ffi/fmi3/` for
+//! FMI 3.0) and the XML writers: one instance code, one state machine and one variable table,
+//! parameterized by [`Standard`].
 //!
 //! One call, top to bottom (e.g. `fmi2DoStep`):
 //! 1. [`ffi`] (`ffi/`, the only module with `unsafe`): the exported `extern "C"` symbol
@@ -26,11 +30,13 @@ pub mod inputs;
 pub mod instance;
 pub mod logging;
 pub mod resource;
+pub mod standard;
 pub mod state_machine;
 pub mod status;
 pub mod variables;
 
 pub use description::ModelDescription;
 pub use instance::Instance;
+pub use standard::Standard;
 pub use status::{FmiError, Status};
 pub use variables::VariableTable;

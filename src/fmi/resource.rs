@@ -4,6 +4,7 @@
 use std::path::PathBuf;
 
 use super::description::ModelDescription;
+use super::standard::Standard;
 use crate::scene::Scene;
 
 /// File name of the scene inside `resources/`.
@@ -67,15 +68,25 @@ fn percent_decode(text: &str) -> Result<String, String> {
 /// Load the scene for an instance: `resources/scene.toml` if the location is usable, else
 /// the compiled-in default scene, in both cases only if its GUID is `guid`.
 pub fn load_model(resource_location: Option<&str>, guid: &str) -> Result<LoadedModel, String> {
+    load_model_for(resource_location, guid, Standard::Fmi2)
+}
+
+/// [`load_model`] for an FMU of `standard` (the FMI 3.0 `resourcePath` is a plain absolute
+/// path, which [`path_from_uri`] accepts too); `guid` is the `instantiationToken` for FMI 3.0.
+pub fn load_model_for(
+    resource_location: Option<&str>,
+    guid: &str,
+    standard: Standard,
+) -> Result<LoadedModel, String> {
     let from_resources = match resource_location {
-        None => Err("no resource location was given (fmuResourceLocation is NULL)".to_string()),
-        Some(uri) => load_from_resources(uri),
+        None => Err("no resource location was given (it is NULL)".to_string()),
+        Some(uri) => load_from_resources(uri, standard),
     };
     match from_resources {
         Ok(model) => check_guid(model, guid),
         Err(reason) => {
             let scene = Scene::benchmark();
-            let description = ModelDescription::for_scene(&scene)
+            let description = ModelDescription::for_standard(&scene, standard)
                 .map_err(|e| format!("{reason}; the compiled-in default scene fails: {e}"))?;
             if description.guid == guid {
                 Ok(LoadedModel {
@@ -85,7 +96,8 @@ pub fn load_model(resource_location: Option<&str>, guid: &str) -> Result<LoadedM
                 })
             } else {
                 Err(format!(
-                    "{reason}; the compiled-in default scene has GUID {} but the importer expects {guid}",
+                    "{reason}; the compiled-in default scene has {} {} but the importer expects {guid}",
+                    standard.token_name(),
                     description.guid
                 ))
             }
@@ -93,13 +105,13 @@ pub fn load_model(resource_location: Option<&str>, guid: &str) -> Result<LoadedM
     }
 }
 
-fn load_from_resources(uri: &str) -> Result<LoadedModel, String> {
+fn load_from_resources(uri: &str, standard: Standard) -> Result<LoadedModel, String> {
     let path = path_from_uri(uri)?.join(SCENE_FILE);
     let text = std::fs::read_to_string(&path)
         .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let origin = path.display().to_string();
     let scene = Scene::from_toml_str(&text, &origin).map_err(|e| e.to_string())?;
-    let description = ModelDescription::for_scene(&scene)
+    let description = ModelDescription::for_standard(&scene, standard)
         .map_err(|e| format!("the scene {origin} cannot be built: {e}"))?;
     Ok(LoadedModel {
         scene,
@@ -112,8 +124,9 @@ fn check_guid(model: LoadedModel, guid: &str) -> Result<LoadedModel, String> {
     if model.description.guid == guid {
         Ok(model)
     } else {
+        let name = model.description.standard().token_name();
         Err(format!(
-            "GUID mismatch: the importer passed {guid}, but {} describes an FMU with GUID {} \
+            "{name} mismatch: the importer passed {guid}, but {} describes an FMU with {name} {} \
              (modelDescription.xml and resources/ come from different exports)",
             model.origin, model.description.guid
         ))

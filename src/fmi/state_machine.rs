@@ -1,4 +1,8 @@
-//! The FMI 2.0 Co-Simulation call sequence as data.
+//! The FMI 2.0 and FMI 3.0 Co-Simulation call sequence as data (one table for both: an FMI
+//! 3.0 function shares the entry of the FMI 2.0 function with the same role; FMI 3.0's
+//! `StepMode` is `StepComplete` here, and its `ConfigurationMode`, `EventMode` and
+//! `IntermediateUpdateMode` are never entered, as the FMU declares no structural parameters,
+//! no event mode and no intermediate update).
 //!
 //! Each function that takes an instance has a mask of the states it may be called in
 //! (FMI 2.0.4, section 4.2.4, "State Machine of Calling Sequence from Master to Slave"; the
@@ -8,6 +12,7 @@
 //! `fmi2GetTypesPlatform`, `fmi2GetVersion` and `fmi2Instantiate` have no instance and so no
 //! entry; `fmi2FreeInstance` is allowed in every state.
 
+use super::standard::Standard;
 use super::status::FmiError;
 
 /// The states of an instance.
@@ -85,21 +90,77 @@ const NEVER: u8 = 0;
 
 macro_rules! calls {
     ($($call:ident => $mask:expr),+ $(,)?) => {
-        /// Every FMI 2.0 function that takes an instance.
+        /// Every FMI function that takes an instance: those of FMI 2.0 by their FMI 2.0 names
+        /// (the FMI 3.0 function with the same role shares the variant, e.g. `DoStep` is
+        /// `fmi2DoStep` and `fmi3DoStep`, `GetReal` is `fmi2GetReal` and `fmi3GetFloat64`),
+        /// and the FMI 3.0 additions.
         #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-        pub enum Call { $($call),+ }
+        pub enum Call {
+            $($call,)+
+            /// `fmi3GetInt64` / `fmi3SetInt64` (FMI 3.0 Enumerations).
+            GetInt64,
+            SetInt64,
+            /// A get function of a type this FMU has no variable of (e.g. `fmi3GetFloat32`).
+            GetOther(&'static str),
+            /// A set function of a type this FMU has no variable of.
+            SetOther(&'static str),
+            /// A function of an interface or capability this FMU does not declare (e.g.
+            /// `fmi3EnterEventMode`): checked for the instance, then answered with an error.
+            NotProvided(&'static str),
+        }
 
         impl Call {
-            /// The C name, e.g. `fmi2DoStep`.
-            pub fn name(self) -> &'static str {
-                match self { $(Call::$call => concat!("fmi2", stringify!($call))),+ }
+            /// The FMI 2.0 name, or the given name of the FMI 3.0-only calls.
+            fn fmi2_name(self) -> &'static str {
+                match self {
+                    $(Call::$call => concat!("fmi2", stringify!($call)),)+
+                    Call::GetInt64 => "fmi3GetInt64",
+                    Call::SetInt64 => "fmi3SetInt64",
+                    Call::GetOther(name) | Call::SetOther(name) | Call::NotProvided(name) => name,
+                }
+            }
+
+            /// The same name with the `fmi3` prefix.
+            fn fmi3_default_name(self) -> &'static str {
+                match self {
+                    $(Call::$call => concat!("fmi3", stringify!($call)),)+
+                    other => other.fmi2_name(),
+                }
             }
 
             fn allowed(self) -> u8 {
-                match self { $(Call::$call => $mask),+ }
+                match self {
+                    $(Call::$call => $mask,)+
+                    Call::GetInt64 | Call::GetOther(_) => READABLE,
+                    Call::SetInt64 | Call::SetOther(_) => SETTABLE,
+                    Call::NotProvided(_) => ANY,
+                }
             }
         }
     };
+}
+
+impl Call {
+    /// The C name in `standard`, e.g. `fmi2GetReal` or `fmi3GetFloat64`.
+    pub fn name(self, standard: Standard) -> &'static str {
+        match standard {
+            Standard::Fmi2 => self.fmi2_name(),
+            Standard::Fmi3 => match self {
+                Call::GetReal => "fmi3GetFloat64",
+                Call::GetInteger => "fmi3GetInt32",
+                Call::SetReal => "fmi3SetFloat64",
+                Call::SetInteger => "fmi3SetInt32",
+                Call::GetFMUstate => "fmi3GetFMUState",
+                Call::SetFMUstate => "fmi3SetFMUState",
+                Call::FreeFMUstate => "fmi3FreeFMUState",
+                Call::SerializedFMUstateSize => "fmi3SerializedFMUStateSize",
+                Call::SerializeFMUstate => "fmi3SerializeFMUState",
+                Call::DeSerializeFMUstate => "fmi3DeserializeFMUState",
+                Call::GetRealOutputDerivatives => "fmi3GetOutputDerivatives",
+                other => other.fmi3_default_name(),
+            },
+        }
+    }
 }
 
 calls! {
@@ -141,7 +202,7 @@ calls! {
 
 /// Check that `call` is allowed in `state`; the error names the call, the state and the
 /// states where the call is allowed.
-pub fn check(call: Call, state: MachineState) -> Result<(), FmiError> {
+pub fn check(call: Call, state: MachineState, standard: Standard) -> Result<(), FmiError> {
     let allowed = call.allowed();
     if allowed & state.bit() != 0 {
         return Ok(());
@@ -158,7 +219,7 @@ pub fn check(call: Call, state: MachineState) -> Result<(), FmiError> {
     };
     Err(FmiError::rejected(format!(
         "illegal call sequence: {} is not allowed in state {}; allowed in: {allowed_text}",
-        call.name(),
+        call.name(standard),
         state.name()
     )))
 }
@@ -169,8 +230,8 @@ mod tests {
 
     #[test]
     fn do_step_only_after_initialization() {
-        assert!(check(Call::DoStep, MachineState::StepComplete).is_ok());
-        let e = check(Call::DoStep, MachineState::Instantiated).unwrap_err();
+        assert!(check(Call::DoStep, MachineState::StepComplete, Standard::Fmi2).is_ok());
+        let e = check(Call::DoStep, MachineState::Instantiated, Standard::Fmi2).unwrap_err();
         assert!(e.message.contains("fmi2DoStep"), "{}", e.message);
         assert!(e.message.contains("Instantiated"), "{}", e.message);
         assert!(
@@ -184,19 +245,32 @@ mod tests {
     #[test]
     fn cancel_step_is_never_allowed() {
         for s in MachineState::ALL {
-            assert!(check(Call::CancelStep, s).is_err());
+            assert!(check(Call::CancelStep, s, Standard::Fmi2).is_err());
         }
     }
 
     #[test]
     fn free_reset_and_set_state_always_allowed() {
         for s in MachineState::ALL {
-            assert!(check(Call::FreeInstance, s).is_ok());
-            assert!(check(Call::Reset, s).is_ok());
-            assert!(check(Call::SetFMUstate, s).is_ok());
-            assert!(check(Call::GetFMUstate, s).is_ok());
-            assert!(check(Call::SerializeFMUstate, s).is_ok());
+            assert!(check(Call::FreeInstance, s, Standard::Fmi2).is_ok());
+            assert!(check(Call::Reset, s, Standard::Fmi2).is_ok());
+            assert!(check(Call::SetFMUstate, s, Standard::Fmi2).is_ok());
+            assert!(check(Call::GetFMUstate, s, Standard::Fmi2).is_ok());
+            assert!(check(Call::SerializeFMUstate, s, Standard::Fmi2).is_ok());
         }
+    }
+
+    #[test]
+    fn fmi3_names() {
+        assert_eq!(Call::GetReal.name(Standard::Fmi3), "fmi3GetFloat64");
+        assert_eq!(Call::DoStep.name(Standard::Fmi3), "fmi3DoStep");
+        assert_eq!(Call::DoStep.name(Standard::Fmi2), "fmi2DoStep");
+        assert_eq!(
+            Call::DeSerializeFMUstate.name(Standard::Fmi3),
+            "fmi3DeserializeFMUState"
+        );
+        let e = check(Call::DoStep, MachineState::Instantiated, Standard::Fmi3).unwrap_err();
+        assert!(e.message.contains("fmi3DoStep"), "{}", e.message);
     }
 
     #[test]

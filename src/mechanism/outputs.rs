@@ -49,6 +49,34 @@ use crate::integrator::{DaeSystem, StepFailure};
 use crate::rod::RodPoint;
 
 impl Mechanism {
+    /// The transverse deflection of the rod from the chord B -> C, m, positive to the left of
+    /// B -> C, at `out.len()` = N equally spaced points `s_i = i L / (N - 1)` (the definition
+    /// of `v_mid`, docs/physics.md "Output definitions"; the ends are 0 by definition, and
+    /// the middle point of an odd N is the material midpoint, so it equals `v_mid`). From the
+    /// positions alone; no allocation. N < 2 writes zeros.
+    pub fn deflection_shape(&self, state: &MechanismState, out: &mut [f64]) {
+        let q = &state.dae.q;
+        let rb = self.rod.point(RodPoint::B, q);
+        let rc = self.rod.point(RodPoint::C, q);
+        let chord = rc - rb;
+        let length = chord.norm();
+        let n = out.len();
+        for (i, v) in out.iter_mut().enumerate() {
+            *v = 0.0;
+            if n < 2 || i == 0 || i + 1 == n || length == 0.0 {
+                continue;
+            }
+            let r = if 2 * i + 1 == n {
+                self.rod.point(RodPoint::Mid, q)
+            } else {
+                self.rod
+                    .point_at(i as f64 * self.rod.length() / (n - 1) as f64, q)
+            };
+            let d = r - rb;
+            *v = (chord.x * d.y - chord.y * d.x) / length;
+        }
+    }
+
     /// Factor the saddle-point matrix at `state`'s positions, project the velocities on the
     /// constraints if `project` (into `work.v`; else `work.v` = the state's velocities), and
     /// solve for the accelerations and multipliers (into `work.solve`).

@@ -74,6 +74,9 @@ pub trait RodBody: Send {
     fn add_tangent(&self, q: &[f64], v: &[f64], c_k: f64, c_d: f64, out: MatMut<'_, f64>);
     /// Global position of a material point.
     fn point(&self, p: RodPoint, q: &[f64]) -> Vector2<f64>;
+    /// Global position of the material point at undeformed arc length `s` from B (clamped to
+    /// `0..=L`), without allocating; the FMI 3.0 `rod.shape` output samples it.
+    fn point_at(&self, s: f64, q: &[f64]) -> Vector2<f64>;
     /// Jacobian `d r_p / d q` (2 x n) into `out`.
     fn point_jacobian(&self, p: RodPoint, q: &[f64], out: MatMut<'_, f64>);
     /// `(d/dt J_p) q'`: the velocity-product part of the point's acceleration.

@@ -6,11 +6,16 @@
 
 //!
 //! - this file: the description, its capabilities and GUID;
-//! - [`xml`]: the XML, written element by element from the variable table;
+//! - [`xml`]: the FMI 2.0 XML, written element by element from the variable table;
+//! - [`xml3`]: the FMI 3.0 XML from the FMI 3.0 table (`instantiationToken` takes the place
+//!   of the GUID and is derived the same way);
 //! - [`units`]: the unit definitions.
 
 mod units;
 mod xml;
+mod xml3;
+
+pub use xml3::CAPABILITIES_FMI3;
 
 use std::io;
 
@@ -18,6 +23,7 @@ use crate::error::ModelError;
 use crate::hash::fnv1a_128;
 use crate::scene::Scene;
 
+use super::standard::Standard;
 use super::variables::VariableTable;
 
 /// The FMU's capability flags, written into `<CoSimulation>` (fmu-contract.md).
@@ -40,7 +46,7 @@ pub const CAPABILITIES: [(&str, &str); 10] = [
 pub struct ModelDescription {
     /// The XML text.
     pub xml: String,
-    /// `{8-4-4-4-12}`.
+    /// `{8-4-4-4-12}`: the GUID (FMI 2.0) or the `instantiationToken` (FMI 3.0).
     pub guid: String,
     /// The table the description was written from.
     pub table: VariableTable,
@@ -53,13 +59,36 @@ impl ModelDescription {
         ModelDescription::new(scene, table)
     }
 
-    /// The description of `scene` with the given table.
+    /// The FMI 3.0 description of `scene`.
+    pub fn for_scene_fmi3(scene: &Scene) -> Result<ModelDescription, ModelError> {
+        let table = VariableTable::for_scene_fmi3(scene)?;
+        ModelDescription::new(scene, table)
+    }
+
+    /// The description of `scene` in `standard`.
+    pub fn for_standard(scene: &Scene, standard: Standard) -> Result<ModelDescription, ModelError> {
+        match standard {
+            Standard::Fmi2 => ModelDescription::for_scene(scene),
+            Standard::Fmi3 => ModelDescription::for_scene_fmi3(scene),
+        }
+    }
+
+    /// The description of `scene` with the given table, in the table's standard.
     pub fn new(scene: &Scene, table: VariableTable) -> Result<ModelDescription, ModelError> {
+        let render = match table.standard() {
+            Standard::Fmi2 => xml::render,
+            Standard::Fmi3 => xml3::render,
+        };
         let placeholder = "{00000000-0000-0000-0000-000000000000}";
-        let unhashed = xml::render(scene, &table, placeholder).map_err(write_error)?;
+        let unhashed = render(scene, &table, placeholder).map_err(write_error)?;
         let guid = guid_from_hash(fnv1a_128(unhashed.as_bytes()));
-        let xml = xml::render(scene, &table, &guid).map_err(write_error)?;
+        let xml = render(scene, &table, &guid).map_err(write_error)?;
         Ok(ModelDescription { xml, guid, table })
+    }
+
+    /// The standard of the description.
+    pub fn standard(&self) -> Standard {
+        self.table.standard()
     }
 }
 

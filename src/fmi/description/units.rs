@@ -12,7 +12,7 @@ struct UnitDef {
     display: &'static [(&'static str, &'static str)],
 }
 
-const UNITS: [UnitDef; 13] = [
+const UNITS: [UnitDef; 15] = [
     UnitDef {
         name: "m",
         base: &[("m", "1")],
@@ -37,6 +37,16 @@ const UNITS: [UnitDef; 13] = [
         name: "rad/s",
         base: &[("s", "-1"), ("rad", "1")],
         display: &[("rpm", "9.549296585513721")],
+    },
+    UnitDef {
+        name: "rad/s2",
+        base: &[("s", "-2"), ("rad", "1")],
+        display: &[],
+    },
+    UnitDef {
+        name: "s",
+        base: &[("s", "1")],
+        display: &[],
     },
     UnitDef {
         name: "N",

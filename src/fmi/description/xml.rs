@@ -1,4 +1,5 @@
-//! The XML of `modelDescription.xml`, element by element, in the order FMI 2.0 prescribes.
+//! The XML of the FMI 2.0 `modelDescription.xml`, element by element, in the order FMI 2.0
+//! prescribes (the FMI 3.0 one: [`super::xml3`], which shares the helpers here).
 
 use std::io;
 
@@ -14,7 +15,7 @@ use crate::scene::Scene;
 
 /// Shortest text that reads back as the same f64. Non-finite values have no xs:double text
 /// that importers accept (and are never valid start values or bounds here): an error.
-fn real_text(x: f64) -> io::Result<String> {
+pub(super) fn real_text(x: f64) -> io::Result<String> {
     if x.is_finite() {
         Ok(format!("{x:?}"))
     } else {
@@ -25,7 +26,7 @@ fn real_text(x: f64) -> io::Result<String> {
     }
 }
 
-fn value_text(value: Value) -> io::Result<String> {
+pub(super) fn value_text(value: Value) -> io::Result<String> {
     match value {
         Value::Real(x) => real_text(x),
         Value::Integer(n) => Ok(n.to_string()),
@@ -64,7 +65,7 @@ pub(super) fn render(scene: &Scene, table: &VariableTable, guid: &str) -> io::Re
 
 pub(super) type W = Writer<Vec<u8>>;
 
-fn named_error(name: &str, attribute: &str, e: io::Error) -> io::Error {
+pub(super) fn named_error(name: &str, attribute: &str, e: io::Error) -> io::Error {
     io::Error::new(e.kind(), format!("{name}: {attribute}: {e}"))
 }
 
@@ -105,7 +106,7 @@ fn write_type_definitions(w: &mut W) -> io::Result<()> {
     Ok(())
 }
 
-fn write_log_categories(w: &mut W) -> io::Result<()> {
+pub(super) fn write_log_categories(w: &mut W) -> io::Result<()> {
     w.create_element("LogCategories").write_inner_content(|w| {
         for (name, description) in LOG_CATEGORIES {
             w.create_element("Category")
@@ -117,7 +118,7 @@ fn write_log_categories(w: &mut W) -> io::Result<()> {
     Ok(())
 }
 
-fn write_default_experiment(w: &mut W, scene: &Scene) -> io::Result<()> {
+pub(super) fn write_default_experiment(w: &mut W, scene: &Scene) -> io::Result<()> {
     let e = &scene.experiment;
     let (start, stop, step) = (
         real_text(e.start_time)?,

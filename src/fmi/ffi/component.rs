@@ -1,4 +1,4 @@
-//! What an `fmi2Component` points to ([`Component`]: the instance behind a busy flag, and the
+//! What an `fmi2Component` (or an `fmi3Instance`) points to ([`Component`]: the instance behind a busy flag, and the
 //! importer's logger), how a call reaches the instance ([`dispatch`]), and creating and
 //! freeing components.
 
@@ -14,14 +14,14 @@ use super::{
     fmi2ComponentEnvironment, fmi2Status, fmi2String,
 };
 use crate::fmi::guard;
-use crate::fmi::instance::{Instance, InstantiateArgs};
+use crate::fmi::instance::{instantiate_name, Instance, InstantiateArgs};
 use crate::fmi::logging::{printf_escape, LogSink, Logger};
+use crate::fmi::standard::Standard;
 use crate::fmi::state_machine::Call;
 use crate::fmi::status::{FmiResult, Status};
 
 const ERROR: fmi2Status = Status::Error as fmi2Status;
-/// The importer's logger callback.
-#[derive(Clone)]
+/// The importer's FMI 2.0 logger callback.
 struct CallbackSink {
     callback: fmi2CallbackLogger,
     environment: fmi2ComponentEnvironment,
@@ -51,15 +51,17 @@ impl LogSink for CallbackSink {
     }
 }
 
-/// What an `fmi2Component` points to.
+/// What an `fmi2Component` or an `fmi3Instance` points to.
 pub struct Component {
     /// Set while a call runs on `instance`.
     busy: AtomicBool,
     /// Set while a nested call is being reported (a logger that calls back on every
     /// message must not recurse without end).
     reporting: AtomicBool,
+    /// The standard of the instance (for the function names in messages).
+    standard: Standard,
     /// The importer's logger, for reporting nested calls without touching `instance`.
-    sink: Option<CallbackSink>,
+    sink: Option<Box<dyn LogSink>>,
     instance: UnsafeCell<Instance>,
 }
 
@@ -90,19 +92,19 @@ impl Drop for Busy<'_> {
     }
 }
 
-/// Run `f` on the instance `c` as FMI call `call`.
+/// Run `f` on the instance `c` as FMI call `call` (FMI 2.0 and FMI 3.0 alike).
 pub unsafe fn dispatch(
     c: fmi2Component,
     call: Call,
     f: impl FnOnce(&mut Instance) -> FmiResult<Status>,
 ) -> fmi2Status {
-    // SAFETY: c is NULL or a live pointer from fmi2Instantiate (FMI 2.0). Only a shared
-    // reference is made here: a nested call may hold one at the same time.
+    // SAFETY: c is NULL or a live pointer from fmi2Instantiate or fmi3InstantiateCoSimulation.
+    // Only a shared reference is made here: a nested call may hold one at the same time.
     let Some(component) = (unsafe { c.cast::<Component>().as_ref() }) else {
         return ERROR;
     };
     if component.busy.swap(true, Ordering::Acquire) {
-        component.report_busy(call.name());
+        component.report_busy(call.name(component.standard));
         return ERROR;
     }
     let _busy = Busy(&component.busy);
@@ -118,35 +120,43 @@ pub unsafe fn dispatch(
     }
 }
 
-/// `fmi2Instantiate`: a new component, or NULL (the reason goes to the logger).
-pub unsafe fn instantiate(
-    instanceName: fmi2String,
-    fmuType: c_int,
-    fmuGUID: fmi2String,
-    fmuResourceLocation: fmi2String,
-    functions: *const fmi2CallbackFunctions,
-    loggingOn: fmi2Boolean,
+/// The C arguments of an instantiation, common to `fmi2Instantiate` and
+/// `fmi3InstantiateCoSimulation`.
+pub struct CreateArgs {
+    pub standard: Standard,
+    pub instance_name: fmi2String,
+    /// `fmuType` (FMI 2.0) or [`FMI2_CO_SIMULATION`] (FMI 3.0).
+    pub fmu_type: c_int,
+    /// `fmuGUID` (FMI 2.0) or `instantiationToken` (FMI 3.0).
+    pub token: fmi2String,
+    /// `fmuResourceLocation` (FMI 2.0) or `resourcePath` (FMI 3.0).
+    pub resource_location: fmi2String,
+    pub logging_on: bool,
+}
+
+/// A new component, or NULL (the reason goes to the logger). `make_sink(instance name)`
+/// wraps the importer's logger callback, if it gave one.
+pub unsafe fn create(
+    args: CreateArgs,
+    make_sink: impl Fn(&str) -> Option<Box<dyn LogSink>>,
 ) -> fmi2Component {
+    let standard = args.standard;
+    let (token_name, location_name) = match standard {
+        Standard::Fmi2 => ("fmuGUID", "fmuResourceLocation"),
+        Standard::Fmi3 => ("instantiationToken", "resourcePath"),
+    };
     let created = guard::catch(AssertUnwindSafe(|| {
-        // SAFETY: NULL or the importer's callback struct (FMI 2.0).
-        let functions = unsafe { functions.as_ref() }?;
-        // SAFETY (all three): NULL or NUL-terminated strings (FMI 2.0).
-        let name = unsafe { lossy_text(instanceName) };
-        let guid = unsafe { text(fmuGUID, "fmuGUID") };
-        let location = unsafe { text(fmuResourceLocation, "fmuResourceLocation") };
-        let sink = functions.logger.map(|callback| CallbackSink {
-            callback,
-            environment: functions.component_environment,
-            instance_name: c_string(name.as_deref().unwrap_or("")),
-        });
-        let logger = Logger::new(
-            sink.clone().map(|s| Box::new(s) as Box<dyn LogSink>),
-            loggingOn != 0,
-        );
-        let args = match (&name, guid, location) {
+        // SAFETY (all three): NULL or NUL-terminated strings (FMI 2.0, FMI 3.0).
+        let name = unsafe { lossy_text(args.instance_name) };
+        let guid = unsafe { text(args.token, token_name) };
+        let location = unsafe { text(args.resource_location, location_name) };
+        let sink_name = name.as_deref().unwrap_or("");
+        let logger = Logger::new(make_sink(sink_name), args.logging_on);
+        let instantiate_args = match (&name, guid, location) {
             (Some(instance_name), Ok(Some(guid)), Ok(resource_location)) => InstantiateArgs {
+                standard,
                 instance_name,
-                fmu_type: fmuType,
+                fmu_type: args.fmu_type,
                 guid,
                 resource_location,
             },
@@ -155,20 +165,24 @@ pub unsafe fn instantiate(
                     "instanceName is NULL".to_string()
                 } else {
                     match guid {
-                        Ok(None) => "fmuGUID is NULL".to_string(),
+                        Ok(None) => format!("{token_name} is NULL"),
                         Err(e) => e,
                         Ok(Some(_)) => location.err().unwrap_or_default(),
                     }
                 };
-                logger.status(Status::Error, &format!("fmi2Instantiate: {problem}"));
+                logger.status(
+                    Status::Error,
+                    &format!("{}: {problem}", instantiate_name(standard)),
+                );
                 return None;
             }
         };
-        let instance = Instance::instantiate(args, logger)?;
+        let instance = Instance::instantiate(instantiate_args, logger)?;
         Some(Component {
             busy: AtomicBool::new(false),
             reporting: AtomicBool::new(false),
-            sink,
+            standard,
+            sink: make_sink(sink_name),
             instance: UnsafeCell::new(instance),
         })
     }));
@@ -178,20 +192,61 @@ pub unsafe fn instantiate(
     }
 }
 
-/// `fmi2FreeInstance`.
+/// `fmi2Instantiate`: a new component, or NULL (the reason goes to the logger).
+pub unsafe fn instantiate(
+    instanceName: fmi2String,
+    fmuType: c_int,
+    fmuGUID: fmi2String,
+    fmuResourceLocation: fmi2String,
+    functions: *const fmi2CallbackFunctions,
+    loggingOn: fmi2Boolean,
+) -> fmi2Component {
+    // SAFETY: NULL or the importer's callback struct (FMI 2.0).
+    let Ok(Some(functions)) = guard::catch(AssertUnwindSafe(|| unsafe { functions.as_ref() }))
+    else {
+        return ptr::null_mut();
+    };
+    let (logger, environment) = (functions.logger, functions.component_environment);
+    let args = CreateArgs {
+        standard: Standard::Fmi2,
+        instance_name: instanceName,
+        fmu_type: fmuType,
+        token: fmuGUID,
+        resource_location: fmuResourceLocation,
+        logging_on: loggingOn != 0,
+    };
+    // SAFETY: the strings are NULL or NUL-terminated (FMI 2.0).
+    unsafe {
+        create(args, |name| {
+            logger.map(|callback| {
+                Box::new(CallbackSink {
+                    callback,
+                    environment,
+                    instance_name: c_string(name),
+                }) as Box<dyn LogSink>
+            })
+        })
+    }
+}
+
+/// `fmi2FreeInstance` and `fmi3FreeInstance`.
 pub unsafe fn free(c: fmi2Component) {
-    // SAFETY: c is NULL or a live pointer from fmi2Instantiate (FMI 2.0).
+    // SAFETY: c is NULL or a live pointer from fmi2Instantiate or fmi3InstantiateCoSimulation.
     let Some(component) = (unsafe { c.cast::<Component>().as_ref() }) else {
         return;
     };
     if component.busy.swap(true, Ordering::Acquire) {
         // Freed from inside a callback of a running call: refuse rather than free memory
         // that call still uses.
-        component.report_busy("fmi2FreeInstance");
+        let name = match component.standard {
+            Standard::Fmi2 => "fmi2FreeInstance",
+            Standard::Fmi3 => "fmi3FreeInstance",
+        };
+        component.report_busy(name);
         return;
     }
-    // SAFETY: c came from Box::into_raw in fmi2Instantiate, no call is running on it (the busy
-    // flag), and it is freed once (FMI 2.0).
+    // SAFETY: c came from Box::into_raw at instantiation, no call is running on it (the busy
+    // flag), and it is freed once (FMI 2.0, FMI 3.0).
     let component = unsafe { Box::from_raw(c.cast::<Component>()) };
     let _ = guard::catch(AssertUnwindSafe(move || drop(component)));
 }

@@ -32,7 +32,11 @@ pub unsafe extern "C" fn fmi2GetInteger(
 ) -> fmi2Status {
     unsafe {
         dispatch(c, Call::GetInteger, |i| {
-            i.get_integer(slice(vr, nvr, "vr[]")?, slice_mut(value, nvr, "value[]")?)
+            i.get_integer(
+                Family::Integer,
+                slice(vr, nvr, "vr[]")?,
+                slice_mut(value, nvr, "value[]")?,
+            )
         })
     }
 }
@@ -90,7 +94,11 @@ pub unsafe extern "C" fn fmi2SetInteger(
 ) -> fmi2Status {
     unsafe {
         dispatch(c, Call::SetInteger, |i| {
-            i.set_integer(slice(vr, nvr, "vr[]")?, slice(value, nvr, "value[]")?)
+            i.set_integer(
+                Family::Integer,
+                slice(vr, nvr, "vr[]")?,
+                slice(value, nvr, "value[]")?,
+            )
         })
     }
 }

@@ -73,7 +73,9 @@ impl Instance {
                             ));
                         }
                     }
-                    AccelerationSource::None | AccelerationSource::Angle => {
+                    AccelerationSource::None
+                    | AccelerationSource::Angle
+                    | AccelerationSource::Input => {
                         self.inputs.acceleration = x;
                         self.inputs.source = AccelerationSource::Angle;
                     }
@@ -91,7 +93,9 @@ impl Instance {
                     let name = self.table.get(vr).map(|v| v.name.as_str()).unwrap_or("?");
                     let why = match slot {
                         InputSlot::SliderForce => "slider.force is held constant over a step",
-                        InputSlot::CrankSpeed | InputSlot::CrankAngle => {
+                        InputSlot::CrankSpeed
+                        | InputSlot::CrankAngle
+                        | InputSlot::CrankAcceleration => {
                             "the crank law has a constant acceleration over a step (order 1 of crank.speed or order 2 of crank.angle)"
                         }
                     };

@@ -30,6 +30,7 @@ use super::guard;
 use super::inputs::{Experiment, Inputs};
 use super::logging::Logger;
 use super::resource;
+use super::standard::Standard;
 use super::state_machine::{self, Call, MachineState};
 use super::status::{FmiResult, Status};
 use super::variables::VariableTable;
@@ -38,21 +39,27 @@ use crate::scene::Scene;
 use crate::simulation::Simulation;
 
 /// `fmi2Type` value of Co-Simulation.
-const FMI2_CO_SIMULATION: i32 = 1;
+pub const FMI2_CO_SIMULATION: i32 = 1;
 
 /// Relative tolerance on `currentCommunicationPoint` and `stopTime`.
 const TIME_TOLERANCE: f64 = 1e-9;
 
-/// Arguments of `fmi2Instantiate`, already converted from C.
+/// Arguments of `fmi2Instantiate` or `fmi3InstantiateCoSimulation`, already converted from C.
 pub struct InstantiateArgs<'a> {
+    pub standard: Standard,
     pub instance_name: &'a str,
+    /// `fmuType` of FMI 2.0; FMI 3.0 has one function per interface (pass
+    /// [`FMI2_CO_SIMULATION`]).
     pub fmu_type: i32,
+    /// The GUID (FMI 2.0) or the `instantiationToken` (FMI 3.0).
     pub guid: &'a str,
     pub resource_location: Option<&'a str>,
 }
 
 /// One FMU instance.
 pub struct Instance {
+    /// FMI 2.0 or FMI 3.0: names in messages and the type families of get/set.
+    standard: Standard,
     guid: String,
     table: VariableTable,
     /// The scene the FMU was exported for: the start values, restored by `fmi2Reset`.
@@ -100,7 +107,11 @@ impl Instance {
         };
         logger.status(
             Status::Error,
-            &format!("fmi2Instantiate of \"{}\": {failure}", args.instance_name),
+            &format!(
+                "{} of \"{}\": {failure}",
+                instantiate_name(args.standard),
+                args.instance_name
+            ),
         );
         None
     }
@@ -117,6 +128,7 @@ impl Instance {
             stop_time: None,
         };
         Instance {
+            standard: description.table.standard(),
             guid: description.guid,
             table: description.table,
             exported: scene.clone(),
@@ -139,6 +151,11 @@ impl Instance {
         self.state
     }
 
+    /// The standard the instance was created by.
+    pub fn standard(&self) -> Standard {
+        self.standard
+    }
+
     /// The GUID of the FMU this instance belongs to.
     pub fn guid(&self) -> &str {
         &self.guid
@@ -152,7 +169,7 @@ impl Instance {
         f: impl FnOnce(&mut Instance) -> FmiResult<Status>,
     ) -> Status {
         let result = guard::catch(AssertUnwindSafe(|| {
-            state_machine::check(call, self.state)?;
+            state_machine::check(call, self.state, self.standard)?;
             f(self)
         }));
         let (status, message) = match result {
@@ -161,15 +178,19 @@ impl Instance {
                 if e.instance_failed {
                     self.state = MachineState::Error;
                 }
-                (e.status, format!("{}: {}", call.name(), e.message))
+                (
+                    e.status,
+                    format!("{}: {}", call.name(self.standard), e.message),
+                )
             }
             Err(panic) => {
                 self.state = MachineState::Error;
                 (
                     Status::Error,
                     format!(
-                        "{}: internal error (a panic was caught at the FMI boundary): {panic}; the instance is in the Error state: call fmi2Reset, fmi2SetFMUstate or fmi2FreeInstance",
-                        call.name()
+                        "{}: internal error (a panic was caught at the FMI boundary): {panic}; the instance is in the Error state: call {p}Reset, {p}SetFMUstate or {p}FreeInstance",
+                        call.name(self.standard),
+                        p = self.standard.prefix(),
                     ),
                 )
             }
@@ -189,6 +210,14 @@ impl Instance {
     }
 }
 
+/// `fmi2Instantiate` or `fmi3InstantiateCoSimulation`.
+pub fn instantiate_name(standard: Standard) -> &'static str {
+    match standard {
+        Standard::Fmi2 => "fmi2Instantiate",
+        Standard::Fmi3 => "fmi3InstantiateCoSimulation",
+    }
+}
+
 /// Check the arguments of `fmi2Instantiate` and load the scene its resources name.
 fn load(args: &InstantiateArgs<'_>, logger: &Logger) -> Result<resource::LoadedModel, String> {
     if args.instance_name.is_empty() {
@@ -197,13 +226,13 @@ fn load(args: &InstantiateArgs<'_>, logger: &Logger) -> Result<resource::LoadedM
                 .to_string(),
         );
     }
-    if args.fmu_type != FMI2_CO_SIMULATION {
+    if args.standard == Standard::Fmi2 && args.fmu_type != FMI2_CO_SIMULATION {
         return Err(format!(
             "fmuType = {} is not supported: allowed {FMI2_CO_SIMULATION} (fmi2CoSimulation); this FMU implements only Co-Simulation",
             args.fmu_type
         ));
     }
-    let loaded = resource::load_model(args.resource_location, args.guid)?;
+    let loaded = resource::load_model_for(args.resource_location, args.guid, args.standard)?;
     logger.event(&format!(
         "instance \"{}\" of {} uses {}",
         args.instance_name, loaded.description.guid, loaded.origin

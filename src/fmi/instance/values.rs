@@ -1,5 +1,7 @@
-//! `fmi2Get*` and `fmi2Set*`: dispatch through the variable table, checks before any change
-//! (a rejected call sets nothing), and the model rebuilt on demand in initialization mode.
+//! `fmi2Get*`/`fmi2Set*` and `fmi3Get*`/`fmi3Set*`: dispatch through the variable table,
+//! checks before any change (a rejected call sets nothing), and the model rebuilt on demand
+//! in initialization mode. FMI 3.0 arrays take `value_count` consecutive values (the FMI 2.0
+//! table has only scalars, so there one value reference is one value).
 
 use super::Instance;
 use crate::fmi::state_machine::MachineState;
@@ -8,21 +10,23 @@ use crate::fmi::variables::{Access, Causality, Family, ValueReference, Variable}
 
 impl Instance {
     pub(super) fn variable(&self, vr: ValueReference, family: Family) -> FmiResult<&Variable> {
+        let standard = self.standard;
         let v = self.table.get(vr).ok_or_else(|| {
             FmiError::rejected(format!(
                 "unknown value reference {vr}: no {} variable of this FMU has it (see modelDescription.xml)",
-                family.name()
+                family.name(standard)
             ))
         })?;
-        let actual = v.value_type.family();
+        let actual = v.value_type.family(standard);
         if actual != family {
             return Err(FmiError::rejected(format!(
-                "value reference {vr} ({}) is a {} variable, not {}: use fmi2Get{}/fmi2Set{}",
+                "value reference {vr} ({}) is a {} variable, not {}: use {p}Get{}/{p}Set{}",
                 v.name,
-                actual.name(),
-                family.name(),
-                actual.name(),
-                actual.name()
+                actual.name(standard),
+                family.name(standard),
+                actual.name(standard),
+                actual.name(standard),
+                p = standard.prefix(),
             )));
         }
         Ok(v)
@@ -40,7 +44,7 @@ impl Instance {
                     state.name()
                 ))),
             },
-            Causality::Output | Causality::CalculatedParameter => {
+            Causality::Output | Causality::CalculatedParameter | Causality::Independent => {
                 Err(FmiError::rejected(format!(
                     "{} (value reference {vr}) has causality {}: only inputs and parameters can be set",
                     v.name,
@@ -75,12 +79,33 @@ impl Instance {
         }
     }
 
-    /// `fmi2GetReal`.
+    /// The number of values `vrs` take: `n_values` must match it (FMI 3.0 `nValues`).
+    fn check_value_count(&self, vrs: &[ValueReference], n_values: usize) -> FmiResult<()> {
+        // Unknown references count one value here; they are reported by the checks after.
+        let expected: usize = vrs
+            .iter()
+            .map(|&vr| self.table.get(vr).map_or(1, |v| v.value_count()))
+            .sum();
+        if expected != n_values {
+            return Err(FmiError::rejected(format!(
+                "nValues = {n_values} does not match the {} value references, which take {expected} values (arrays count their elements): allowed nValues = {expected}",
+                vrs.len()
+            )));
+        }
+        Ok(())
+    }
+
+    /// `fmi2GetReal` / `fmi3GetFloat64`: `values` holds the values of `vrs` one after the
+    /// other, an array's elements in order.
     pub fn get_real(&mut self, vrs: &[ValueReference], values: &mut [f64]) -> FmiResult<Status> {
+        self.check_value_count(vrs, values.len())?;
         let mut needs_simulation = false;
         for &vr in vrs {
             let v = self.variable(vr, Family::Real)?;
-            needs_simulation |= matches!(v.access, Access::Output(_) | Access::Frequency(_));
+            needs_simulation |= matches!(
+                v.access,
+                Access::Output(_) | Access::Frequency(_) | Access::Frequencies | Access::Shape
+            );
         }
         if needs_simulation {
             self.prepare_values()?;
@@ -89,40 +114,65 @@ impl Instance {
             Some(s) if needs_simulation => (s.outputs(), s.frequencies_hz()),
             _ => (Default::default(), &[][..]),
         };
-        for (&vr, out) in vrs.iter().zip(values.iter_mut()) {
+        let mut next = 0;
+        for &vr in vrs {
             let v = self.table.get(vr).expect("checked above");
-            *out = match v.access {
-                Access::Input(slot) => self.inputs.value(slot),
-                Access::Output(get) => get(&outputs),
-                Access::RealParameter { get, .. } => get(&self.scene),
-                Access::Frequency(i) => *frequencies.get(i).ok_or_else(|| {
-                    FmiError::rejected(format!("{} does not exist for these parameters", v.name))
-                })?,
-                Access::RodMass => {
-                    self.scene.rod.total_mass().map_err(|e| {
+            let out = &mut values[next..next + v.value_count()];
+            next += out.len();
+            let missing =
+                || FmiError::rejected(format!("{} does not exist for these parameters", v.name));
+            out[0] =
+                match v.access {
+                    Access::Input(slot) => self.inputs.value(slot),
+                    Access::Output(get) => get(&outputs),
+                    Access::RealParameter { get, .. } => get(&self.scene),
+                    Access::Frequency(i) => *frequencies.get(i).ok_or_else(missing)?,
+                    Access::Frequencies => {
+                        let all = frequencies.get(..out.len()).ok_or_else(missing)?;
+                        out.copy_from_slice(all);
+                        continue;
+                    }
+                    Access::Shape => {
+                        if let Some(s) = &self.simulation {
+                            s.mechanism().deflection_shape(s.state(), out);
+                        }
+                        continue;
+                    }
+                    Access::Time => match &self.simulation {
+                        Some(s) => s.time(),
+                        None => self.experiment.start_time,
+                    },
+                    Access::RodMass => self.scene.rod.total_mass().map_err(|e| {
                         FmiError::rejected(format!("{} is not available: {e}", v.name))
-                    })?
-                }
-                Access::IntegerParameter { .. } => unreachable!("family checked"),
-            };
+                    })?,
+                    Access::IntegerParameter { .. } => unreachable!("family checked"),
+                };
         }
         Ok(Status::Ok)
     }
 
-    /// `fmi2GetInteger` (Integer and Enumeration variables).
-    pub fn get_integer(&mut self, vrs: &[ValueReference], values: &mut [i32]) -> FmiResult<Status> {
+    /// `fmi2GetInteger` (Integer and Enumeration variables); FMI 3.0: `fmi3GetInt32`
+    /// (`family` Integer) and `fmi3GetInt64` (`family` Enumeration).
+    pub fn get_integer<T: From<i32>>(
+        &mut self,
+        family: Family,
+        vrs: &[ValueReference],
+        values: &mut [T],
+    ) -> FmiResult<Status> {
+        self.check_value_count(vrs, values.len())?;
         for (&vr, out) in vrs.iter().zip(values.iter_mut()) {
-            let v = self.variable(vr, Family::Integer)?;
-            *out = match v.access {
+            let v = self.variable(vr, family)?;
+            *out = T::from(match v.access {
                 Access::IntegerParameter { get, .. } => get(&self.scene),
                 _ => unreachable!("only Integer parameters are Integer variables"),
-            };
+            });
         }
         Ok(Status::Ok)
     }
 
-    /// `fmi2SetReal`: all values are checked first; on error nothing is set.
+    /// `fmi2SetReal` / `fmi3SetFloat64`: all values are checked first; on error nothing is set.
     pub fn set_real(&mut self, vrs: &[ValueReference], values: &[f64]) -> FmiResult<Status> {
+        self.check_value_count(vrs, values.len())?;
         for (&vr, &x) in vrs.iter().zip(values) {
             let v = self.settable(vr, Family::Real)?;
             if !x.is_finite() {
@@ -150,18 +200,29 @@ impl Instance {
         Ok(Status::Ok)
     }
 
-    /// `fmi2SetInteger`: all values are checked first; on error nothing is set.
-    pub fn set_integer(&mut self, vrs: &[ValueReference], values: &[i32]) -> FmiResult<Status> {
+    /// `fmi2SetInteger`; FMI 3.0: `fmi3SetInt32` (`family` Integer) and `fmi3SetInt64`
+    /// (`family` Enumeration). All values are checked first; on error nothing is set.
+    pub fn set_integer<T: Copy + TryInto<i32> + std::fmt::Display>(
+        &mut self,
+        family: Family,
+        vrs: &[ValueReference],
+        values: &[T],
+    ) -> FmiResult<Status> {
+        self.check_value_count(vrs, values.len())?;
         let mut scene = self.scene.clone();
-        for (&vr, &n) in vrs.iter().zip(values) {
-            let v = self.settable(vr, Family::Integer)?;
+        for (&vr, &value) in vrs.iter().zip(values) {
+            let v = self.settable(vr, family)?;
             if let Access::IntegerParameter { set, .. } = v.access {
-                set(&mut scene, n).map_err(|allowed| {
+                let out_of_range = |allowed: String| {
                     FmiError::rejected(format!(
-                        "{} = {n} (value reference {vr}) is out of range: allowed {allowed}; nothing was set",
+                        "{} = {value} (value reference {vr}) is out of range: allowed {allowed}; nothing was set",
                         v.name
                     ))
-                })?;
+                };
+                let n: i32 = value
+                    .try_into()
+                    .map_err(|_| out_of_range("a value in the 32-bit integer range".to_string()))?;
+                set(&mut scene, n).map_err(out_of_range)?;
             }
         }
         if !vrs.is_empty() {
@@ -171,8 +232,9 @@ impl Instance {
         Ok(Status::Ok)
     }
 
-    /// `fmi2GetBoolean`, `fmi2SetBoolean`, `fmi2GetString`, `fmi2SetString`: this FMU has no
-    /// such variables, so any value reference is unknown.
+    /// `fmi2GetBoolean`, `fmi2SetBoolean`, `fmi2GetString`, `fmi2SetString` and the FMI 3.0
+    /// get/set functions of the other types: this FMU has no such variables, so any value
+    /// reference is unknown (or of another type).
     pub fn no_variables_of(&self, family: Family, vrs: &[ValueReference]) -> FmiResult<Status> {
         match vrs.first() {
             None => Ok(Status::Ok),

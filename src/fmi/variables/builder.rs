@@ -6,6 +6,7 @@ use super::types::{
     Variability, Variable,
 };
 use super::{ValueReference, VariableTable};
+use crate::fmi::standard::Standard;
 use crate::scene::Scene;
 
 pub(super) const RAD: ValueType = ValueType::Real {
@@ -32,13 +33,15 @@ pub(super) const DIMENSIONLESS: ValueType = ValueType::Real {
 /// Collects the variables of one table, in modelDescription.xml order.
 pub(super) struct Builder<'a> {
     pub scene: &'a Scene,
+    standard: Standard,
     variables: Vec<Variable>,
 }
 
 impl<'a> Builder<'a> {
-    pub fn new(scene: &'a Scene) -> Builder<'a> {
+    pub fn new(scene: &'a Scene, standard: Standard) -> Builder<'a> {
         Builder {
             scene,
+            standard,
             variables: Vec::new(),
         }
     }
@@ -58,6 +61,7 @@ impl<'a> Builder<'a> {
         VariableTable {
             variables: self.variables,
             by_vr,
+            standard: self.standard,
         }
     }
 
@@ -67,6 +71,39 @@ impl<'a> Builder<'a> {
             v.min = min;
             v.max = max;
         }
+    }
+
+    /// Replace the access of the variable added last.
+    pub fn set_access(&mut self, access: Access) {
+        if let Some(v) = self.variables.last_mut() {
+            v.access = access;
+        }
+    }
+
+    /// Make the variable added last an FMI 3.0 array of `n` elements.
+    pub fn array(&mut self, n: usize) {
+        if let Some(v) = self.variables.last_mut() {
+            v.dimension = Some(n);
+        }
+    }
+
+    /// FMI 3.0 `time` (causality `independent`).
+    pub fn independent(&mut self, name: &str, vr: ValueReference, description: &str) {
+        self.variables.push(Variable {
+            name: name.into(),
+            value_reference: vr,
+            description: description.into(),
+            causality: Causality::Independent,
+            variability: Variability::Continuous,
+            initial: None,
+            value_type: real("s"),
+            start: None,
+            min: None,
+            max: None,
+            access: Access::Time,
+            initial_dependencies: InitialDependencies::None,
+            dimension: None,
+        });
     }
 
     /// `min="0"` on a Real parameter that must be positive: FMI 2.0 has no open bound, so 0
@@ -103,6 +140,7 @@ impl<'a> Builder<'a> {
             max: None,
             access: Access::Input(slot),
             initial_dependencies: InitialDependencies::None,
+            dimension: None,
         });
     }
 
@@ -128,6 +166,7 @@ impl<'a> Builder<'a> {
             max: None,
             access: Access::Output(get),
             initial_dependencies: deps,
+            dimension: None,
         });
     }
 
@@ -153,6 +192,7 @@ impl<'a> Builder<'a> {
             max: None,
             access: Access::RealParameter { get, set },
             initial_dependencies: InitialDependencies::None,
+            dimension: None,
         });
     }
 
@@ -178,6 +218,7 @@ impl<'a> Builder<'a> {
             max: None,
             access: Access::IntegerParameter { get, set },
             initial_dependencies: InitialDependencies::None,
+            dimension: None,
         });
     }
 
@@ -204,6 +245,7 @@ impl<'a> Builder<'a> {
             max: None,
             access,
             initial_dependencies: deps,
+            dimension: None,
         });
     }
 }

@@ -8,6 +8,7 @@ use super::ranges::{
 };
 use super::types::{Access, InitialDependencies, InputSlot, Value, ValueType};
 use super::{ValueReference, VariableTable, FREQUENCY_VR_BASE};
+use crate::fmi::standard::Standard;
 use crate::rod::DeflectionPolicy;
 use crate::scene::Scene;
 
@@ -26,10 +27,18 @@ const FREQUENCY_KNOWNS: &[&str] = &[
 ];
 
 impl VariableTable {
-    /// The table of `scene`, with `n_frequencies` calculated parameters `rod.frequency[k]`.
+    /// The FMI 2.0 table of `scene`, with `n_frequencies` calculated parameters
+    /// `rod.frequency[k]`.
     pub fn new(scene: &Scene, n_frequencies: usize) -> VariableTable {
+        VariableTable::for_standard(scene, n_frequencies, Standard::Fmi2)
+    }
+
+    /// The table of `scene` for `standard`: FMI 3.0 adds `time`, `crank.acceleration`, the
+    /// array `rod.shape` and has the frequencies as one array `rod.frequency`
+    /// ([`super::fmi3`]).
+    pub fn for_standard(scene: &Scene, n_frequencies: usize, standard: Standard) -> VariableTable {
         use InitialDependencies as D;
-        let mut b = Builder::new(scene);
+        let mut b = Builder::new(scene, standard);
         let exp = &scene.experiment;
         let out = &scene.outputs;
 
@@ -372,8 +381,13 @@ impl VariableTable {
         );
         b.bounds(Some(Value::Integer(1)), Some(Value::Integer(3)));
 
-        // Calculated parameters.
-        for k in 1..=n_frequencies {
+        // Calculated parameters (FMI 3.0: one array, see `fmi3`).
+        let scalar_frequencies = if standard == Standard::Fmi2 {
+            n_frequencies
+        } else {
+            0
+        };
+        for k in 1..=scalar_frequencies {
             b.calculated_parameter(
                 format!("rod.frequency[{k}]"),
                 FREQUENCY_VR_BASE + k as ValueReference,
@@ -395,6 +409,9 @@ impl VariableTable {
                 D::Named(&["rod.length", "rod.density"]),
                 "Mass of the rod with its end bodies".into(),
             );
+        }
+        if standard == Standard::Fmi3 {
+            super::fmi3::add_variables(&mut b, n_frequencies, FREQUENCY_KNOWNS);
         }
         b.finish()
     }

@@ -16,6 +16,7 @@
 
 mod builder;
 pub mod enumerations;
+mod fmi3;
 mod list;
 pub mod ranges;
 pub mod types;
@@ -29,7 +30,10 @@ pub use types::{
     ValueType, Variability, Variable,
 };
 
+pub use fmi3::SHAPE_POINTS_MAX;
+
 use crate::error::ModelError;
+use crate::fmi::standard::Standard;
 use crate::scene::Scene;
 use crate::simulation::Simulation;
 
@@ -45,6 +49,7 @@ pub struct VariableTable {
     variables: Vec<Variable>,
     /// `by_vr[vr]` = position + 1 in `variables`, 0 if no variable has that reference.
     by_vr: Vec<u16>,
+    standard: Standard,
 }
 
 impl VariableTable {
@@ -57,6 +62,23 @@ impl VariableTable {
             .frequencies
             .min(simulation.frequencies_hz().len());
         Ok(VariableTable::new(scene, k))
+    }
+
+    /// The FMI 3.0 table of `scene` (see [`VariableTable::for_scene`]); `[outputs]
+    /// shape_points` must be 0 or 2..=[`SHAPE_POINTS_MAX`].
+    pub fn for_scene_fmi3(scene: &Scene) -> Result<VariableTable, ModelError> {
+        fmi3::check_shape_points(scene)?;
+        let simulation = Simulation::new(scene)?;
+        let k = scene
+            .outputs
+            .frequencies
+            .min(simulation.frequencies_hz().len());
+        Ok(VariableTable::for_standard(scene, k, Standard::Fmi3))
+    }
+
+    /// The standard the table was built for.
+    pub fn standard(&self) -> Standard {
+        self.standard
     }
 
     /// All variables in modelDescription.xml order.
@@ -83,12 +105,17 @@ impl VariableTable {
         self.variables.iter().find(|v| v.name == name)
     }
 
-    /// Number of `rod.frequency[k]` variables.
+    /// Number of frequencies declared: `rod.frequency[k]` scalars (FMI 2.0) or the length of
+    /// the array `rod.frequency` (FMI 3.0).
     pub fn frequency_count(&self) -> usize {
         self.variables
             .iter()
-            .filter(|v| matches!(v.access, Access::Frequency(_)))
-            .count()
+            .map(|v| match v.access {
+                Access::Frequency(_) => 1,
+                Access::Frequencies => v.value_count(),
+                _ => 0,
+            })
+            .sum()
     }
 
     /// The outputs, in table order: (name, getter).

@@ -3,12 +3,14 @@
 
 use super::enumerations::EnumerationType;
 use super::ValueReference;
+use crate::fmi::standard::Standard;
 use crate::mechanism::Outputs;
 use crate::scene::Scene;
 
-/// FMI 2.0 causality.
+/// FMI causality (`Independent` only in FMI 3.0, for `time`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Causality {
+    Independent,
     Input,
     Output,
     Parameter,
@@ -18,6 +20,7 @@ pub enum Causality {
 impl Causality {
     pub fn as_str(self) -> &'static str {
         match self {
+            Causality::Independent => "independent",
             Causality::Input => "input",
             Causality::Output => "output",
             Causality::Parameter => "parameter",
@@ -72,31 +75,45 @@ pub enum ValueType {
 }
 
 impl ValueType {
-    /// Which `fmi2Get*`/`fmi2Set*` family serves this type.
-    pub fn family(self) -> Family {
-        match self {
-            ValueType::Real { .. } => Family::Real,
-            ValueType::Integer | ValueType::Enumeration(_) => Family::Integer,
+    /// Which get/set family serves this type: FMI 2.0 reads Enumerations with
+    /// `fmi2GetInteger`, FMI 3.0 with `fmi3GetInt64`.
+    pub fn family(self, standard: Standard) -> Family {
+        match (self, standard) {
+            (ValueType::Real { .. }, _) => Family::Real,
+            (ValueType::Integer, _) | (ValueType::Enumeration(_), Standard::Fmi2) => {
+                Family::Integer
+            }
+            (ValueType::Enumeration(_), Standard::Fmi3) => Family::Enumeration,
         }
     }
 }
 
-/// The `fmi2Get*`/`fmi2Set*` families.
+/// The get/set families (`fmi2GetReal` = `fmi3GetFloat64`, `fmi2GetInteger` = `fmi3GetInt32`,
+/// FMI 3.0 Enumerations through `fmi3GetInt64`; `Other` names an FMI 3.0 type this FMU has
+/// no variable of, e.g. `Float32`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Family {
     Real,
     Integer,
+    Enumeration,
     Boolean,
     String,
+    Other(&'static str),
 }
 
 impl Family {
-    pub fn name(self) -> &'static str {
-        match self {
-            Family::Real => "Real",
-            Family::Integer => "Integer",
-            Family::Boolean => "Boolean",
-            Family::String => "String",
+    /// The type name in the functions of `standard`: `Real`/`Float64`, `Integer`/`Int32`, ...
+    pub fn name(self, standard: Standard) -> &'static str {
+        match (self, standard) {
+            (Family::Real, Standard::Fmi2) => "Real",
+            (Family::Real, Standard::Fmi3) => "Float64",
+            (Family::Integer, Standard::Fmi2) => "Integer",
+            (Family::Integer, Standard::Fmi3) => "Int32",
+            (Family::Enumeration, Standard::Fmi2) => "Integer",
+            (Family::Enumeration, Standard::Fmi3) => "Int64",
+            (Family::Boolean, _) => "Boolean",
+            (Family::String, _) => "String",
+            (Family::Other(name), _) => name,
         }
     }
 }
@@ -114,6 +131,9 @@ pub enum InputSlot {
     CrankAngle,
     CrankSpeed,
     SliderForce,
+    /// FMI 3.0 only: the crank acceleration `alpha_k` of the input law (FMI 2.0 takes it as
+    /// an input derivative instead).
+    CrankAcceleration,
 }
 
 /// Reads one output from the simulation's outputs.
@@ -141,6 +161,12 @@ pub enum Access {
     Frequency(usize),
     /// `rod.mass`: the rod with its end bodies, from the instance's scene.
     RodMass,
+    /// FMI 3.0 `time`: the FMU's time.
+    Time,
+    /// FMI 3.0 array `rod.shape`: the transverse deflection at equally spaced points.
+    Shape,
+    /// FMI 3.0 array `rod.frequency`: the first `len` natural frequencies, Hz.
+    Frequencies,
 }
 
 /// Which knowns an unknown depends on during initialization (`ModelStructure/InitialUnknowns`).
@@ -171,4 +197,14 @@ pub struct Variable {
     pub access: Access,
     /// Only for outputs and calculated parameters.
     pub initial_dependencies: InitialDependencies,
+    /// FMI 3.0 arrays: the fixed number of elements (`<Dimension start="n"/>`); `None` for
+    /// a scalar. FMI 2.0 tables have no arrays.
+    pub dimension: Option<usize>,
+}
+
+impl Variable {
+    /// Number of values the variable takes in a get/set call: 1, or the array's length.
+    pub fn value_count(&self) -> usize {
+        self.dimension.unwrap_or(1)
+    }
 }

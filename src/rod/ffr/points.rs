@@ -50,6 +50,31 @@ impl FfrRod {
         u
     }
 
+    /// Body-frame position of the material point at arc length `s` from B,
+    /// `ubar(s) = (x_b + s, 0) + S_hat(s) p` (seed 000, eq. 3.5; `S_hat(s)` as
+    /// `modal::point_shape`, the element's shape functions times the element rows of the
+    /// mode shapes), summed in place without allocating. No chord foreshortening: it is
+    /// applied at C alone ([`FfrRod::ubar`]).
+    pub(super) fn ubar_at(&self, s: f64, q: &[f64]) -> Vector2<f64> {
+        let mesh = &self.modes.mesh;
+        let s = s.clamp(0.0, self.length);
+        let (e, xi) = mesh.locate(s);
+        let shape = mesh.shape(e, xi);
+        let dofs = mesh.element_dofs(e);
+        let mut u = Vector2::new(self.integrals.x_b + s, 0.0);
+        for j in 0..self.n {
+            let (mut sx, mut sy) = (0.0, 0.0);
+            for (i, &d) in dofs.iter().enumerate() {
+                let phi = self.modes.shapes[(d, j)];
+                sx += shape[(0, i)] * phi;
+                sy += shape[(1, i)] * phi;
+            }
+            u.x += sx * q[3 + j];
+            u.y += sy * q[3 + j];
+        }
+        u
+    }
+
     /// Body-frame `d ubar / dp` column j (with the foreshortening at C).
     pub(super) fn ubar_p(&self, p: RodPoint, q: &[f64], j: usize) -> Vector2<f64> {
         let (_, sh) = self.point_data(p);

@@ -297,6 +297,11 @@ impl RodBody for FfrRod {
         Vector2::new(q[0], q[1]) + rotate(c, s, self.ubar(p, q))
     }
 
+    fn point_at(&self, s: f64, q: &[f64]) -> Vector2<f64> {
+        let (c, sn) = rot(q[2]);
+        Vector2::new(q[0], q[1]) + rotate(c, sn, self.ubar_at(s, q))
+    }
+
     fn point_jacobian(&self, p: RodPoint, q: &[f64], mut out: MatMut<'_, f64>) {
         let (c, s) = rot(q[2]);
         out[(0, 0)] = 1.0;

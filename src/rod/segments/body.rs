@@ -224,6 +224,14 @@ impl RodBody for SegmentRod {
         self.material_point(k, xi, q)
     }
 
+    fn point_at(&self, s: f64, q: &[f64]) -> Vector2<f64> {
+        // Segment k holds the arc lengths k l .. (k + 1) l; rigid, so the point is at s - k l
+        // along it from its B-side joint.
+        let s = s.clamp(0.0, self.length);
+        let k = ((s / self.seg_len).floor() as usize).min(self.n_seg - 1);
+        self.material_point(k, s - k as f64 * self.seg_len, q)
+    }
+
     fn point_jacobian(&self, p: RodPoint, q: &[f64], mut out: MatMut<'_, f64>) {
         let (k, xi) = self.locate(p);
         out.fill(0.0);

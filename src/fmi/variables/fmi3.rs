@@ -1,0 +1,76 @@
+//! The variables only the FMI 3.0 description has (value references 150..199):
+//!
+//! - `time` (150, `independent`): FMI 3.0 requires exactly one independent variable;
+//! - `crank.acceleration` (151, input, rad/s2): the crank acceleration `alpha_k` of the input
+//!   law. FMI 3.0 Co-Simulation has no `fmi2SetRealInputDerivatives`; the acceleration the
+//!   FMI 2.0 FMU takes as the order-1 derivative of `crank.speed` is an ordinary input here,
+//!   with the same law between communication points (see `fmi::inputs`);
+//! - `rod.shape` (152, output array of N = `[outputs] shape_points`): the transverse
+//!   deflection from the chord B -> C, m, at `s_i = i L / (N - 1)`, i = 0..N-1 (the same
+//!   definition as `rod.deflection`, which is element `(N - 1) / 2` for odd N);
+//! - `rod.frequency` (153, calculated parameter array of K): the natural frequencies, Hz, the
+//!   values FMI 2.0 declares as the scalars `rod.frequency[k]` (the element names of the
+//!   array are the same: `rod.frequency[k]`, k = 1..K).
+
+use super::builder::{real, Builder};
+use super::types::{Access, InitialDependencies, InputSlot};
+use crate::error::ModelError;
+use crate::scene::Scene;
+
+/// Largest `[outputs] shape_points`.
+pub const SHAPE_POINTS_MAX: usize = 1001;
+
+/// `[outputs] shape_points` is 0 (no `rod.shape`) or 2..=[`SHAPE_POINTS_MAX`].
+pub(super) fn check_shape_points(scene: &Scene) -> Result<(), ModelError> {
+    let n = scene.outputs.shape_points;
+    if n == 1 || n > SHAPE_POINTS_MAX {
+        return Err(ModelError::State {
+            message: format!(
+                "[outputs] shape_points = {n} is out of range: allowed 0 (no rod.shape output) or 2..={SHAPE_POINTS_MAX} (points from B to C)"
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// Append the FMI 3.0 variables; `frequency_knowns` are the parameters the frequencies
+/// depend on.
+pub(super) fn add_variables(
+    b: &mut Builder<'_>,
+    n_frequencies: usize,
+    frequency_knowns: &'static [&'static str],
+) {
+    b.independent("time", 150, "Simulation time");
+    b.input(
+        "crank.acceleration",
+        151,
+        real("rad/s2"),
+        0.0,
+        InputSlot::CrankAcceleration,
+        "Crank acceleration alpha of the input law from the communication point on (FMI 3.0 has no input derivatives): theta = theta_k + omega_k s + alpha s^2/2, omega = omega_k + alpha s",
+    );
+    let n_points = b.scene.outputs.shape_points;
+    if n_points >= 2 {
+        b.output(
+            "rod.shape",
+            152,
+            real("m"),
+            |o| o.deflection,
+            InitialDependencies::None,
+            "Transverse deflection from the chord B->C at s_i = i L/(N-1), i = 0..N-1, positive to the left of B->C",
+        );
+        b.set_access(Access::Shape);
+        b.array(n_points);
+    }
+    if n_frequencies > 0 {
+        b.calculated_parameter(
+            "rod.frequency".into(),
+            153,
+            real("Hz"),
+            Access::Frequencies,
+            InitialDependencies::Named(frequency_knowns),
+            "Natural frequencies of the rod under its reference conditions (retained or not), ascending".into(),
+        );
+        b.array(n_frequencies);
+    }
+}
