@@ -1,12 +1,15 @@
-//! `fmu`: export a scene as an FMI 2.0 Co-Simulation FMU, and run its default experiment.
+//! `fmu`: export a scene as FMI 2.0 and FMI 3.0 Co-Simulation FMUs, and run its default
+//! experiment.
 //!
 //! ```text
-//! cargo run --release -p fmu [-- [SCENE.toml] [--out DIR] [--simulate] [--csv FILE]
-//!                                [--accel A] [--steps H1,H2,...] [--no-package]]
+//! cargo run --release -p fmu [-- [SCENE.toml] [--out DIR] [--fmi 2|3] [--simulate]
+//!                                [--csv FILE] [--accel A] [--steps H1,H2,...] [--no-package]]
 //! ```
 //!
 //! - Packaging (default): builds the release library (`cargo build --release --lib -p flexrod`)
-//!   and writes `<target>/fmu/<modelIdentifier>.fmu` (or `DIR/<modelIdentifier>.fmu`).
+//!   and writes `<target>/fmu/<modelIdentifier>.fmu` (FMI 2.0) and
+//!   `<target>/fmu/<modelIdentifier>-fmi3.fmu` (FMI 3.0), or into `DIR`; `--fmi 2` or
+//!   `--fmi 3` writes only that one. Both archives hold the same library.
 //! - `--simulate`: runs the scene's default experiment in-process with `flexrod::Simulation`,
 //!   driving the crank exactly as an FMU importer would (inputs set at every communication
 //!   point), and prints a summary. `--csv FILE` writes the outputs at the communication
@@ -21,7 +24,7 @@ mod simulate;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use flexrod::fmi::ModelDescription;
+use flexrod::fmi::{ModelDescription, Standard};
 use flexrod::Scene;
 
 /// Command-line arguments.
@@ -33,9 +36,11 @@ struct Args {
     csv: Option<PathBuf>,
     accel: f64,
     steps: Option<Vec<f64>>,
+    /// Which standards to package.
+    standards: Vec<Standard>,
 }
 
-const USAGE: &str = "usage: fmu [SCENE.toml] [--out DIR] [--simulate] [--csv FILE] [--accel A] [--steps H1,H2,...] [--no-package]";
+const USAGE: &str = "usage: fmu [SCENE.toml] [--out DIR] [--fmi 2|3] [--simulate] [--csv FILE] [--accel A] [--steps H1,H2,...] [--no-package]";
 
 fn parse_args() -> Result<Args, String> {
     let workspace = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
@@ -47,6 +52,7 @@ fn parse_args() -> Result<Args, String> {
         csv: None,
         accel: 0.0,
         steps: None,
+        standards: vec![Standard::Fmi2, Standard::Fmi3],
     };
     let mut it = std::env::args().skip(1);
     let value = |it: &mut dyn Iterator<Item = String>, flag: &str| {
@@ -64,6 +70,17 @@ fn parse_args() -> Result<Args, String> {
         match arg.as_str() {
             "--out" => args.out = Some(PathBuf::from(value(&mut it, "--out")?)),
             "--simulate" => args.simulate = true,
+            "--fmi" => {
+                args.standards = match value(&mut it, "--fmi")?.as_str() {
+                    "2" => vec![Standard::Fmi2],
+                    "3" => vec![Standard::Fmi3],
+                    other => {
+                        return Err(format!(
+                    "--fmi: \"{other}\" is not a standard: allowed 2 or 3 (default: both)\n{USAGE}"
+                ))
+                    }
+                }
+            }
             "--no-package" => args.package = false,
             "--csv" => {
                 args.csv = Some(PathBuf::from(value(&mut it, "--csv")?));
@@ -112,14 +129,27 @@ fn run() -> Result<(), String> {
         let target_dir = package::target_dir()?;
         let library = package::build_library(&target_dir)?;
         let out_dir = args.out.clone().unwrap_or_else(|| target_dir.join("fmu"));
-        let fmu = package::write_fmu(&out_dir, &scene, &scene_text, &description, &library)?;
-        println!(
-            "wrote {} (GUID {}, {} variables)",
-            fmu.display(),
-            description.guid,
-            description.table.variables().len()
-        );
-        fmu_path = Some(fmu);
+        for &standard in &args.standards {
+            let description = match standard {
+                Standard::Fmi2 => description.clone(),
+                Standard::Fmi3 => ModelDescription::for_scene_fmi3(&scene).map_err(|e| {
+                    format!(
+                        "the scene {} does not give a valid FMI 3.0 model: {e}",
+                        args.scene.display()
+                    )
+                })?,
+            };
+            let fmu = package::write_fmu(&out_dir, &scene, &scene_text, &description, &library)?;
+            println!(
+                "wrote {} (FMI {}, {} {}, {} variables)",
+                fmu.display(),
+                standard.version(),
+                standard.token_name(),
+                description.guid,
+                description.table.variables().len()
+            );
+            fmu_path.get_or_insert(fmu);
+        }
     }
 
     if args.simulate {

@@ -7,7 +7,7 @@ use std::process::Command;
 
 use flexrod::fmi::description::model_identifier;
 use flexrod::fmi::resource::SCENE_FILE;
-use flexrod::fmi::ModelDescription;
+use flexrod::fmi::{ModelDescription, Standard};
 use flexrod::Scene;
 use zip::write::SimpleFileOptions;
 use zip::{CompressionMethod, DateTime, ZipWriter};
@@ -119,7 +119,12 @@ pub fn build_library(target_dir: &Path) -> Result<PathBuf, String> {
     Ok(library)
 }
 
-/// Write `<out_dir>/<modelIdentifier>.fmu`.
+/// The FMI 3.0 platform tuple under `binaries/` (FMI 3.0, 2.5.1.1), for the one platform
+/// packaged.
+pub const FMI3_PLATFORM: &str = "x86_64-linux";
+
+/// Write `<out_dir>/<modelIdentifier>.fmu` (FMI 2.0) or `<out_dir>/<modelIdentifier>-fmi3.fmu`
+/// (FMI 3.0), from the same library (it exports the `fmi2*` and the `fmi3*` functions).
 pub fn write_fmu(
     out_dir: &Path,
     scene: &Scene,
@@ -128,12 +133,18 @@ pub fn write_fmu(
     library: &Path,
 ) -> Result<PathBuf, String> {
     let identifier = model_identifier(scene);
-    let (platform, _) = platform()?;
+    let (platform, suffix) = match description.standard() {
+        Standard::Fmi2 => (platform()?.0, ""),
+        Standard::Fmi3 => {
+            platform()?;
+            (FMI3_PLATFORM, "-fmi3")
+        }
+    };
     let binary = std::fs::read(library)
         .map_err(|e| format!("cannot read the library {}: {e}", library.display()))?;
     std::fs::create_dir_all(out_dir)
         .map_err(|e| format!("cannot create {}: {e}", out_dir.display()))?;
-    let path = out_dir.join(format!("{identifier}.fmu"));
+    let path = out_dir.join(format!("{identifier}{suffix}.fmu"));
     let file = File::create(&path).map_err(|e| format!("cannot create {}: {e}", path.display()))?;
 
     let documentation = crate::docs::index_html(scene, description);

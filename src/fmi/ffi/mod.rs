@@ -21,6 +21,9 @@
 //! second thread calling it concurrently) never aliases it: such a nested call returns
 //! `fmi2Error` and is reported through the logger.
 //!
+//! FMI 3.0: [`fmi3`], the `fmi3*` functions in the same library, delegating to the same
+//! instance code through the same [`component::dispatch`].
+//!
 //! Files: [`component`] (what `fmi2Component` points to, the logger callback, dispatch),
 //! [`convert`] (C arguments to Rust), and the exported functions grouped as in the standard:
 //! [`lifecycle`] (platform, creation, initialization), [`values`] (get and set), [`states`]
@@ -36,6 +39,7 @@
 
 pub mod component;
 pub mod convert;
+pub mod fmi3;
 pub mod lifecycle;
 pub mod states;
 pub mod stepping;

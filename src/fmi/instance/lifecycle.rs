@@ -39,7 +39,11 @@ impl Instance {
         }
         if let Some(tol) = tolerance {
             self.logger.event(&format!(
-                "fmi2SetupExperiment: tolerance = {tol} is not used; the integrator follows the scene's [solver] settings (step = {} s, newton_tolerance = {})",
+                "{}: tolerance = {tol} is not used; the integrator follows the scene's [solver] settings (step = {} s, newton_tolerance = {}; the parameter solver.tolerance sets the error control)",
+                match self.standard {
+                    crate::fmi::Standard::Fmi2 => "fmi2SetupExperiment",
+                    crate::fmi::Standard::Fmi3 => "fmi3EnterInitializationMode",
+                },
                 self.scene.solver.step, self.scene.solver.newton_tolerance
             ));
         }

@@ -84,6 +84,15 @@ impl Instance {
         }
     }
 
+    /// The FMU's time: the simulation's, or the start time before there is one (FMI 3.0
+    /// `time` and `lastSuccessfulTime`).
+    pub fn time(&self) -> f64 {
+        match &self.simulation {
+            Some(s) => s.time(),
+            None => self.experiment.start_time,
+        }
+    }
+
     /// Pass the simulation's warnings to the logger; `Warning` if there were any.
     pub(super) fn take_warnings(&mut self) -> Status {
         let Some(simulation) = self.simulation.as_mut() else {
