@@ -106,7 +106,7 @@ fn write_type_definitions(w: &mut W) -> io::Result<()> {
     Ok(())
 }
 
-pub(super) fn write_log_categories(w: &mut W) -> io::Result<()> {
+fn write_log_categories(w: &mut W) -> io::Result<()> {
     w.create_element("LogCategories").write_inner_content(|w| {
         for (name, description) in LOG_CATEGORIES {
             w.create_element("Category")

@@ -11,7 +11,8 @@ use quick_xml::events::{BytesDecl, BytesText, Event};
 use quick_xml::Writer;
 
 use super::model_identifier;
-use super::xml::{named_error, value_text, write_default_experiment, write_log_categories, W};
+use super::xml::{named_error, value_text, write_default_experiment, W};
+use crate::fmi::logging::LOG_CATEGORIES;
 use crate::fmi::variables::{
     Causality, InitialDependencies, Value, ValueType, VariableTable, ENUMERATION_TYPES,
 };
@@ -69,6 +70,20 @@ pub(super) fn render(scene: &Scene, table: &VariableTable, token: &str) -> io::R
     String::from_utf8(bytes).map_err(|e| io::Error::new(io::ErrorKind::InvalidData, e))
 }
 
+/// The log categories, their descriptions with the FMI 3.0 status names.
+fn write_log_categories(w: &mut W) -> io::Result<()> {
+    w.create_element("LogCategories").write_inner_content(|w| {
+        for (name, description) in LOG_CATEGORIES {
+            let description = description.replace("fmi2", "fmi3");
+            w.create_element("Category")
+                .with_attributes([("name", name), ("description", description.as_str())])
+                .write_empty()?;
+        }
+        Ok(())
+    })?;
+    Ok(())
+}
+
 fn write_type_definitions(w: &mut W) -> io::Result<()> {
     w.create_element("TypeDefinitions")
         .write_inner_content(|w| {
@@ -99,10 +114,12 @@ fn write_model_variables(w: &mut W, table: &VariableTable) -> io::Result<()> {
         .write_inner_content(|w| {
             for v in table.variables() {
                 let vr = v.value_reference.to_string();
+                // Status names in descriptions are those of the standard (fmi3Discard, ...).
+                let description = v.description.replace("fmi2", "fmi3");
                 let mut attributes = vec![
                     ("name", v.name.as_str()),
                     ("valueReference", vr.as_str()),
-                    ("description", v.description.as_str()),
+                    ("description", description.as_str()),
                     ("causality", v.causality.as_str()),
                     ("variability", v.variability.as_str()),
                 ];

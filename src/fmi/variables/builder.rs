@@ -73,6 +73,14 @@ impl<'a> Builder<'a> {
         }
     }
 
+    /// Replace the description of the variable `name` (for a text that differs between the
+    /// standards).
+    pub fn describe(&mut self, name: &str, description: &str) {
+        if let Some(v) = self.variables.iter_mut().find(|v| v.name == name) {
+            v.description = description.into();
+        }
+    }
+
     /// Replace the access of the variable added last.
     pub fn set_access(&mut self, access: Access) {
         if let Some(v) = self.variables.last_mut() {

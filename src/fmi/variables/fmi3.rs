@@ -41,6 +41,10 @@ pub(super) fn add_variables(
     frequency_knowns: &'static [&'static str],
 ) {
     b.independent("time", 150, "Simulation time");
+    b.describe(
+        "crank.speed",
+        "Crank speed omega at the communication point (the crank acceleration is the input crank.acceleration)",
+    );
     b.input(
         "crank.acceleration",
         151,

@@ -1,0 +1,142 @@
+//! The FMI 3.0 description (issue 16): the golden copy
+//! `modelDescription/modelDescription-fmi3.xml` is what the code generates for
+//! `scenes/benchmark.toml` now (regenerate with
+//! `UPDATE_GOLDEN=1 cargo test --release --test model_description_fmi3` and review the diff),
+//! and its content follows from the one variable table: the FMI 2.0 variables under the same
+//! names and value references, the frequencies as one array, the FMI 3.0 additions at value
+//! references 150..199, and the FMI 2.0 description unchanged by the FMI 3.0 one.
+
+use std::path::Path;
+
+use flexrod::fmi::variables::{Access, Causality, ValueType};
+use flexrod::fmi::{ModelDescription, Standard};
+use flexrod::Scene;
+
+#[test]
+fn golden_fmi3_model_description_is_current() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let scene =
+        Scene::from_file(&root.join("scenes/benchmark.toml")).expect("the default scene parses");
+    let generated = ModelDescription::for_scene_fmi3(&scene)
+        .expect("the default scene builds")
+        .xml;
+    let golden_path = root.join("modelDescription/modelDescription-fmi3.xml");
+    if std::env::var_os("UPDATE_GOLDEN").is_some() {
+        std::fs::write(&golden_path, &generated).expect("write the golden copy");
+    }
+    let golden = std::fs::read_to_string(&golden_path).expect("read the golden copy");
+    if golden != generated {
+        let first_difference = golden
+            .lines()
+            .zip(generated.lines())
+            .enumerate()
+            .find(|(_, (a, b))| a != b)
+            .map(|(i, (a, b))| format!("line {}:\n  golden:    {a}\n  generated: {b}", i + 1))
+            .unwrap_or_else(|| "the files differ in length".to_string());
+        panic!(
+            "{} is out of date ({first_difference}); regenerate with UPDATE_GOLDEN=1 cargo test --release --test model_description_fmi3",
+            golden_path.display()
+        );
+    }
+}
+
+#[test]
+fn fmi3_description_from_the_same_table() {
+    let scene = Scene::benchmark();
+    let d2 = ModelDescription::for_scene(&scene).unwrap();
+    let d3 = ModelDescription::for_scene_fmi3(&scene).unwrap();
+    assert_eq!(d2.standard(), Standard::Fmi2);
+    assert_eq!(d3.standard(), Standard::Fmi3);
+    assert!(d3.xml.contains("fmiVersion=\"3.0\""));
+    assert!(d3
+        .xml
+        .contains(&format!("instantiationToken=\"{}\"", d3.guid)));
+    assert!(!d3.xml.contains("guid="));
+    assert_ne!(d2.guid, d3.guid);
+    // Every FMI 2.0 variable but the scalar frequencies is there, same reference and causality.
+    for v in d2.table.variables() {
+        if matches!(v.access, Access::Frequency(_)) {
+            assert!(d3.table.by_name(&v.name).is_none(), "{}", v.name);
+            continue;
+        }
+        let w = d3
+            .table
+            .by_name(&v.name)
+            .unwrap_or_else(|| panic!("{}", v.name));
+        assert_eq!(w.value_reference, v.value_reference, "{}", v.name);
+        assert_eq!(w.causality, v.causality, "{}", v.name);
+        assert_eq!(w.dimension, None, "{}", v.name);
+    }
+    // The additions.
+    let k = d2.table.frequency_count();
+    assert_eq!(k, 6);
+    assert_eq!(d3.table.frequency_count(), k);
+    let freq = d3.table.by_name("rod.frequency").unwrap();
+    assert_eq!((freq.value_reference, freq.dimension), (153, Some(k)));
+    assert_eq!(freq.causality, Causality::CalculatedParameter);
+    let shape = d3.table.by_name("rod.shape").unwrap();
+    assert_eq!((shape.value_reference, shape.dimension), (152, Some(11)));
+    assert_eq!(shape.causality, Causality::Output);
+    let acc = d3.table.by_name("crank.acceleration").unwrap();
+    assert_eq!(
+        (acc.value_reference, acc.causality),
+        (151, Causality::Input)
+    );
+    assert!(matches!(
+        acc.value_type,
+        ValueType::Real {
+            unit: Some("rad/s2"),
+            ..
+        }
+    ));
+    let time = d3.table.by_name("time").unwrap();
+    assert_eq!(
+        (time.value_reference, time.causality),
+        (150, Causality::Independent)
+    );
+    for v in d3.table.variables() {
+        if d2.table.by_name(&v.name).is_none() {
+            assert!((150..200).contains(&v.value_reference), "{}", v.name);
+        }
+    }
+    // FMI 3.0 types and elements.
+    assert!(d3.xml.contains("<Dimension start=\"11\"/>"));
+    assert!(d3.xml.contains("<Dimension start=\"6\"/>"));
+    assert!(d3.xml.contains("<EnumerationType name=\"RodModel\""));
+    assert!(d3.xml.contains("<Int32 name=\"rod.elements\""));
+    assert!(d3.xml.contains("causality=\"independent\""));
+    assert!(d3.xml.contains("<InitialUnknown valueReference=\"153\""));
+    assert!(d3.xml.contains("canGetAndSetFMUState=\"true\""));
+    assert!(
+        !d3.xml.contains("fmi2"),
+        "FMI 2.0 names in the FMI 3.0 description"
+    );
+    assert!(!d2.xml.contains("crank.acceleration"));
+}
+
+#[test]
+fn shape_points_is_a_scene_key_with_a_range() {
+    let mut scene = Scene::benchmark();
+    scene.outputs.shape_points = 0;
+    let d = ModelDescription::for_scene_fmi3(&scene).unwrap();
+    assert!(d.table.by_name("rod.shape").is_none());
+    scene.outputs.shape_points = 21;
+    let d = ModelDescription::for_scene_fmi3(&scene).unwrap();
+    assert_eq!(d.table.by_name("rod.shape").unwrap().dimension, Some(21));
+    // The FMI 2.0 description does not depend on it.
+    assert_eq!(
+        ModelDescription::for_scene(&scene).unwrap().guid,
+        ModelDescription::for_scene(&Scene::benchmark())
+            .unwrap()
+            .guid
+    );
+    for bad in [1, 1002] {
+        scene.outputs.shape_points = bad;
+        let e = ModelDescription::for_scene_fmi3(&scene).err().unwrap();
+        assert!(e.to_string().contains("shape_points"), "{e}");
+    }
+    let text =
+        flexrod::scene::DEFAULT_SCENE_TOML.replace("[outputs]", "[outputs]\nshape_points = 5");
+    let parsed = Scene::from_toml_str(&text, "test").unwrap();
+    assert_eq!(parsed.outputs.shape_points, 5);
+}
