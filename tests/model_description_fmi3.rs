@@ -140,3 +140,63 @@ fn shape_points_is_a_scene_key_with_a_range() {
     let parsed = Scene::from_toml_str(&text, "test").unwrap();
     assert_eq!(parsed.outputs.shape_points, 5);
 }
+
+/// `rod.shape` (Mechanism::deflection_shape): 0 at both ends, `v_mid` in the middle of an odd
+/// count, and RodBody::point_at at the ends and the midpoint equal to the named points, for
+/// both rod models, after 2 ms at 150 rad/s (a deflected rod).
+#[test]
+fn shape_matches_the_midpoint_deflection() {
+    use flexrod::rod::RodPoint;
+    use flexrod::simulation::CrankInput;
+    use flexrod::Simulation;
+    for model in ["ffr", "segments"] {
+        let text = flexrod::scene::DEFAULT_SCENE_TOML
+            .replace("model = \"ffr\"", &format!("model = \"{model}\""));
+        let scene = Scene::from_toml_str(&text, model).unwrap();
+        let mut sim = Simulation::new(&scene).unwrap();
+        let input = CrankInput {
+            angle: 0.0,
+            speed: 150.0,
+            acceleration: 0.0,
+        };
+        sim.start(0.0, input, 0.0).unwrap();
+        for _ in 0..20 {
+            sim.advance(1e-4).unwrap();
+        }
+        let v_mid = sim.outputs().deflection;
+        assert!(v_mid.abs() > 1e-7, "{model}: {v_mid}");
+        let mut shape = [f64::NAN; 11];
+        sim.mechanism().deflection_shape(sim.state(), &mut shape);
+        assert_eq!(shape[0], 0.0);
+        assert_eq!(shape[10], 0.0);
+        assert_eq!(shape[5], v_mid, "{model}");
+        // Neighbours of the midpoint: smaller, same sign (a first-mode-like shape).
+        for i in [3, 4, 6, 7] {
+            assert!(
+                shape[i] * v_mid > 0.0 && shape[i].abs() < v_mid.abs(),
+                "{model}: {shape:?}"
+            );
+        }
+        // An even count has no midpoint sample; its two middle samples bracket v_mid.
+        let mut even = [0.0; 10];
+        sim.mechanism().deflection_shape(sim.state(), &mut even);
+        assert!(
+            even[4].abs() < v_mid.abs() && even[5].abs() < v_mid.abs(),
+            "{model}"
+        );
+        let rod = &sim.mechanism().rod;
+        let q = &sim.state().dae.q;
+        let l = rod.length();
+        for (s, p) in [(0.0, RodPoint::B), (0.5 * l, RodPoint::Mid)] {
+            let d = (rod.point_at(s, q) - rod.point(p, q)).norm();
+            assert!(d <= 1e-14 * l, "{model}: point_at({s}) is {d} m from {p:?}");
+        }
+        // C: up to the FFR rod's chord foreshortening, second order in the deflection
+        // (about pi^2 v_mid^2 / (4 L) for a half-sine shape).
+        let d = (rod.point_at(l, q) - rod.point(RodPoint::C, q)).norm();
+        assert!(
+            d <= 3.0 * v_mid * v_mid / l,
+            "{model}: point_at(L) is {d} m from C (v_mid = {v_mid} m)"
+        );
+    }
+}
