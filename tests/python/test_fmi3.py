@@ -197,6 +197,7 @@ def test_simulate_fmi3_equals_fmi2(fmu_path, fmu3_path, values):
     np.testing.assert_array_equal(r2["time"], r3["time"])
     for name in OUTPUTS:
         assert peak_error(r2[name], r3[name]) <= 1e-12, name
+        np.testing.assert_array_equal(r2[name], r3[name], err_msg=name)
     assert np.max(np.abs(r3["rod.deflection"])) > 0
 
 
