@@ -1,5 +1,5 @@
-//! The C ABI: the 34 functions of FMI 2.0 Co-Simulation, and all `unsafe` code of the FMI
-//! layer.
+//! The C ABI: the 34 functions of FMI 2.0 Co-Simulation, the `fmi3*` functions ([`fmi3`]),
+//! and all `unsafe` code of the FMI layer.
 //!
 //! Every function is a one-line delegation: convert the C arguments (null checks, slices,
 //! strings; [`convert`]) and call one method of the safe [`Instance`] through

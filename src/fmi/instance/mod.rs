@@ -1,6 +1,9 @@
-//! One FMU instance: the whole FMI 2.0 Co-Simulation behaviour in safe Rust.
+//! One FMU instance: the whole FMI 2.0 and FMI 3.0 Co-Simulation behaviour in safe Rust
+//! (one code for both: the instance's [`Standard`] only selects function names in messages
+//! and the type families of get/set).
 //!
-//! `ffi/` turns each C call into one call of [`Instance::run`] with the matching method;
+//! `ffi/` (FMI 2.0) and `ffi/fmi3/` (FMI 3.0) turn each C call into one call of
+//! [`Instance::run`] with the matching method;
 //! `run` checks the call sequence against the state machine, catches panics, logs failures
 //! through the importer's logger and folds everything into a [`Status`].
 //!
