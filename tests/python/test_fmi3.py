@@ -519,3 +519,42 @@ def test_messages_read_as_text(fmu3_path, unzipdir3):
     for text in messages + [m for _, _, m in s.messages]:
         for leak in LEAKS:
             assert leak not in text, f"{leak!r} in {text!r}"
+
+
+def test_discard_keeps_the_state(tmp_path):
+    """As test_errors.py: a step the solver cannot complete returns fmi3Discard with the reason;
+    lastSuccessfulTime is the time before the step, whose state is kept and can be restored."""
+    from helpers import ROOT, build_fmu
+
+    text = (ROOT / "scenes" / "benchmark.toml").read_text()
+    text = text.replace(
+        "rho_inf = 0.8",
+        "rho_inf = 0.8\nnewton_tolerance = 1e-300\nmax_newton_iterations = 1\nmax_halvings = 0",
+    )
+    text = text.replace('method = "auto"', 'method = "generalized_alpha"')
+    text = text.replace('name = "FlexibleSliderCrank"', 'name = "StiffSliderCrank"')
+    scene = tmp_path / "stiff.toml"
+    scene.write_text(text)
+    fmu2 = build_fmu(tmp_path, scene)
+    d = extract(str(fmu2.with_name(fmu2.stem + "-fmi3.fmu")), str(tmp_path / "x"))
+    s = Slave3(d)
+    try:
+        s.init()
+        state = s.fmu.getFMUState()
+        before = s.outputs()
+        p, dbl, b = ctypes.c_void_p, ctypes.c_double, ctypes.c_bool
+        step = s.raw("fmi3DoStep", ctypes.c_int, p, dbl, dbl, b, p, p, p, p)
+        flags = [ctypes.c_bool(True) for _ in range(3)]
+        last = ctypes.c_double(-1.0)
+        s.messages.clear()
+        status = step(s.c, 0.0, 1e-3, True, *[ctypes.byref(f) for f in flags], ctypes.byref(last))
+        assert status == DISCARD
+        assert "smaller communication step" in s.text()
+        assert s.messages[-1][1] == "logStatusDiscard"
+        assert last.value == 0.0 and [f.value for f in flags] == [False] * 3
+        assert s.outputs() == before
+        expect_error(s, lambda: s.step(0.0, 1e-3), "StepFailed")
+        s.fmu.setFMUState(state)
+        s.fmu.terminate()
+    finally:
+        s.free()
