@@ -119,7 +119,13 @@ pub fn index_html(scene: &Scene, description: &ModelDescription) -> String {
             );
             let start = page.find("<h2>Inputs between").unwrap_or(0);
             let end = page.find("<p>Parameters that must").unwrap_or(start);
-            format!("{}{FMI3_INPUTS}{}", &page[..start], &page[end..])
+            let rest = page[end..]
+                .replace("fmi2ExitInitializationMode", "fmi3ExitInitializationMode")
+                .replace(
+                    "(FMI 2.0 has no open bounds)",
+                    "(no open bounds are declared)",
+                );
+            format!("{}{FMI3_INPUTS}{rest}", &page[..start])
         }
     }
 }

@@ -558,3 +558,30 @@ def test_discard_keeps_the_state(tmp_path):
         s.fmu.terminate()
     finally:
         s.free()
+
+
+def test_logger_gets_the_instance_environment(unzipdir3):
+    """The FMI 3.0 logger callback receives the instanceEnvironment given at instantiation, and
+    messages are plain text (FMI 3.0's callback is not a printf format: no '%%' escaping)."""
+    s = Slave3(unzipdir3)
+    seen = []
+
+    def log(env, status, category, message):
+        seen.append((env, message.decode()))
+
+    callback = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_int, ctypes.c_char_p,
+                                ctypes.c_char_p)(log)
+    p, b = ctypes.c_void_p, ctypes.c_bool
+    cs = s.raw("fmi3InstantiateCoSimulation", ctypes.c_void_p, ctypes.c_char_p, ctypes.c_char_p,
+               ctypes.c_char_p, b, b, b, b, p, ctypes.c_size_t, p, p, p)
+    resources = (str(unzipdir3) + "/resources/").encode()
+    c = cs(b"env-test", s.md.guid.encode(), resources, False, True, False, False, None, 0,
+           0xC0FFEE, callback, None)
+    assert c
+    set_debug = s.raw("fmi3SetDebugLogging", ctypes.c_int, p, b, ctypes.c_size_t, p)
+    categories = (ctypes.c_char_p * 1)(b"log%Nonsense")
+    assert set_debug(c, True, 1, categories) == ERROR
+    s.raw("fmi3FreeInstance", None, p)(c)
+    s.free()
+    assert seen and all(env == 0xC0FFEE for env, _ in seen), seen
+    assert any("log%Nonsense" in m and "%%" not in m for _, m in seen), seen
