@@ -203,7 +203,18 @@ calls! {
 /// Check that `call` is allowed in `state`; the error names the call, the state and the
 /// states where the call is allowed.
 pub fn check(call: Call, state: MachineState, standard: Standard) -> Result<(), FmiError> {
-    let allowed = call.allowed();
+    let mut allowed = call.allowed();
+    // FMI 3.0 also allows the get functions in Instantiated (Reference-FMUs,
+    // `src/fmi3Functions.c`, MASK_fmi3GetFloat32): parameters and inputs can be read before
+    // initialization; outputs there report that the model is not initialized.
+    if standard == Standard::Fmi3
+        && matches!(
+            call,
+            Call::GetReal | Call::GetInteger | Call::GetInt64 | Call::GetOther(_)
+        )
+    {
+        allowed |= INSTANTIATED;
+    }
     if allowed & state.bit() != 0 {
         return Ok(());
     }
@@ -271,6 +282,8 @@ mod tests {
         );
         let e = check(Call::DoStep, MachineState::Instantiated, Standard::Fmi3).unwrap_err();
         assert!(e.message.contains("fmi3DoStep"), "{}", e.message);
+        assert!(check(Call::GetReal, MachineState::Instantiated, Standard::Fmi3).is_ok());
+        assert!(check(Call::GetReal, MachineState::Instantiated, Standard::Fmi2).is_err());
     }
 
     #[test]
