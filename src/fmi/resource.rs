@@ -79,7 +79,13 @@ pub fn load_model_for(
     standard: Standard,
 ) -> Result<LoadedModel, String> {
     let from_resources = match resource_location {
-        None => Err("no resource location was given (it is NULL)".to_string()),
+        None => Err(format!(
+            "no resource location was given ({} is NULL)",
+            match standard {
+                Standard::Fmi2 => "fmuResourceLocation",
+                Standard::Fmi3 => "resourcePath",
+            }
+        )),
         Some(uri) => load_from_resources(uri, standard),
     };
     match from_resources {
