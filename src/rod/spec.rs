@@ -92,8 +92,8 @@ pub struct RodSpec {
         skip_serializing_if = "is_default_deflection_limit"
     )]
     pub deflection_limit: f64,
-    /// What a step whose deflection exceeds `deflection_limit` does: "warn" (default),
-    /// "discard" or "error".
+    /// What a step whose deflection exceeds `deflection_limit` does: "warn",
+    /// "discard" (default) or "error".
     #[serde(default, skip_serializing_if = "DeflectionPolicy::is_default")]
     pub deflection_policy: DeflectionPolicy,
 }
@@ -113,12 +113,12 @@ fn is_default_deflection_limit(x: &f64) -> bool {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum DeflectionPolicy {
-    /// One warning, then continue (results beyond the limit are not accurate). The default
-    /// for now: "discard" as default changes the golden runs, the report and the sweeps that
-    /// go beyond 0.05 (issue 14, left to the lead).
-    #[default]
+    /// One warning, then continue (results beyond the limit are not accurate).
     Warn,
-    /// The step is refused (fmi2Discard), the state from before it kept.
+    /// The step is refused (fmi2Discard), the state from before it kept: the default, so that
+    /// a master can react (restore a state, switch to the segment chain, stop) instead of
+    /// receiving numbers past the small-deformation range with a warning most masters ignore.
+    #[default]
     Discard,
     /// The step fails (fmi2Error), the state from before it kept.
     Error,

@@ -83,3 +83,20 @@ def test_limit_and_policy_ranges(unzipdir):
         with pytest.raises(FMICallException):
             s.fmu.setInteger([s.vr["rod.deflection_policy"]], [bad])
     s.free()
+
+
+def test_default_policy_is_discard(unzipdir, ref):
+    """Without setting rod.deflection_policy, a step past the limit is refused with fmi2Discard
+    (the default), the state from before it kept, and the instance continues after a restore."""
+    rows, limit, first = ref
+    s = Slave(unzipdir, logging_on=True)
+    assert s.fmu.getInteger([s.vr["rod.deflection_policy"]]) == [2]
+    s.fmu.setReal([s.vr["rod.deflection_limit"]], [limit])
+    s.init()
+    for k in range(first - 1):
+        s.fmu.doStep(k * DT, DT)
+    with pytest.raises(FMICallException) as e:
+        s.fmu.doStep((first - 1) * DT, DT)
+    assert e.value.status == DISCARD
+    assert s.get("rod.deflection_rel", "pinB.force_x") == rows[first - 1]
+    s.free()

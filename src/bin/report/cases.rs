@@ -1,6 +1,7 @@
 //! The benchmark cases: how the crank is driven, and the slider.
 
 use flexrod::drive::CrankDrive;
+use flexrod::scene::DeflectionPolicy;
 
 /// A benchmark case.
 #[derive(Clone, Debug)]
@@ -10,6 +11,8 @@ pub struct Case {
     /// The crank law ([`CrankDrive::Constant`] from t = 0, or [`CrankDrive::Ramp`] from rest).
     pub drive: CrankDrive,
     pub slider_mass: f64,
+    /// What a step past `rod.deflection_limit` does in this case.
+    pub deflection_policy: DeflectionPolicy,
 }
 
 impl Case {
@@ -47,6 +50,7 @@ pub fn cases() -> Vec<Case> {
             title: "(a) constant 150 rad/s from t = 0, undeformed",
             drive: CrankDrive::Constant { speed: 150.0 },
             slider_mass: 0.0,
+            deflection_policy: DeflectionPolicy::Discard,
         },
         Case {
             key: "b",
@@ -56,18 +60,21 @@ pub fn cases() -> Vec<Case> {
                 time: 0.02,
             },
             slider_mass: 0.0,
+            deflection_policy: DeflectionPolicy::Discard,
         },
         Case {
             key: "c",
-            title: "(c) constant 300 rad/s",
+            title: "(c) constant 300 rad/s (rod.deflection_policy warn: the FFR rod passes the 0.05 L limit)",
             drive: CrankDrive::Constant { speed: 300.0 },
             slider_mass: 0.0,
+            deflection_policy: DeflectionPolicy::Warn,
         },
         Case {
             key: "d",
             title: "(d) 150 rad/s, slider mass 0.03 kg",
             drive: CrankDrive::Constant { speed: 150.0 },
             slider_mass: 0.03,
+            deflection_policy: DeflectionPolicy::Discard,
         },
     ]
 }

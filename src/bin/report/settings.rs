@@ -198,6 +198,7 @@ impl Setting {
     pub fn scene(&self, case: &Case) -> Scene {
         let mut s = Scene::benchmark();
         s.slider.mass = case.slider_mass;
+        s.rod.deflection_policy = case.deflection_policy;
         s.experiment.crank_speed = case.speed();
         s.rod.elements = self.elements;
         s.solver.step = self.h;

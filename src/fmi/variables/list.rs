@@ -377,7 +377,7 @@ impl VariableTable {
                     .map(|p| s.rod.deflection_policy = p)
                     .ok_or_else(|| "1 (warn), 2 (discard) or 3 (error)".to_string())
             },
-            "What a step beyond rod.deflection_limit does: 1 = warn (one warning, continue; default), 2 = discard (fmi2Discard, the state before the step kept), 3 = error (fmi2Error, the state before the step kept)",
+            "What a step beyond rod.deflection_limit does: 1 = warn (one warning, continue), 2 = discard (fmi2Discard, the state before the step kept; default), 3 = error (fmi2Error, the state before the step kept)",
         );
         b.bounds(Some(Value::Integer(1)), Some(Value::Integer(3)));
 
