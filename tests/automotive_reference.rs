@@ -38,7 +38,11 @@ fn gas(theta: f64) -> f64 {
 type Row = [f64; 9];
 
 fn reference() -> Vec<Row> {
-    let rows: Vec<Row> = read_rows("exudyn_automotive_rod.csv", 9)
+    reference_file("exudyn_automotive_rod.csv")
+}
+
+fn reference_file(name: &str) -> Vec<Row> {
+    let rows: Vec<Row> = read_rows(name, 9)
         .into_iter()
         .map(|v| v.try_into().unwrap())
         .collect();
@@ -195,42 +199,52 @@ fn automotive_rod_against_the_geometrically_exact_shear_beam() {
         s.rod.elements = n;
         s
     };
-    // (name, scene, bound on deflection and stress, bound on the pin forces); None: reported only.
+    // (name, scene, bounds on deflection, stress and the pin forces); None: reported only.
     let cases = [
         (
             "FFR, the scene as shipped: 8 elements, 4 modes, Dormand-Prince, tolerance 1e-3",
             scene(),
-            Some((0.02, 0.01)),
+            Some((0.02, 0.005, 0.01)),
         ),
         (
-            "FFR, 8 elements, 1 mode (the first bending mode: no axial mode)",
+            "FFR, 8 elements, 1 mode (the first bending mode, 2.0 kHz)",
             ffr(8, 1, SolverMethod::Dopri5, 1e-5, 1e-3),
             None,
         ),
         (
-            "FFR, 8 elements, 2 modes (adds the first axial mode, 8.4 kHz)",
+            "FFR, 8 elements, 2 modes (two bending modes, no axial mode)",
             ffr(8, 2, SolverMethod::Dopri5, 1e-5, 1e-3),
             None,
         ),
         (
-            "FFR, 8 elements, 3 modes (adds the second bending mode, 12.5 kHz)",
+            "FFR, 8 elements, 3 modes (adds the first axial mode, 7.3 kHz)",
             ffr(8, 3, SolverMethod::Dopri5, 1e-5, 1e-3),
             None,
         ),
         (
             "FFR, 8 elements, 6 modes, Dormand-Prince, tolerance 1e-3",
             ffr(8, 6, SolverMethod::Dopri5, 1e-5, 1e-3),
-            Some((0.01, 0.01)),
+            Some((0.01, 0.005, 0.01)),
         ),
         (
             "FFR, 16 elements, 8 modes, Dormand-Prince, tolerance 1e-5",
             ffr(16, 8, SolverMethod::Dopri5, 1e-5, 1e-5),
-            Some((0.005, 0.01)),
+            Some((0.005, 0.005, 0.01)),
         ),
         (
-            "segment chain, 32 segments (no shear deformation: Euler-Bernoulli joints)",
+            "segment chain, 32 segments (no shear deformation; axially rigid, the default)",
             chain(32),
             None,
+        ),
+        (
+            "segment chain, 16 segments, axial springs (no shear deformation)",
+            {
+                let mut s = chain(16);
+                s.rod.axial_springs = true;
+                s
+            },
+            // The pin forces, not the bending (no shear deformation).
+            Some((0.2, 0.01, 0.01)),
         ),
     ];
     let mut table = String::from(
@@ -255,8 +269,11 @@ fn automotive_rod_against_the_geometrically_exact_shear_beam() {
             pct(e.pin_b_firing),
             pct(e.pin_c_firing)
         );
-        if let Some((shape, pins)) = bounds {
-            assert!(e.deflection < shape && e.stress < shape, "{name}: {e:?}");
+        if let Some((deflection, stress, pins)) = bounds {
+            assert!(
+                e.deflection < deflection && e.stress < stress,
+                "{name}: {e:?}"
+            );
             assert!(
                 e.pin_b_firing < pins && e.pin_c_firing < pins,
                 "{name}: {e:?}"
@@ -269,4 +286,46 @@ fn automotive_rod_against_the_geometrically_exact_shear_beam() {
         }
     }
     check_generated("automotive-reference", &table);
+}
+
+/// The segment chain and the FFR rod without shear deformation against the reference's
+/// Euler-Bernoulli limit (tests/data/exudyn_automotive_rod_euler_bernoulli.csv: the same run,
+/// shear stiffness x 1e3): what the chain misses against the shear beam is the shear.
+#[test]
+fn chain_against_the_euler_bernoulli_limit() {
+    let reference = reference_file("exudyn_automotive_rod_euler_bernoulli.csv");
+    let no_shear = |s: &mut Scene| {
+        s.rod.shear_deformation = false;
+        s.rod.shear_modulus = None;
+    };
+    let mut ffr = scene();
+    no_shear(&mut ffr);
+    ffr.rod.elements = 16;
+    ffr.rod.modes = 8;
+    ffr.solver.method = SolverMethod::Dopri5;
+    ffr.solver.tolerance = 1e-5;
+    let mut chain = scene();
+    no_shear(&mut chain);
+    chain.rod.model = RodModelKind::Segments;
+    chain.rod.elements = 32;
+    chain.rod.axial_springs = true;
+    chain.rod.elements = 16;
+    for (name, scene) in [
+        ("FFR, no shear, 16 el, 8 modes, tolerance 1e-5", ffr),
+        ("segment chain, 16 segments, axial springs", chain),
+    ] {
+        let (rows, time, integrator) = run(&scene);
+        let e = compare(&rows, &reference);
+        println!(
+            "{name} [{integrator}, {:.0} ms]: {e:?}",
+            time.as_secs_f64() * 1e3
+        );
+        // The deflection and the moment differ by 1.4-1.8 %: most likely the section rotary
+        // inertia, which the FFR without shear and the chain leave out and the reference keeps
+        // (its couple was 2.7 % of M_mid with shear; not confirmed: the reference without it
+        // did not converge).
+        assert!(e.deflection < 0.025 && e.moment < 0.025, "{name}: {e:?}");
+        assert!(e.stress < 0.005, "{name}: {e:?}");
+        assert!(e.pin_b < 0.01 && e.pin_c < 0.01, "{name}: {e:?}");
+    }
 }
