@@ -10,9 +10,9 @@ cd "$(dirname "$0")/.."
 if [ ! -x .venv/bin/python ]; then
     python3 -m venv .venv
 fi
-if ! .venv/bin/python -c "import fmpy, pytest, numpy, libcosimpy, dask.distributed, tqdm, matplotlib, flexrod_sweep" 2>/dev/null; then
+if ! .venv/bin/python -c "import fmpy, pytest, numpy, libcosimpy, dask.distributed, tqdm, matplotlib, exudyn, flexrod_sweep" 2>/dev/null; then
     .venv/bin/python -m pip install --quiet --upgrade pip
-    .venv/bin/python -m pip install --quiet fmpy pytest numpy libcosimpy "dask[distributed]" tqdm matplotlib -e python
+    .venv/bin/python -m pip install --quiet fmpy pytest numpy libcosimpy "dask[distributed]" tqdm matplotlib exudyn -e python
 fi
 
 cargo test --release --workspace

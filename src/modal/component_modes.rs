@@ -5,7 +5,7 @@
 
 use faer::Mat;
 
-use super::eigen::generalized_symmetric_eigen;
+use super::eigen::{generalized_symmetric_eigen, generalized_symmetric_eigen_by_stiffness};
 use super::reference::ReferenceConditions;
 use super::selection::ModeSelection;
 use crate::beam::MassKind;
@@ -93,7 +93,19 @@ impl ComponentModes {
             ),
             None => (b.transpose() * &k * b, b.transpose() * &m * b),
         };
-        let eig = generalized_symmetric_eigen(&k_rr, &m_rr)?;
+        let mut eig = generalized_symmetric_eigen(&k_rr, &m_rr)?;
+        let indefinite = |eig: &super::eigen::GeneralizedEigen| match eig.values.first() {
+            Some(&lowest) => lowest < -1e-9 * eig.values.last().copied().unwrap_or(1.0).abs(),
+            None => false,
+        };
+        if indefinite(&eig) {
+            // Round-off of an ill-conditioned mass matrix (a fine mesh of a stubby
+            // shear-deformable rod), or a truly indefinite stiffness: the stiffness-based form
+            // tells them apart (it fails on the latter).
+            if let Ok(by_stiffness) = generalized_symmetric_eigen_by_stiffness(&k_rr, &m_rr) {
+                eig = by_stiffness;
+            }
+        }
         if let Some(&lowest) = eig.values.first() {
             let top = eig.values.last().copied().unwrap_or(1.0).abs();
             if lowest < -1e-9 * top {

@@ -1,7 +1,8 @@
 //! The geometrically exact reference: `tests/data/exudyn_ancf_150rad_s.csv`, the benchmark rod
 //! of seed 001 at a constant 150 rad/s from t = 0, undeformed start, computed once with Exudyn
 //! ANCF cable elements (32 and 64 elements agree to < 1e-5 of the peak v_mid/L), sampled every
-//! 1e-4 s over two revolutions.
+//! 1e-4 s over two revolutions. [`read_rows`] reads any reference file under tests/data (also
+//! `exudyn_automotive_rod.csv`, tests/automotive_reference.rs).
 
 use flexrod::drive::Record;
 
@@ -19,28 +20,34 @@ pub struct Sample {
     pub pin_c_force: [f64; 2],
 }
 
-/// The reference rows (comment lines `#` and the header skipped; every row checked).
-pub fn samples() -> Vec<Sample> {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/data/exudyn_ancf_150rad_s.csv"
-    );
-    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    let rows: Vec<Sample> = text
-        .lines()
+/// The numeric rows of a reference file under tests/data (comment lines `#`, the header line
+/// starting with `t` and blank lines skipped), each with exactly `columns` values.
+pub fn read_rows(name: &str, columns: usize) -> Vec<Vec<f64>> {
+    let path = format!("{}/tests/data/{name}", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    text.lines()
         .filter(|l| !l.starts_with('#') && !l.starts_with('t') && !l.trim().is_empty())
         .map(|l| {
             let v: Vec<f64> = l
                 .split(',')
                 .map(|x| x.trim().parse().unwrap_or_else(|_| panic!("{path}: '{l}'")))
                 .collect();
-            assert_eq!(v.len(), 6, "{path}: '{l}'");
-            Sample {
-                time: v[0],
-                deflection_rel: v[1],
-                pin_b_force: [v[2], v[3]],
-                pin_c_force: [v[4], v[5]],
-            }
+            assert_eq!(v.len(), columns, "{path}: '{l}'");
+            v
+        })
+        .collect()
+}
+
+/// The reference rows (every row checked to lie on the 1e-4 s grid).
+pub fn samples() -> Vec<Sample> {
+    let path = "tests/data/exudyn_ancf_150rad_s.csv";
+    let rows: Vec<Sample> = read_rows("exudyn_ancf_150rad_s.csv", 6)
+        .into_iter()
+        .map(|v| Sample {
+            time: v[0],
+            deflection_rel: v[1],
+            pin_b_force: [v[2], v[3]],
+            pin_c_force: [v[4], v[5]],
         })
         .collect();
     assert!(rows.len() > 800, "{path}: {} rows", rows.len());

@@ -78,11 +78,13 @@ fn modes(args: &[String]) -> Result<(), String> {
     }
     let spec = scene.mechanism_spec();
     spec.validate().map_err(|e| e.to_string())?;
-    let props = spec.rod.properties();
+    // The rod as the model builds it: section table, shear deformation and end bodies included
+    // (the uniform equivalent `spec.rod.properties()` only for a plain rod).
+    let definition = spec.rod.definition().map_err(|e| e.to_string())?;
     let reference = ReferenceConditions::from_kind(scene.rod.reference, scene.rod.elements)
         .map_err(|e| e.to_string())?;
-    let all = ComponentModes::new(
-        props,
+    let all = ComponentModes::from_definition(
+        definition,
         scene.rod.elements,
         reference,
         scene.rod.mass,

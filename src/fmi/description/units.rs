@@ -12,7 +12,7 @@ struct UnitDef {
     display: &'static [(&'static str, &'static str)],
 }
 
-const UNITS: [UnitDef; 15] = [
+const UNITS: [UnitDef; 16] = [
     UnitDef {
         name: "m",
         base: &[("m", "1")],
@@ -81,6 +81,11 @@ const UNITS: [UnitDef; 15] = [
     UnitDef {
         name: "m4",
         base: &[("m", "4")],
+        display: &[],
+    },
+    UnitDef {
+        name: "kg.m2",
+        base: &[("kg", "1"), ("m", "2")],
         display: &[],
     },
     UnitDef {

@@ -318,6 +318,63 @@ impl VariableTable {
             );
         }
 
+        // The rod's shear modulus and end bodies (fmu-contract.md, "Real connecting rods"),
+        // value references 138-142: G in shear-deformable scenes, the end bodies in scenes with
+        // a section table or an end body (the scenes that report rod.mass).
+        if scene.rod.shear_deformation {
+            b.real_parameter(
+                "rod.shear_modulus",
+                138,
+                real("Pa"),
+                |s| s.rod.shear_modulus.unwrap_or(s.rod.youngs_modulus / 2.6),
+                |s, v| s.rod.shear_modulus = Some(v),
+                "Shear modulus G of the shear-deformable rod (default E / 2.6)",
+            );
+            b.positive();
+        }
+        let real_rod = &scene.rod;
+        if !real_rod.section.is_empty()
+            || !real_rod.big_end.is_empty()
+            || !real_rod.small_end.is_empty()
+        {
+            b.real_parameter(
+                "rod.big_end.mass",
+                139,
+                real("kg"),
+                |s| s.rod.big_end.mass,
+                |s, v| s.rod.big_end.mass = v,
+                "Mass of the big end (rigid body at B)",
+            );
+            b.non_negative();
+            b.real_parameter(
+                "rod.big_end.inertia",
+                140,
+                real("kg.m2"),
+                |s| s.rod.big_end.inertia,
+                |s, v| s.rod.big_end.inertia = v,
+                "Rotary inertia of the big end about B",
+            );
+            b.non_negative();
+            b.real_parameter(
+                "rod.small_end.mass",
+                141,
+                real("kg"),
+                |s| s.rod.small_end.mass,
+                |s, v| s.rod.small_end.mass = v,
+                "Mass of the small end (rigid body at C)",
+            );
+            b.non_negative();
+            b.real_parameter(
+                "rod.small_end.inertia",
+                142,
+                real("kg.m2"),
+                |s| s.rod.small_end.inertia,
+                |s, v| s.rod.small_end.inertia = v,
+                "Rotary inertia of the small end about C",
+            );
+            b.non_negative();
+        }
+
         // Integer twins of the Enumeration parameters: masters that ignore Enumeration
         // variables (libcosim, among others) can still switch the model and the reference
         // conditions. Same getter and setter as the Enumeration: one value, two names.
