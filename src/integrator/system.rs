@@ -7,6 +7,8 @@
 
 use faer::MatMut;
 
+use super::failure::StepFailure;
+
 pub trait DaeSystem {
     /// Number of coordinates n.
     fn n_coordinates(&self) -> usize;
@@ -32,6 +34,27 @@ pub trait DaeSystem {
     /// (the integrator then solves by Newton).
     fn solve_dependent_positions(&self, _t: f64, _q: &mut [f64]) -> bool {
         false
+    }
+    /// Whether [`DaeSystem::reduced_rhs`] has a closed form for this system.
+    fn has_reduced_rhs(&self) -> bool {
+        false
+    }
+    /// For a partitioned integration, the whole right-hand side in closed form (minimal
+    /// coordinates): with the independent coordinates already in `q` and `v` (and the
+    /// dependent positions of the last evaluation in `q`, which pick the assembly branch),
+    /// write the dependent positions and velocities into `q` and `v` (so that `Phi = 0` and
+    /// `Phi_q q' + Phi_t = 0`), all accelerations into `qdd` and the multipliers into `lambda`,
+    /// from one evaluation of `M q'' + Phi_q^T lambda = Q`, `Phi_q q'' = gamma`. Returns `None`
+    /// where the system has no closed form (the integrator then takes the general path).
+    fn reduced_rhs(
+        &self,
+        _t: f64,
+        _q: &mut [f64],
+        _v: &mut [f64],
+        _qdd: &mut [f64],
+        _lambda: &mut [f64],
+    ) -> Option<Result<(), StepFailure>> {
+        None
     }
     /// Add `c_k (K_t + d(Phi_q^T lambda)/dq) + c_d C_t` to `out` (n x n), with `K_t = -dQ/dq`
     /// and `C_t = -dQ/dq'` (approximations are fine: they only steer Newton).

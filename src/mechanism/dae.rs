@@ -165,6 +165,23 @@ impl DaeSystem for SliderCrankDae<'_> {
         true
     }
 
+    fn has_reduced_rhs(&self) -> bool {
+        self.rod.ffr_kernel().is_some()
+    }
+
+    /// The FFR rod's closed form on minimal coordinates ([`super::minimal`]).
+    fn reduced_rhs(
+        &self,
+        t: f64,
+        q: &mut [f64],
+        v: &mut [f64],
+        qdd: &mut [f64],
+        lambda: &mut [f64],
+    ) -> Option<Result<(), crate::integrator::StepFailure>> {
+        let kernel = self.rod.ffr_kernel()?;
+        Some(self.minimal_rhs(kernel, t, q, v, qdd, lambda))
+    }
+
     fn add_tangent(
         &self,
         q: &[f64],

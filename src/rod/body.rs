@@ -51,6 +51,12 @@ pub trait RodBody: Send {
     fn frame_coordinates(&self) -> Option<[usize; 3]> {
         None
     }
+    /// The FFR rod's shape integrals in fixed-size arrays, where the model is an FFR rod with
+    /// 1 to [`crate::rod::ffr::MAX_MODES`] modes: the mechanism then evaluates its equations
+    /// of motion on minimal coordinates in closed form (`mechanism::minimal`).
+    fn ffr_kernel(&self) -> Option<&crate::rod::ffr::FfrKernel> {
+        None
+    }
     /// Mass matrix (n x n) into `m`.
     fn mass(&self, q: &[f64], m: MatMut<'_, f64>);
     /// Generalized forces: quadratic velocity terms, elastic and damping forces, and the
