@@ -63,6 +63,11 @@ pub trait Integrator: Send {
     /// depends on the state alone (a restored state then replays bit for bit).
     fn forget_between_steps(&mut self) {}
 
+    /// After [`Integrator::forget_between_steps`]: the state's accelerations are consistent
+    /// with the inputs in force (the caller checked), so a method that reuses the last
+    /// evaluation as the next step's first stage (first same as last) may take them.
+    fn reuse_first_stage(&mut self) {}
+
     /// The method's name, for run summaries.
     fn name(&self) -> &'static str;
 

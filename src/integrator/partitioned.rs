@@ -180,13 +180,32 @@ impl PartitionedRhs {
         zd: &[f64],
         zdd: &mut [f64],
     ) -> Result<(), StepFailure> {
+        self.evaluate_stage(system, t, z, zd, zdd, true)
+    }
+
+    /// [`PartitionedRhs::evaluate`] for an intermediate stage (`complete = false`): a system
+    /// with a closed form may then leave the multipliers and the dependent coordinates that
+    /// no acceleration needs ([`DaeSystem::reduced_rhs`]); the general path computes all.
+    pub fn evaluate_stage(
+        &mut self,
+        system: &dyn DaeSystem,
+        t: f64,
+        z: &[f64],
+        zd: &[f64],
+        zdd: &mut [f64],
+        complete: bool,
+    ) -> Result<(), StepFailure> {
         let (n, m, k) = (self.n, self.m, self.k());
         for (a, &i) in self.independent.iter().enumerate() {
             self.q[i] = z[a];
             self.v[i] = zd[a];
         }
-        let closed =
-            system.reduced_rhs(t, &mut self.q, &mut self.v, &mut self.qdd, &mut self.lambda);
+        let lambda = if complete {
+            Some(&mut self.lambda[..])
+        } else {
+            None
+        };
+        let closed = system.reduced_rhs(t, &mut self.q, &mut self.v, &mut self.qdd, lambda);
         self.closed_form = closed.is_some();
         if let Some(result) = closed {
             result?;

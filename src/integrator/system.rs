@@ -44,15 +44,18 @@ pub trait DaeSystem {
     /// dependent positions of the last evaluation in `q`, which pick the assembly branch),
     /// write the dependent positions and velocities into `q` and `v` (so that `Phi = 0` and
     /// `Phi_q q' + Phi_t = 0`), all accelerations into `qdd` and the multipliers into `lambda`,
-    /// from one evaluation of `M q'' + Phi_q^T lambda = Q`, `Phi_q q'' = gamma`. Returns `None`
-    /// where the system has no closed form (the integrator then takes the general path).
+    /// from one evaluation of `M q'' + Phi_q^T lambda = Q`, `Phi_q q'' = gamma`. With
+    /// `lambda = None` (an intermediate stage) the system may skip what only a state needs:
+    /// the multipliers, and dependent coordinates that no acceleration needs (the FFR frame
+    /// angle itself, whose sine and cosine are all the equations use). Returns `None` where
+    /// the system has no closed form (the integrator then takes the general path).
     fn reduced_rhs(
         &self,
         _t: f64,
         _q: &mut [f64],
         _v: &mut [f64],
         _qdd: &mut [f64],
-        _lambda: &mut [f64],
+        _lambda: Option<&mut [f64]>,
     ) -> Option<Result<(), StepFailure>> {
         None
     }

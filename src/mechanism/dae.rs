@@ -176,7 +176,7 @@ impl DaeSystem for SliderCrankDae<'_> {
         q: &mut [f64],
         v: &mut [f64],
         qdd: &mut [f64],
-        lambda: &mut [f64],
+        lambda: Option<&mut [f64]>,
     ) -> Option<Result<(), crate::integrator::StepFailure>> {
         let kernel = self.rod.ffr_kernel()?;
         Some(self.minimal_rhs(kernel, t, q, v, qdd, lambda))

@@ -85,7 +85,7 @@ impl SliderCrankDae<'_> {
         q: &mut [f64],
         v: &mut [f64],
         qdd: &mut [f64],
-        lambda: &mut [f64],
+        lambda: Option<&mut [f64]>,
     ) -> Result<(), StepFailure> {
         let (pin, pin_v, pin_a) = self.crank.pin(t);
         let inputs = Inputs {
@@ -158,7 +158,7 @@ fn evaluate<const N: usize>(
     q: &mut [f64],
     v: &mut [f64],
     qdd: &mut [f64],
-    lambda: &mut [f64],
+    lambda: Option<&mut [f64]>,
 ) -> Result<(), StepFailure> {
     let ns = 3 + N;
     let p: [f64; N] = std::array::from_fn(|j| q[3 + j]);
@@ -200,7 +200,9 @@ fn evaluate<const N: usize>(
     let wb = rot(u_b);
     q[0] = inp.pin.x - wb[0];
     q[1] = inp.pin.y - wb[1];
-    q[2] += wrap(s.atan2(c) - q[2]);
+    if lambda.is_some() {
+        q[2] += wrap(s.atan2(c) - q[2]);
+    }
     q[ns] = inp.pin.x + x;
     // Velocity map T: rows R (2), phi, x_s over the modal columns.
     let inv_x = 1.0 / x;
@@ -342,6 +344,9 @@ fn evaluate<const N: usize>(
     qdd[3..3 + N].copy_from_slice(&zdd);
     qdd[ns] = dot_n(&t_x, &zdd) + b_x;
     // Multipliers: Phi_D^T lambda = (Q - M q'')_D.
+    let Some(lambda) = lambda else {
+        return Ok(());
+    };
     let rr = [
         r_r[0] - dot_n(&mt_r[0], &zdd),
         r_r[1] - dot_n(&mt_r[1], &zdd),

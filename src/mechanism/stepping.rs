@@ -45,7 +45,10 @@ impl Mechanism {
         let n_sub = n_sub_f as usize;
         let result = (|| {
             if adaptive {
-                self.restart_consistently(state)?;
+                let moved = self.restart_consistently(state)?;
+                if !moved && self.slider_force_consistent(state) {
+                    self.integrator.reuse_first_stage();
+                }
                 return self.adaptive_steps(state, t_end);
             }
             for k in 0..n_sub {
@@ -126,11 +129,12 @@ impl Mechanism {
     /// speed and acceleration), the positions and velocities move onto the new law's
     /// constraints by the M-weighted least change (the index-1 projection, as the fixed-step
     /// RK4 does after every step), and the accelerations and multipliers are recomputed: the
-    /// jump is not charged to the error control as a local error.
+    /// jump is not charged to the error control as a local error. Returns whether the state
+    /// moved (then its accelerations are new).
     fn restart_consistently(
         &mut self,
         state: &mut MechanismState,
-    ) -> Result<(), (f64, f64, String)> {
+    ) -> Result<bool, (f64, f64, String)> {
         let t = state.dae.t;
         let sys = dae_context(self.rod.as_ref(), &self.spec, state);
         let mut phi = [0.0; 4];
@@ -160,7 +164,7 @@ impl Mechanism {
                     || (a_new - a_old).norm() > 1e-12 * (1.0 + a_new.norm());
             }
             if !velocities_off {
-                return Ok(());
+                return Ok(false);
             }
             work.solve
                 .project_positions(&sys, t, &mut state.dae.q, tolerance, 4)
@@ -174,10 +178,26 @@ impl Mechanism {
             state.dae.qdd.copy_from_slice(&work.solve.qdd);
             state.dae.acc.copy_from_slice(&work.solve.qdd);
             state.dae.lambda.copy_from_slice(&work.solve.lambda);
-            Ok(())
+            Ok(true)
         })();
         self.output_solve = Some(work);
         result
+    }
+
+    /// Whether the state's accelerations and multipliers satisfy the slider's equation
+    /// `m_s x_s'' - lambda_Cx = F_s + m_s g_x` with the slider force now in force (to
+    /// round-off): then they came from the same inputs (the crank law checked by
+    /// [`Mechanism::restart_consistently`]) and the next step may start from them. A function
+    /// of the state alone, so a restored state replays bit for bit.
+    fn slider_force_consistent(&self, state: &MechanismState) -> bool {
+        let ns = self.rod.n_coordinates();
+        let d = &state.dae;
+        let m_s = self.slider_mass;
+        let g_x = self.spec.mechanism.gravity[0];
+        let inertia = m_s * d.qdd[ns];
+        let residual = inertia - d.lambda[2] - state.slider_force - m_s * g_x;
+        let scale = inertia.abs() + d.lambda[2].abs() + state.slider_force.abs() + (m_s * g_x).abs();
+        residual.abs() <= 1e-12 * scale.max(1e-300)
     }
 
     /// Accepted steps of an adaptive integrator until `t_end` (the last one lands on it).
