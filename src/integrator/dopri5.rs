@@ -1,17 +1,23 @@
-//! The Dormand-Prince 5(4) embedded Runge-Kutta pair (Dormand and Prince 1980; Hairer,
-//! Norsett and Wanner, *Solving ODEs I*, 2nd ed., table II.5.2 and section II.4) on the
-//! mechanism's independent coordinates ([`PartitionedRhs`]): `y = (z, z')`, `y' = (z', z'')`.
+//! Embedded explicit Runge-Kutta pairs with error control on the mechanism's independent
+//! coordinates ([`PartitionedRhs`]; minimal coordinates in closed form where the system has
+//! them, [`DaeSystem::reduced_rhs`]): `y = (z, z')`, `y' = (z', z'')`. Two pairs
+//! ([`Tableau`]): the Dormand-Prince 5(4) pair (Dormand and Prince 1980; Hairer, Norsett and
+//! Wanner, *Solving ODEs I*, 2nd ed., table II.5.2 and section II.4), and the classic RK4 with
+//! an embedded third-order estimate ([`RK4_FSAL`]), which `auto` takes on the FFR
+//! slider-crank: its step is bounded by the stiffest retained mode, where RK4 is stable to
+//! 2.8 times the Dormand-Prince step with four evaluations instead of six.
 //!
-//! One step of size h: seven stages (the last one at `t + h` on the new solution, reused as the
-//! first stage of the next step: "first same as last"), the fifth-order solution propagated and
-//! the difference to the embedded fourth-order one as the local error estimate `e`. Error norm
+//! One step of size h: the stages (the last one at `t + h` on the new solution, reused as the
+//! first stage of the next step: "first same as last"), the higher-order solution propagated
+//! and the difference to the embedded one as the local error estimate `e`. Error norm
 //! (maximum norm, so the control is pointwise):
 //! `err = max_i |e_i| / sc_i`, `sc_z = tol max(A, A_min) s`, `sc_z' = w sc_z`,
 //! with `A` the amplitude of the motion the accuracy is stated for (the mechanism keeps the
 //! largest `|v_mid / L|` so far in [`DaeState::amplitude`]), `A_min` a floor, `s` the
 //! coordinate's scale (its value for a deflection of the rod's length) and `w` the mode's
 //! circular frequency. The step is accepted when `err <= 1`; the next one is
-//! `h min(5, max(0.2, 0.9 err^(-1/5)))` (after a rejection, at most h). The step proposal is
+//! `h min(5, max(0.2, 0.9 err^(-1/p)))` with `p` the order of the estimate (5 or 4; after a
+//! rejection, at most h). The step proposal is
 //! part of the state ([`DaeState::step_hint`]), so a restored state replays bit for bit.
 
 use super::failure::{StepError, StepFailure};
@@ -27,7 +33,10 @@ use super::{quantize_step, Integrator};
 /// (the step control's exponent is `1 / estimate_order`).
 #[derive(Debug)]
 pub struct Tableau {
-    pub name: &'static str,
+    /// The method's name on a system with a closed-form reduced right-hand side, and on one
+    /// evaluated by the general partitioned path.
+    pub name_minimal: &'static str,
+    pub name_general: &'static str,
     pub stages: usize,
     pub c: &'static [f64],
     pub a: &'static [&'static [f64]],
@@ -39,7 +48,8 @@ pub struct Tableau {
 /// per step. Stable on the imaginary axis only up to `|h w|` of about 1 (`|R(i y)| > 1`
 /// beyond), so an undamped stiff mode bounds its step.
 pub const DORMAND_PRINCE: Tableau = Tableau {
-    name: "Dormand-Prince 5(4) on independent coordinates",
+    name_minimal: "Dormand-Prince 5(4) on minimal coordinates (closed form)",
+    name_general: "Dormand-Prince 5(4) on independent coordinates (general partitioned evaluation)",
     stages: 7,
     c: &[0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0],
     a: &[
@@ -89,7 +99,8 @@ pub const DORMAND_PRINCE: Tableau = Tableau {
 /// `|h w| = 2 sqrt 2` (Hairer and Wanner, *Solving ODEs II*, section IV.2), 2.8 times the
 /// step of [`DORMAND_PRINCE`] on an undamped stiff mode for two thirds of its evaluations.
 pub const RK4_FSAL: Tableau = Tableau {
-    name: "Runge-Kutta 4(3) on minimal coordinates",
+    name_minimal: "Runge-Kutta 4(3) on minimal coordinates (closed form)",
+    name_general: "Runge-Kutta 4(3) on independent coordinates (general partitioned evaluation)",
     stages: 5,
     c: &[0.0, 0.5, 0.5, 1.0, 1.0],
     a: &[
@@ -123,6 +134,8 @@ pub struct ErrorControl {
 /// The integrator and its workspace.
 pub struct Dopri5 {
     tableau: &'static Tableau,
+    /// The system evaluates its reduced right-hand side in closed form (for the name).
+    closed_form: bool,
     rhs: PartitionedRhs,
     control: ErrorControl,
     k: usize,
@@ -158,6 +171,7 @@ impl Dopri5 {
         let stage = || std::array::from_fn(|_| vec![0.0; k]);
         Dopri5 {
             tableau,
+            closed_form: system.has_reduced_rhs(),
             q0: vec![0.0; system.n_coordinates()],
             rhs,
             control,
@@ -321,7 +335,11 @@ impl Integrator for Dopri5 {
     }
 
     fn name(&self) -> &'static str {
-        self.tableau.name
+        if self.closed_form {
+            self.tableau.name_minimal
+        } else {
+            self.tableau.name_general
+        }
     }
 
     fn work_unit(&self) -> &'static str {

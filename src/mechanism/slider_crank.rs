@@ -9,12 +9,12 @@ use super::dae::SliderCrankDae;
 use super::spec::{MechanismSpec, SolverMethod};
 use super::state::MechanismState;
 use crate::error::ModelError;
+use crate::integrator::dopri5::{DORMAND_PRINCE, RK4_FSAL};
 use crate::integrator::generalized_alpha::AlphaErrorControl;
 use crate::integrator::{
     ConstrainedSolve, DaeState, DaeSystem, Dopri5, ErrorControl, ExplicitRk4, GeneralizedAlpha,
     Integrator,
 };
-use crate::integrator::dopri5::{DORMAND_PRINCE, RK4_FSAL};
 use crate::rod::RodBody;
 
 /// Local error tolerance of the adaptive explicit pair per unit of `solver.tolerance`: the

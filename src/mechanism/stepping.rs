@@ -196,7 +196,8 @@ impl Mechanism {
         let g_x = self.spec.mechanism.gravity[0];
         let inertia = m_s * d.qdd[ns];
         let residual = inertia - d.lambda[2] - state.slider_force - m_s * g_x;
-        let scale = inertia.abs() + d.lambda[2].abs() + state.slider_force.abs() + (m_s * g_x).abs();
+        let scale =
+            inertia.abs() + d.lambda[2].abs() + state.slider_force.abs() + (m_s * g_x).abs();
         residual.abs() <= 1e-12 * scale.max(1e-300)
     }
 
