@@ -4,11 +4,9 @@
 //! Run: `cargo bench --bench core`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use faer::MatMut;
 use flexrod::beam::RodProperties;
 use flexrod::drive::{self, communication_grid, CrankDrive};
-use flexrod::integrator::{DaeSystem, PartitionedRhs};
-use flexrod::mechanism::dae::SliderCrankDae;
+use flexrod::integrator::{GeneralPath, PartitionedRhs};
 use flexrod::modal::{ComponentModes, ModeSelection, ReferenceConditions};
 use flexrod::rod::ffr::FfrRod;
 use flexrod::scene::{MassKind, SolverMethod};
@@ -97,55 +95,6 @@ fn revolutions(c: &mut Criterion) {
     );
 }
 
-/// The same system without its closed form: the general partitioned evaluation (Newton-free
-/// closed-form positions, LU solves of the constraint Jacobian, the reduced mass matrix from the
-/// full one), the previous right-hand side.
-struct General<'a>(&'a SliderCrankDae<'a>);
-
-impl DaeSystem for General<'_> {
-    fn n_coordinates(&self) -> usize {
-        self.0.n_coordinates()
-    }
-    fn n_constraints(&self) -> usize {
-        self.0.n_constraints()
-    }
-    fn coordinate_scale(&self, i: usize) -> f64 {
-        self.0.coordinate_scale(i)
-    }
-    fn mass(&self, q: &[f64], m: MatMut<'_, f64>) {
-        self.0.mass(q, m)
-    }
-    fn forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) {
-        self.0.forces(t, q, v, f)
-    }
-    fn constraints(&self, t: f64, q: &[f64], phi: &mut [f64]) {
-        self.0.constraints(t, q, phi)
-    }
-    fn constraint_jacobian(&self, q: &[f64], jac: MatMut<'_, f64>) {
-        self.0.constraint_jacobian(q, jac)
-    }
-    fn constraint_rate(&self, t: f64, q: &[f64], out: &mut [f64]) {
-        self.0.constraint_rate(t, q, out)
-    }
-    fn constraint_acceleration_rhs(&self, t: f64, q: &[f64], v: &[f64], out: &mut [f64]) {
-        self.0.constraint_acceleration_rhs(t, q, v, out)
-    }
-    fn solve_dependent_positions(&self, t: f64, q: &mut [f64]) -> bool {
-        self.0.solve_dependent_positions(t, q)
-    }
-    fn add_tangent(
-        &self,
-        q: &[f64],
-        v: &[f64],
-        lambda: &[f64],
-        c_k: f64,
-        c_d: f64,
-        out: MatMut<'_, f64>,
-    ) {
-        self.0.add_tangent(q, v, lambda, c_k, c_d, out)
-    }
-}
-
 /// One right-hand side of the default scene on its modal coordinates: the closed form
 /// (intermediate stage and last stage with the frame angle and multipliers) and the general
 /// partitioned evaluation.
@@ -160,7 +109,7 @@ fn right_hand_side(c: &mut Criterion) {
     sim.start(0.0, input, 0.0).unwrap();
     let mech = sim.mechanism();
     let sys = mech.system(sim.state());
-    let general = General(&sys);
+    let general = GeneralPath(&sys);
     let elastic: Vec<usize> = mech.rod.elastic_coordinates().unwrap().collect();
     let z = [1e-4, -2e-5, 1e-6];
     let zd = [1e-2, 1e-3, -1e-3];

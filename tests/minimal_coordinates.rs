@@ -4,59 +4,10 @@
 //! the constraint Jacobian, the reduced mass matrix from the full one), and whole runs against
 //! the constraint-based formulation at a converged step.
 
-use faer::MatMut;
 use flexrod::drive::{self, communication_grid, CrankDrive, Record};
-use flexrod::integrator::{DaeSystem, PartitionedRhs};
-use flexrod::mechanism::dae::SliderCrankDae;
+use flexrod::integrator::{DaeSystem, GeneralPath, PartitionedRhs};
 use flexrod::scene::SolverMethod;
 use flexrod::{CrankInput, Scene, Simulation};
-
-/// The same system without its closed form: the integrator takes the general path.
-struct General<'a>(&'a SliderCrankDae<'a>);
-
-impl DaeSystem for General<'_> {
-    fn n_coordinates(&self) -> usize {
-        self.0.n_coordinates()
-    }
-    fn n_constraints(&self) -> usize {
-        self.0.n_constraints()
-    }
-    fn coordinate_scale(&self, i: usize) -> f64 {
-        self.0.coordinate_scale(i)
-    }
-    fn mass(&self, q: &[f64], m: MatMut<'_, f64>) {
-        self.0.mass(q, m)
-    }
-    fn forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) {
-        self.0.forces(t, q, v, f)
-    }
-    fn constraints(&self, t: f64, q: &[f64], phi: &mut [f64]) {
-        self.0.constraints(t, q, phi)
-    }
-    fn constraint_jacobian(&self, q: &[f64], jac: MatMut<'_, f64>) {
-        self.0.constraint_jacobian(q, jac)
-    }
-    fn constraint_rate(&self, t: f64, q: &[f64], out: &mut [f64]) {
-        self.0.constraint_rate(t, q, out)
-    }
-    fn constraint_acceleration_rhs(&self, t: f64, q: &[f64], v: &[f64], out: &mut [f64]) {
-        self.0.constraint_acceleration_rhs(t, q, v, out)
-    }
-    fn solve_dependent_positions(&self, t: f64, q: &mut [f64]) -> bool {
-        self.0.solve_dependent_positions(t, q)
-    }
-    fn add_tangent(
-        &self,
-        q: &[f64],
-        v: &[f64],
-        lambda: &[f64],
-        c_k: f64,
-        c_d: f64,
-        out: MatMut<'_, f64>,
-    ) {
-        self.0.add_tangent(q, v, lambda, c_k, c_d, out)
-    }
-}
 
 fn max_rel(a: &[f64], b: &[f64]) -> f64 {
     let scale = a.iter().fold(1e-300f64, |m, x| m.max(x.abs()));
@@ -114,7 +65,7 @@ fn closed_form_equals_general_evaluation() {
         let state = sim.state();
         let sys = mech.system(state);
         assert!(sys.has_reduced_rhs(), "{name}: closed form available");
-        let general = General(&sys);
+        let general = GeneralPath(&sys);
         let n = sys.n_coordinates();
         let elastic: Vec<usize> = mech.rod.elastic_coordinates().unwrap().collect();
         let k = elastic.len();

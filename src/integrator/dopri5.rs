@@ -186,6 +186,15 @@ impl Dopri5 {
         }
     }
 
+    /// `err^(-1/p)`, `p` the order of the estimate (two square roots for p = 4).
+    fn root(&self, err: f64) -> f64 {
+        if self.tableau.estimate_order == 4.0 {
+            1.0 / err.sqrt().sqrt()
+        } else {
+            err.powf(-1.0 / self.tableau.estimate_order)
+        }
+    }
+
     /// One try of size h from `state`; returns the error norm (the solution of the try is left
     /// in `self.z`, `self.zd` and the evaluation workspace).
     fn attempt(
@@ -286,11 +295,10 @@ impl Integrator for Dopri5 {
                 .attempt(system, state, h, &mut work)
                 .unwrap_or(f64::INFINITY);
             if err <= 1.0 {
-                let exponent = -1.0 / self.tableau.estimate_order;
                 let grow = if err == 0.0 {
                     5.0
                 } else {
-                    (0.9 * err.powf(exponent)).clamp(0.2, 5.0)
+                    (0.9 * self.root(err)).clamp(0.2, 5.0)
                 };
                 let mut next = h * if rejected { grow.min(1.0) } else { grow };
                 if h == h_max && h < proposal {
@@ -307,7 +315,7 @@ impl Integrator for Dopri5 {
             }
             rejected = true;
             let shrink = if err.is_finite() {
-                (0.9 * err.powf(-1.0 / self.tableau.estimate_order)).clamp(0.2, 1.0)
+                (0.9 * self.root(err)).clamp(0.2, 1.0)
             } else {
                 0.25
             };

@@ -34,7 +34,7 @@ pub use partitioned::PartitionedRhs;
 pub use runge_kutta::ExplicitRk4;
 pub use small_lu::SmallLu;
 pub use state::DaeState;
-pub use system::DaeSystem;
+pub use system::{DaeSystem, GeneralPath};
 
 /// A step size rounded down to the grid `2^(k/8)` (eight steps per octave): adaptive step
 /// choices then do not follow round-off-level differences in the error estimate, so the same

@@ -71,3 +71,51 @@ pub trait DaeSystem {
         out: MatMut<'_, f64>,
     );
 }
+
+/// A system seen without its closed form ([`DaeSystem::reduced_rhs`]): an integrator then
+/// takes the general path (for comparisons and benchmarks of the two).
+pub struct GeneralPath<'a>(pub &'a dyn DaeSystem);
+
+impl DaeSystem for GeneralPath<'_> {
+    fn n_coordinates(&self) -> usize {
+        self.0.n_coordinates()
+    }
+    fn n_constraints(&self) -> usize {
+        self.0.n_constraints()
+    }
+    fn coordinate_scale(&self, i: usize) -> f64 {
+        self.0.coordinate_scale(i)
+    }
+    fn mass(&self, q: &[f64], m: MatMut<'_, f64>) {
+        self.0.mass(q, m)
+    }
+    fn forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) {
+        self.0.forces(t, q, v, f)
+    }
+    fn constraints(&self, t: f64, q: &[f64], phi: &mut [f64]) {
+        self.0.constraints(t, q, phi)
+    }
+    fn constraint_jacobian(&self, q: &[f64], jac: MatMut<'_, f64>) {
+        self.0.constraint_jacobian(q, jac)
+    }
+    fn constraint_rate(&self, t: f64, q: &[f64], out: &mut [f64]) {
+        self.0.constraint_rate(t, q, out)
+    }
+    fn constraint_acceleration_rhs(&self, t: f64, q: &[f64], v: &[f64], out: &mut [f64]) {
+        self.0.constraint_acceleration_rhs(t, q, v, out)
+    }
+    fn solve_dependent_positions(&self, t: f64, q: &mut [f64]) -> bool {
+        self.0.solve_dependent_positions(t, q)
+    }
+    fn add_tangent(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        lambda: &[f64],
+        c_k: f64,
+        c_d: f64,
+        out: MatMut<'_, f64>,
+    ) {
+        self.0.add_tangent(q, v, lambda, c_k, c_d, out)
+    }
+}

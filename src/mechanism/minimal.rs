@@ -284,8 +284,13 @@ fn evaluate<const N: usize>(
     }
     let mgv_p = mat_vec(&k.m_uu_gv, &p);
     let st_pd = mat_vec(&k.s_tilde, &pd);
+    // The p rows' coupling to R'': `M_pR = (A I2)^T + c_s (G_a p) (A e_x)^T`, row i `u_i`.
+    let mut u = [[0.0; N]; 2];
+    for i in 0..N {
+        u[0][i] = ai2[0][i] + gap[i] * c;
+        u[1][i] = ai2[1][i] + gap[i] * s;
+    }
     // r = Q - M b, row blocks R, phi, p, s.
-    let cb = c * b_r[0] + s * b_r[1];
     let r_r = [
         qr[0] + m * g.x - m * b_r[0] - arm[0] * b_phi,
         qr[1] + m * g.y - m * b_r[1] - arm[1] * b_phi,
@@ -299,9 +304,8 @@ fn evaluate<const N: usize>(
             - k.damping[i] * pd[i]
             + ai2[0][i] * g.x
             + ai2[1][i] * g.y
-            - ai2[0][i] * b_r[0]
-            - ai2[1][i] * b_r[1]
-            - gap[i] * cb
+            - u[0][i] * b_r[0]
+            - u[1][i] * b_r[1]
             - m_phip[i] * b_phi;
     }
     let r_s = inp.slider_force + inp.slider_mass * g.x - inp.slider_mass * b_x;
@@ -315,20 +319,24 @@ fn evaluate<const N: usize>(
         mt_phi[j] = arm[0] * t_r[0][j] + arm[1] * t_r[1][j] + m_phiphi * g_phi[j] + m_phip[j];
         mt_s[j] = inp.slider_mass * t_x[j];
     }
+    // T^T (M T): the R, phi and slider rows through T, the p rows directly
+    // (`M_pR T_R + M_pphi g_phi + M_ff`).
+    let slider = inp.slider_mass != 0.0;
     let mut reduced = [[0.0; N]; N];
     let mut rhs = [0.0; N];
     for i in 0..N {
         for j in 0..N {
-            let mt_p = ai2[0][i] * t_r[0][j]
-                + ai2[1][i] * t_r[1][j]
-                + gap[i] * (c * t_r[0][j] + s * t_r[1][j])
-                + m_phip[i] * g_phi[j]
-                + k.m_ff[i][j];
-            reduced[i][j] = t_r[0][i] * mt_r[0][j]
+            let mut e = k.m_ff[i][j]
+                + t_r[0][i] * mt_r[0][j]
                 + t_r[1][i] * mt_r[1][j]
+                + u[0][i] * t_r[0][j]
+                + u[1][i] * t_r[1][j]
                 + g_phi[i] * mt_phi[j]
-                + mt_p
-                + t_x[i] * mt_s[j];
+                + m_phip[i] * g_phi[j];
+            if slider {
+                e += t_x[i] * mt_s[j];
+            }
+            reduced[i][j] = e;
         }
         rhs[i] = t_r[0][i] * r_r[0] + t_r[1][i] * r_r[1] + g_phi[i] * r_phi + r_p[i] + t_x[i] * r_s;
     }

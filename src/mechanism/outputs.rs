@@ -46,7 +46,6 @@ use super::slider_crank::{Mechanism, OutputSolve};
 use super::state::MechanismState;
 use crate::error::ModelError;
 use crate::integrator::{DaeSystem, StepFailure};
-use crate::rod::RodPoint;
 
 impl Mechanism {
     /// Factor the saddle-point matrix at `state`'s positions, project the velocities on the
@@ -102,9 +101,7 @@ impl Mechanism {
         let lambda = &work.solve.lambda;
         let nr = self.rod.n_coordinates();
         let q = &state.dae.q;
-        let rb = self.rod.point(RodPoint::B, q);
-        let rc = self.rod.point(RodPoint::C, q);
-        let rm = self.rod.point(RodPoint::Mid, q);
+        let [rb, rc, rm] = self.rod.points(q);
         let chord = rc - rb;
         let d = rm - rb;
         let deflection = (chord.x * d.y - chord.y * d.x) / chord.norm();

@@ -80,6 +80,15 @@ pub trait RodBody: Send {
     fn add_tangent(&self, q: &[f64], v: &[f64], c_k: f64, c_d: f64, out: MatMut<'_, f64>);
     /// Global position of a material point.
     fn point(&self, p: RodPoint, q: &[f64]) -> Vector2<f64>;
+    /// The global positions of B, C and the midpoint together (one evaluation of the frame's
+    /// rotation where the model has one).
+    fn points(&self, q: &[f64]) -> [Vector2<f64>; 3] {
+        [
+            self.point(RodPoint::B, q),
+            self.point(RodPoint::C, q),
+            self.point(RodPoint::Mid, q),
+        ]
+    }
     /// Jacobian `d r_p / d q` (2 x n) into `out`.
     fn point_jacobian(&self, p: RodPoint, q: &[f64], out: MatMut<'_, f64>);
     /// `(d/dt J_p) q'`: the velocity-product part of the point's acceleration.

@@ -307,6 +307,12 @@ impl RodBody for FfrRod {
         Vector2::new(q[0], q[1]) + rotate(c, s, self.ubar(p, q))
     }
 
+    fn points(&self, q: &[f64]) -> [Vector2<f64>; 3] {
+        let (c, s) = rot(q[2]);
+        let r = Vector2::new(q[0], q[1]);
+        [RodPoint::B, RodPoint::C, RodPoint::Mid].map(|p| r + rotate(c, s, self.ubar(p, q)))
+    }
+
     fn point_jacobian(&self, p: RodPoint, q: &[f64], mut out: MatMut<'_, f64>) {
         let (c, s) = rot(q[2]);
         out[(0, 0)] = 1.0;
