@@ -6,7 +6,6 @@ use super::crank::CrankLaw;
 use super::slider_crank::{dae_context, Mechanism, OutputSolve};
 use super::state::MechanismState;
 use crate::error::ModelError;
-use crate::integrator::DaeSystem;
 use crate::rod::DeflectionPolicy;
 
 /// |v_mid| / L above which the small-deformation assumption is flagged.
@@ -137,8 +136,17 @@ impl Mechanism {
     ) -> Result<bool, (f64, f64, String)> {
         let t = state.dae.t;
         let sys = dae_context(self.rod.as_ref(), &self.spec, state);
-        let mut phi = [0.0; 4];
-        sys.constraints(t, &state.dae.q, &mut phi);
+        // The constraint residual of `SliderCrankDae::constraints`, with the pin's motion of
+        // the new law computed once for the position and the velocity checks.
+        let (pin, v_new, a_new) = sys.crank.pin(t);
+        let [rb, rc, _] = self.rod.points(&state.dae.q);
+        let ns = self.rod.n_coordinates();
+        let phi = [
+            rb.x - pin.x,
+            rb.y - pin.y,
+            rc.x - state.dae.q[ns],
+            rc.y - sys.slider_offset,
+        ];
         let tolerance = 1e-14 * self.rod.length();
         let mut work = self
             .output_solve
@@ -149,8 +157,6 @@ impl Mechanism {
         };
         let result = (|| {
             let positions_off = phi.iter().any(|x| x.abs() > tolerance);
-            let mut rate = [0.0; 4];
-            sys.constraint_rate(t, &state.dae.q, &mut rate);
             let mut velocities_off = positions_off;
             if !velocities_off {
                 let previous = CrankLaw {
@@ -158,7 +164,6 @@ impl Mechanism {
                     t_k: state.previous_input_time,
                     input: state.previous_input,
                 };
-                let (_, v_new, a_new) = sys.crank.pin(t);
                 let (_, v_old, a_old) = previous.pin(t);
                 velocities_off = (v_new - v_old).norm() > 1e-14 * (1.0 + v_new.norm())
                     || (a_new - a_old).norm() > 1e-12 * (1.0 + a_new.norm());
