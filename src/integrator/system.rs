@@ -46,8 +46,9 @@ pub trait DaeSystem {
     /// `Phi_q q' + Phi_t = 0`), all accelerations into `qdd` and the multipliers into `lambda`,
     /// from one evaluation of `M q'' + Phi_q^T lambda = Q`, `Phi_q q'' = gamma`. With
     /// `lambda = None` (an intermediate stage) the system may skip what only a state needs:
-    /// the multipliers, and dependent coordinates that no acceleration needs (the FFR frame
-    /// angle itself, whose sine and cosine are all the equations use). Returns `None` where
+    /// the multipliers, the dependent velocities and accelerations, and dependent coordinates
+    /// that no acceleration needs (the FFR frame angle itself, whose sine and cosine are all
+    /// the equations use); the independent accelerations are always written. Returns `None` where
     /// the system has no closed form (the integrator then takes the general path).
     fn reduced_rhs(
         &self,

@@ -32,7 +32,9 @@
 //!   `-lambda_Cx = r_s`, solved in closed form (the 2 x 2 part has determinant `X`).
 //!
 //! Everything is on the stack, in loops of the compile-time size `N` (one instance per mode
-//! count up to [`MAX_MODES`]).
+//! count up to [`MAX_MODES`]). An intermediate stage (no multipliers asked) computes the modal
+//! accelerations only: no frame angle (`atan2`), dependent velocities and accelerations or
+//! multipliers; the crank pin's motion is cached per time (stages share their times).
 
 use nalgebra::Vector2;
 
@@ -87,7 +89,7 @@ impl SliderCrankDae<'_> {
         qdd: &mut [f64],
         lambda: Option<&mut [f64]>,
     ) -> Result<(), StepFailure> {
-        let (pin, pin_v, pin_a) = self.crank.pin(t);
+        let (pin, pin_v, pin_a) = self.pin_at(t);
         let inputs = Inputs {
             pin,
             pin_v,
@@ -226,10 +228,13 @@ fn evaluate<const N: usize>(
     let w = dot_n(&g_phi, &pd) - inp.pin_v.y * inv_x;
     let sb_pd = [dot(&k.s_b[0], &pd), dot(&k.s_b[1], &pd)];
     let asb_pd = rot(sb_pd);
-    v[0] = inp.pin_v.x - a_b[0] * w - asb_pd[0];
-    v[1] = inp.pin_v.y - a_b[1] * w - asb_pd[1];
     v[2] = w;
-    v[ns] = inp.pin_v.x - y * w + dot_n(&ad[0], &pd);
+    let complete = lambda.is_some();
+    if complete {
+        v[0] = inp.pin_v.x - a_b[0] * w - asb_pd[0];
+        v[1] = inp.pin_v.y - a_b[1] * w - asb_pd[1];
+        v[ns] = inp.pin_v.x - y * w + dot_n(&ad[0], &pd);
+    }
     // Velocity-product terms of the pin accelerations (body frame, then global).
     let w2 = w * w;
     let sc_pd = [dot(&k.s_c[0], &pd) - dot_n(&g0p, &pd), dot(&k.s_c[1], &pd)];
@@ -345,16 +350,16 @@ fn evaluate<const N: usize>(
     if zdd.iter().any(|x| !x.is_finite()) {
         return Err(StepFailure::NonFinite);
     }
-    // Accelerations.
-    qdd[0] = dot_n(&t_r[0], &zdd) + b_r[0];
-    qdd[1] = dot_n(&t_r[1], &zdd) + b_r[1];
-    qdd[2] = dot_n(&g_phi, &zdd) + b_phi;
+    // Accelerations (the dependent ones at a last stage only).
     qdd[3..3 + N].copy_from_slice(&zdd);
-    qdd[ns] = dot_n(&t_x, &zdd) + b_x;
-    // Multipliers: Phi_D^T lambda = (Q - M q'')_D.
     let Some(lambda) = lambda else {
         return Ok(());
     };
+    qdd[0] = dot_n(&t_r[0], &zdd) + b_r[0];
+    qdd[1] = dot_n(&t_r[1], &zdd) + b_r[1];
+    qdd[2] = dot_n(&g_phi, &zdd) + b_phi;
+    qdd[ns] = dot_n(&t_x, &zdd) + b_x;
+    // Multipliers: Phi_D^T lambda = (Q - M q'')_D.
     let rr = [
         r_r[0] - dot_n(&mt_r[0], &zdd),
         r_r[1] - dot_n(&mt_r[1], &zdd),

@@ -88,6 +88,7 @@ pub(super) fn dae_context<'a>(
         slider_force: state.slider_force,
         slider_offset: spec.mechanism.slider_offset,
         gravity: Vector2::from(spec.mechanism.gravity),
+        pin_cache: Default::default(),
     }
 }
 
@@ -124,6 +125,7 @@ impl Mechanism {
             slider_force: 0.0,
             slider_offset: spec.mechanism.slider_offset,
             gravity: Vector2::from(spec.mechanism.gravity),
+            pin_cache: Default::default(),
         };
         let (integrator, max_step): (Box<dyn Integrator>, f64) = match method {
             SolverMethod::Dopri5 => {
