@@ -6,6 +6,7 @@ use super::crank::CrankLaw;
 use super::slider_crank::{dae_context, Mechanism, OutputSolve};
 use super::state::MechanismState;
 use crate::error::ModelError;
+use crate::integrator::DaeSystem;
 use crate::rod::DeflectionPolicy;
 
 /// |v_mid| / L above which the small-deformation assumption is flagged.
@@ -44,8 +45,8 @@ impl Mechanism {
         let n_sub = n_sub_f as usize;
         let result = (|| {
             if adaptive {
-                let moved = self.restart_consistently(state)?;
-                if !moved && self.slider_force_consistent(state) {
+                let stale = self.restart_consistently(state)?;
+                if !stale && self.slider_force_consistent(state) {
                     self.integrator.reuse_first_stage();
                 }
                 return self.adaptive_steps(state, t_end);
@@ -126,10 +127,13 @@ impl Mechanism {
     /// Before the steps of an adaptive integrator: where the inputs set at this communication
     /// point moved the crank off the law the state followed (a sampled motion's new angle,
     /// speed and acceleration), the positions and velocities move onto the new law's
-    /// constraints by the M-weighted least change (the index-1 projection, as the fixed-step
-    /// RK4 does after every step), and the accelerations and multipliers are recomputed: the
-    /// jump is not charged to the error control as a local error. Returns whether the state
-    /// moved (then its accelerations are new).
+    /// constraints and the accelerations and multipliers are recomputed: the jump is not
+    /// charged to the error control as a local error. With minimal coordinates in closed form
+    /// (`DaeSystem::reduced_rhs`) the modal coordinates and rates stay and the dependent ones
+    /// follow (one evaluation, whose accelerations start the next step); otherwise by the
+    /// M-weighted least change (the index-1 projection, as the fixed-step RK4 does after every
+    /// step). Returns whether the state's accelerations still need an evaluation (after the
+    /// general projection).
     fn restart_consistently(
         &mut self,
         state: &mut MechanismState,
@@ -169,6 +173,18 @@ impl Mechanism {
                     || (a_new - a_old).norm() > 1e-12 * (1.0 + a_new.norm());
             }
             if !velocities_off {
+                return Ok(false);
+            }
+            // Minimal coordinates in closed form: the modal coordinates and their rates stay,
+            // the frame and the slider follow the new law, with the accelerations and
+            // multipliers of the same evaluation (they are the next step's first stage).
+            let d = &mut state.dae;
+            let lambda = Some(&mut d.lambda[..]);
+            if let Some(result) = sys.reduced_rhs(t, &mut d.q, &mut d.v, &mut d.qdd, lambda) {
+                result.map_err(fail)?;
+                d.acc.copy_from_slice(&d.qdd);
+                // A right-hand side, counted with the integrator's (the one it saves).
+                state.stats.newton_iterations += 1;
                 return Ok(false);
             }
             work.solve
