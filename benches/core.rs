@@ -1,10 +1,12 @@
 //! Benchmarks (issue 2, 3): preprocessing of a 64-element rod; two revolutions of the benchmark
 //! slider-crank at 150 rad/s with the settings that meet 0.5 % peak-deflection accuracy.
+//! One right-hand side on the minimal coordinates against the general partitioned evaluation.
 //! Run: `cargo bench --bench core`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use flexrod::beam::RodProperties;
 use flexrod::drive::{self, communication_grid, CrankDrive};
+use flexrod::integrator::{GeneralPath, PartitionedRhs};
 use flexrod::modal::{ComponentModes, ModeSelection, ReferenceConditions};
 use flexrod::rod::ffr::FfrRod;
 use flexrod::scene::{MassKind, SolverMethod};
@@ -67,8 +69,16 @@ fn revolutions(c: &mut Criterion) {
     );
     two_revolutions(
         c,
-        "2 revolutions at 150 rad/s, default scene: auto (Dormand-Prince, tolerance 1e-3), 8 el, 3 modes, outputs every 3e-4",
+        "2 revolutions at 150 rad/s, default scene: auto (RK4(3) on minimal coordinates, tolerance 1e-3), 8 el, 3 modes, outputs every 3e-4",
         Scene::benchmark(),
+        3e-4,
+    );
+    let mut dopri = Scene::benchmark();
+    dopri.solver.method = SolverMethod::Dopri5;
+    two_revolutions(
+        c,
+        "2 revolutions at 150 rad/s, Dormand-Prince on minimal coordinates, tolerance 1e-3, outputs every 3e-4",
+        dopri,
         3e-4,
     );
     two_revolutions(
@@ -85,5 +95,62 @@ fn revolutions(c: &mut Criterion) {
     );
 }
 
-criterion_group!(benches, preprocessing, revolutions);
+/// One right-hand side of the default scene on its modal coordinates: the closed form
+/// (intermediate stage and last stage with the frame angle and multipliers) and the general
+/// partitioned evaluation.
+fn right_hand_side(c: &mut Criterion) {
+    let scene = Scene::benchmark();
+    let mut sim = Simulation::new(&scene).unwrap();
+    let input = flexrod::CrankInput {
+        angle: 0.3,
+        speed: 150.0,
+        acceleration: 0.0,
+    };
+    sim.start(0.0, input, 0.0).unwrap();
+    let mech = sim.mechanism();
+    let sys = mech.system(sim.state());
+    let general = GeneralPath(&sys);
+    let elastic: Vec<usize> = mech.rod.elastic_coordinates().unwrap().collect();
+    let z = [1e-4, -2e-5, 1e-6];
+    let zd = [1e-2, 1e-3, -1e-3];
+    let mut zdd = [0.0; 3];
+    let mut rhs = PartitionedRhs::new(&sys, elastic.clone());
+    rhs.q.copy_from_slice(&sim.state().dae.q);
+    for (name, complete) in [
+        (
+            "right-hand side, minimal coordinates (intermediate stage)",
+            false,
+        ),
+        (
+            "right-hand side, minimal coordinates (last stage: angle and multipliers)",
+            true,
+        ),
+    ] {
+        c.bench_function(name, |b| {
+            b.iter(|| {
+                rhs.evaluate_stage(&sys, black_box(1e-3), &z, &zd, &mut zdd, complete)
+                    .unwrap();
+                if complete {
+                    rhs.multipliers();
+                }
+                black_box(zdd[0])
+            })
+        });
+    }
+    let mut rhs = PartitionedRhs::new(&general, elastic);
+    rhs.q.copy_from_slice(&sim.state().dae.q);
+    c.bench_function(
+        "right-hand side, general partitioned evaluation (the previous one)",
+        |b| {
+            b.iter(|| {
+                rhs.evaluate(&general, black_box(1e-3), &z, &zd, &mut zdd)
+                    .unwrap();
+                rhs.multipliers();
+                black_box(zdd[0])
+            })
+        },
+    );
+}
+
+criterion_group!(benches, preprocessing, revolutions, right_hand_side);
 criterion_main!(benches);

@@ -2,6 +2,8 @@
 //! `fmi2DoStep` beyond `Simulation::advance` with the same communication step (the exported C
 //! functions called in-process; default scene, NULL resource location, so the instance uses
 //! the compiled-in default scene after checking the GUID).
+//! `fmi2DoStep` at a 1e-5 s communication step (issue 12: <= 1.5 us a call), without inputs and
+//! with the crank angle and speed set before every call as an importer does.
 //! Run: `cargo bench --bench step`.
 
 use std::ffi::CString;
@@ -136,5 +138,83 @@ fn do_step_overhead(c: &mut Criterion) {
     );
 }
 
-criterion_group!(benches, one_step, one_revolution, do_step_overhead);
+/// An instance of the default scene in StepComplete at t = 0.
+fn instance() -> ffi::fmi2Component {
+    let scene = Scene::benchmark();
+    let guid = CString::new(ModelDescription::for_scene(&scene).unwrap().guid).unwrap();
+    let name = CString::new("bench").unwrap();
+    let functions = Box::leak(Box::new(fmi2CallbackFunctions {
+        logger: None,
+        allocate_memory: None,
+        free_memory: None,
+        step_finished: None,
+        component_environment: ptr::null_mut(),
+    }));
+    // SAFETY: valid NUL-terminated strings, a callback struct that lives to the end of the
+    // process, NULL resource location (the default scene is used if the GUID matches).
+    let comp = unsafe {
+        ffi::fmi2Instantiate(
+            name.as_ptr(),
+            1,
+            guid.as_ptr(),
+            ptr::null(),
+            functions,
+            0,
+            0,
+        )
+    };
+    assert!(!comp.is_null(), "fmi2Instantiate failed");
+    // SAFETY: comp is a live instance.
+    unsafe {
+        assert_eq!(ffi::fmi2SetupExperiment(comp, 0, 0.0, 0.0, 0, 0.0), 0);
+        assert_eq!(ffi::fmi2EnterInitializationMode(comp), 0);
+        assert_eq!(ffi::fmi2ExitInitializationMode(comp), 0);
+    }
+    comp
+}
+
+/// Issue 12: `fmi2DoStep` at a 1e-5 s communication step, per call, in process.
+fn do_step_1e5(c: &mut Criterion) {
+    let h = 1e-5;
+    let comp = instance();
+    let mut t = 0.0;
+    c.bench_function("fmi2DoStep h 1e-5 (default scene)", |b| {
+        b.iter(|| {
+            // SAFETY: comp is a live instance in StepComplete; t is its current time.
+            let status = unsafe { ffi::fmi2DoStep(comp, t, black_box(h), 1) };
+            assert_eq!(status, 0);
+            t += h;
+        })
+    });
+    // SAFETY: comp came from fmi2Instantiate and is freed once.
+    unsafe { ffi::fmi2FreeInstance(comp) };
+    let comp = instance();
+    let mut t = 0.0;
+    let vr = [1u32, 2];
+    c.bench_function(
+        "fmi2SetReal(crank.angle, crank.speed) + fmi2DoStep h 1e-5 (default scene)",
+        |b| {
+            b.iter(|| {
+                let values = [W * t, W];
+                // SAFETY: comp is live; vr and values hold two entries each.
+                let status = unsafe {
+                    ffi::fmi2SetReal(comp, vr.as_ptr(), 2, values.as_ptr());
+                    ffi::fmi2DoStep(comp, t, black_box(h), 1)
+                };
+                assert_eq!(status, 0);
+                t += h;
+            })
+        },
+    );
+    // SAFETY: comp came from fmi2Instantiate and is freed once.
+    unsafe { ffi::fmi2FreeInstance(comp) };
+}
+
+criterion_group!(
+    benches,
+    one_step,
+    one_revolution,
+    do_step_overhead,
+    do_step_1e5
+);
 criterion_main!(benches);

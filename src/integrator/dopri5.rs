@@ -1,17 +1,23 @@
-//! The Dormand-Prince 5(4) embedded Runge-Kutta pair (Dormand and Prince 1980; Hairer,
-//! Norsett and Wanner, *Solving ODEs I*, 2nd ed., table II.5.2 and section II.4) on the
-//! mechanism's independent coordinates ([`PartitionedRhs`]): `y = (z, z')`, `y' = (z', z'')`.
+//! Embedded explicit Runge-Kutta pairs with error control on the mechanism's independent
+//! coordinates ([`PartitionedRhs`]; minimal coordinates in closed form where the system has
+//! them, [`DaeSystem::reduced_rhs`]): `y = (z, z')`, `y' = (z', z'')`. Two pairs
+//! ([`Tableau`]): the Dormand-Prince 5(4) pair (Dormand and Prince 1980; Hairer, Norsett and
+//! Wanner, *Solving ODEs I*, 2nd ed., table II.5.2 and section II.4), and the classic RK4 with
+//! an embedded third-order estimate ([`RK4_FSAL`]), which `auto` takes on the FFR
+//! slider-crank: its step is bounded by the stiffest retained mode, where RK4 is stable to
+//! 2.8 times the Dormand-Prince step with four evaluations instead of six.
 //!
-//! One step of size h: seven stages (the last one at `t + h` on the new solution, reused as the
-//! first stage of the next step: "first same as last"), the fifth-order solution propagated and
-//! the difference to the embedded fourth-order one as the local error estimate `e`. Error norm
+//! One step of size h: the stages (the last one at `t + h` on the new solution, reused as the
+//! first stage of the next step: "first same as last"), the higher-order solution propagated
+//! and the difference to the embedded one as the local error estimate `e`. Error norm
 //! (maximum norm, so the control is pointwise):
 //! `err = max_i |e_i| / sc_i`, `sc_z = tol max(A, A_min) s`, `sc_z' = w sc_z`,
 //! with `A` the amplitude of the motion the accuracy is stated for (the mechanism keeps the
 //! largest `|v_mid / L|` so far in [`DaeState::amplitude`]), `A_min` a floor, `s` the
 //! coordinate's scale (its value for a deflection of the rod's length) and `w` the mode's
 //! circular frequency. The step is accepted when `err <= 1`; the next one is
-//! `h min(5, max(0.2, 0.9 err^(-1/5)))` (after a rejection, at most h). The step proposal is
+//! `h min(5, max(0.2, 0.9 err^(-1/p)))` with `p` the order of the estimate (5 or 4; after a
+//! rejection, at most h). The step proposal is
 //! part of the state ([`DaeState::step_hint`]), so a restored state replays bit for bit.
 
 use super::failure::{StepError, StepFailure};
@@ -20,47 +26,93 @@ use super::state::DaeState;
 use super::system::DaeSystem;
 use super::{quantize_step, Integrator};
 
-const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
-const A: [[f64; 6]; 7] = [
-    [0.0; 6],
-    [0.2, 0.0, 0.0, 0.0, 0.0, 0.0],
-    [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
-    [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
-    [
-        19372.0 / 6561.0,
-        -25360.0 / 2187.0,
-        64448.0 / 6561.0,
-        -212.0 / 729.0,
-        0.0,
-        0.0,
+/// An explicit embedded Runge-Kutta pair whose last stage is at `t + h` on the propagated
+/// solution (first same as last): `stages` stages, nodes `c`, coefficients `a` (row s: the
+/// weights of stages 0..s), the last row being the propagated weights; `e` the propagated
+/// weights minus the embedded ones; `estimate_order` the order of the local error estimate
+/// (the step control's exponent is `1 / estimate_order`).
+#[derive(Debug)]
+pub struct Tableau {
+    /// The method's name on a system with a closed-form reduced right-hand side, and on one
+    /// evaluated by the general partitioned path.
+    pub name_minimal: &'static str,
+    pub name_general: &'static str,
+    pub stages: usize,
+    pub c: &'static [f64],
+    pub a: &'static [&'static [f64]],
+    pub e: &'static [f64],
+    pub estimate_order: f64,
+}
+
+/// Dormand and Prince 5(4) (Hairer, Norsett and Wanner, table II.5.2): seven stages, six new
+/// per step. Stable on the imaginary axis only up to `|h w|` of about 1 (`|R(i y)| > 1`
+/// beyond), so an undamped stiff mode bounds its step.
+pub const DORMAND_PRINCE: Tableau = Tableau {
+    name_minimal: "Dormand-Prince 5(4) on minimal coordinates (closed form)",
+    name_general: "Dormand-Prince 5(4) on independent coordinates (general partitioned evaluation)",
+    stages: 7,
+    c: &[0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0],
+    a: &[
+        &[],
+        &[0.2],
+        &[3.0 / 40.0, 9.0 / 40.0],
+        &[44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0],
+        &[
+            19372.0 / 6561.0,
+            -25360.0 / 2187.0,
+            64448.0 / 6561.0,
+            -212.0 / 729.0,
+        ],
+        &[
+            9017.0 / 3168.0,
+            -355.0 / 33.0,
+            46732.0 / 5247.0,
+            49.0 / 176.0,
+            -5103.0 / 18656.0,
+        ],
+        &[
+            35.0 / 384.0,
+            0.0,
+            500.0 / 1113.0,
+            125.0 / 192.0,
+            -2187.0 / 6784.0,
+            11.0 / 84.0,
+        ],
     ],
-    [
-        9017.0 / 3168.0,
-        -355.0 / 33.0,
-        46732.0 / 5247.0,
-        49.0 / 176.0,
-        -5103.0 / 18656.0,
+    e: &[
+        71.0 / 57600.0,
         0.0,
+        -71.0 / 16695.0,
+        71.0 / 1920.0,
+        -17253.0 / 339200.0,
+        22.0 / 525.0,
+        -1.0 / 40.0,
     ],
-    [
-        35.0 / 384.0,
-        0.0,
-        500.0 / 1113.0,
-        125.0 / 192.0,
-        -2187.0 / 6784.0,
-        11.0 / 84.0,
+    estimate_order: 5.0,
+};
+
+/// The classic fourth-order Runge-Kutta method (Kutta 1901) with the evaluation at the new
+/// solution as a fifth stage (first same as last) and the embedded third-order weights
+/// `(1/6, 1/3, 1/3, 0, 1/6)` (they satisfy the order conditions `sum b = 1`, `sum b c = 1/2`,
+/// `sum b c^2 = 1/3`, `sum b A c = 1/6`, not `sum b A c^2 = 1/12`), so the estimate is
+/// `h (k_4 - k_5) / 6`: four new evaluations per step, and stable on the imaginary axis up to
+/// `|h w| = 2 sqrt 2` (Hairer and Wanner, *Solving ODEs II*, section IV.2), 2.8 times the
+/// step of [`DORMAND_PRINCE`] on an undamped stiff mode for two thirds of its evaluations.
+pub const RK4_FSAL: Tableau = Tableau {
+    name_minimal: "Runge-Kutta 4(3) on minimal coordinates (closed form)",
+    name_general: "Runge-Kutta 4(3) on independent coordinates (general partitioned evaluation)",
+    stages: 5,
+    c: &[0.0, 0.5, 0.5, 1.0, 1.0],
+    a: &[
+        &[],
+        &[0.5],
+        &[0.0, 0.5],
+        &[0.0, 0.0, 1.0],
+        &[1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0],
     ],
-];
-/// `b - b_hat`: fifth-order weights minus the embedded fourth-order ones.
-const E: [f64; 7] = [
-    71.0 / 57600.0,
-    0.0,
-    -71.0 / 16695.0,
-    71.0 / 1920.0,
-    -17253.0 / 339200.0,
-    22.0 / 525.0,
-    -1.0 / 40.0,
-];
+    e: &[0.0, 0.0, 0.0, 1.0 / 6.0, -1.0 / 6.0],
+    estimate_order: 4.0,
+};
 
 /// Settings of the error control.
 #[derive(Clone, Debug)]
@@ -81,6 +133,9 @@ pub struct ErrorControl {
 
 /// The integrator and its workspace.
 pub struct Dopri5 {
+    tableau: &'static Tableau,
+    /// The system evaluates its reduced right-hand side in closed form (for the name).
+    closed_form: bool,
     rhs: PartitionedRhs,
     control: ErrorControl,
     k: usize,
@@ -99,11 +154,24 @@ pub struct Dopri5 {
 
 impl Dopri5 {
     pub fn new(system: &dyn DaeSystem, independent: Vec<usize>, control: ErrorControl) -> Dopri5 {
+        Dopri5::with_tableau(system, independent, control, &DORMAND_PRINCE)
+    }
+
+    /// The same error control on another embedded pair.
+    pub fn with_tableau(
+        system: &dyn DaeSystem,
+        independent: Vec<usize>,
+        control: ErrorControl,
+        tableau: &'static Tableau,
+    ) -> Dopri5 {
+        assert!(tableau.stages <= 7 && tableau.a.len() == tableau.stages);
         let rhs = PartitionedRhs::new(system, independent);
         let k = rhs.k();
         assert_eq!(control.rate_weights.len(), k);
         let stage = || std::array::from_fn(|_| vec![0.0; k]);
         Dopri5 {
+            tableau,
+            closed_form: system.has_reduced_rhs(),
             q0: vec![0.0; system.n_coordinates()],
             rhs,
             control,
@@ -118,6 +186,15 @@ impl Dopri5 {
         }
     }
 
+    /// `err^(-1/p)`, `p` the order of the estimate (two square roots for p = 4).
+    fn root(&self, err: f64) -> f64 {
+        if self.tableau.estimate_order == 4.0 {
+            1.0 / err.sqrt().sqrt()
+        } else {
+            err.powf(-1.0 / self.tableau.estimate_order)
+        }
+    }
+
     /// One try of size h from `state`; returns the error norm (the solution of the try is left
     /// in `self.z`, `self.zd` and the evaluation workspace).
     fn attempt(
@@ -128,28 +205,30 @@ impl Dopri5 {
         work: &mut usize,
     ) -> Result<f64, StepFailure> {
         let k = self.k;
+        let tab = self.tableau;
+        let last = tab.stages - 1;
         // Start every try from the state alone (the dependent positions too): replay is exact.
         self.rhs.q.copy_from_slice(&self.q0);
-        for s in 1..7 {
+        for s in 1..tab.stages {
             for a in 0..k {
                 let mut dz = 0.0;
                 let mut dv = 0.0;
-                for j in 0..s {
-                    dz += A[s][j] * self.kz[j][a];
-                    dv += A[s][j] * self.kv[j][a];
+                for (j, &w) in tab.a[s].iter().enumerate() {
+                    dz += w * self.kz[j][a];
+                    dv += w * self.kv[j][a];
                 }
                 self.z[a] = self.z0[a] + h * dz;
                 self.zd[a] = self.zd0[a] + h * dv;
             }
-            let t = if s == 6 {
+            let t = if s == last {
                 state.t + h
             } else {
-                state.t + C[s] * h
+                state.t + tab.c[s] * h
             };
             let (kz, kv) = (&mut self.kz, &mut self.kv);
             kz[s].copy_from_slice(&self.zd);
             self.rhs
-                .evaluate(system, t, &self.z, &self.zd, &mut kv[s])?;
+                .evaluate_stage(system, t, &self.z, &self.zd, &mut kv[s], s == last)?;
             *work += 1;
         }
         let tol = self.control.tolerance * state.amplitude.max(self.control.amplitude_floor);
@@ -157,9 +236,9 @@ impl Dopri5 {
         for a in 0..k {
             let mut ez = 0.0;
             let mut ev = 0.0;
-            for s in 0..7 {
-                ez += E[s] * self.kz[s][a];
-                ev += E[s] * self.kv[s][a];
+            for (s, &w) in tab.e.iter().enumerate() {
+                ez += w * self.kz[s][a];
+                ev += w * self.kv[s][a];
             }
             let sc_z = tol * self.control.scales[a];
             let sc_v = self.control.rate_weights[a] * sc_z;
@@ -212,8 +291,6 @@ impl Integrator for Dopri5 {
         for _ in 0..=self.control.max_rejections {
             // A failed evaluation (a position solve that does not converge, a singular matrix)
             // counts as a large error: the step shrinks.
-            // A failed evaluation (a position solve that does not converge, a singular matrix)
-            // counts as a large error: the step shrinks.
             let err = self
                 .attempt(system, state, h, &mut work)
                 .unwrap_or(f64::INFINITY);
@@ -221,7 +298,7 @@ impl Integrator for Dopri5 {
                 let grow = if err == 0.0 {
                     5.0
                 } else {
-                    (0.9 * err.powf(-0.2)).clamp(0.2, 5.0)
+                    (0.9 * self.root(err)).clamp(0.2, 5.0)
                 };
                 let mut next = h * if rejected { grow.min(1.0) } else { grow };
                 if h == h_max && h < proposal {
@@ -238,7 +315,7 @@ impl Integrator for Dopri5 {
             }
             rejected = true;
             let shrink = if err.is_finite() {
-                (0.9 * err.powf(-0.2)).clamp(0.2, 1.0)
+                (0.9 * self.root(err)).clamp(0.2, 1.0)
             } else {
                 0.25
             };
@@ -259,8 +336,18 @@ impl Integrator for Dopri5 {
         self.fresh = true;
     }
 
+    /// The inputs did not change at this communication point: the state's accelerations
+    /// (the last stage of the previous step) are the first stage.
+    fn reuse_first_stage(&mut self) {
+        self.fresh = false;
+    }
+
     fn name(&self) -> &'static str {
-        "Dormand-Prince 5(4) on independent coordinates"
+        if self.closed_form {
+            self.tableau.name_minimal
+        } else {
+            self.tableau.name_general
+        }
     }
 
     fn work_unit(&self) -> &'static str {

@@ -34,7 +34,7 @@ pub use partitioned::PartitionedRhs;
 pub use runge_kutta::ExplicitRk4;
 pub use small_lu::SmallLu;
 pub use state::DaeState;
-pub use system::DaeSystem;
+pub use system::{DaeSystem, GeneralPath};
 
 /// A step size rounded down to the grid `2^(k/8)` (eight steps per octave): adaptive step
 /// choices then do not follow round-off-level differences in the error estimate, so the same
@@ -62,6 +62,11 @@ pub trait Integrator: Send {
     /// Forget anything kept between steps (a reused factorization), so that the next step
     /// depends on the state alone (a restored state then replays bit for bit).
     fn forget_between_steps(&mut self) {}
+
+    /// After [`Integrator::forget_between_steps`]: the state's accelerations are consistent
+    /// with the inputs in force (the caller checked), so a method that reuses the last
+    /// evaluation as the next step's first stage (first same as last) may take them.
+    fn reuse_first_stage(&mut self) {}
 
     /// The method's name, for run summaries.
     fn name(&self) -> &'static str;

@@ -15,7 +15,9 @@
 //!
 //! For the prescribed-crank slider-crank with the FFR rod, `z` are the rod's modal
 //! coordinates and `q_D` the frame `(R, phi)` and the slider: the mechanism's own degrees of
-//! freedom. Every buffer is sized once.
+//! freedom. Where the system has all of this in closed form ([`DaeSystem::reduced_rhs`]:
+//! the FFR slider-crank, `mechanism::minimal`), an evaluation is that one call and nothing
+//! here is factored. Every buffer is sized once.
 
 use faer::Mat;
 
@@ -55,6 +57,9 @@ pub struct PartitionedRhs {
     pub lambda: Vec<f64>,
     /// Position tolerance of the Newton solve on each constraint (its unit).
     pub position_tolerance: f64,
+    /// The last evaluation came from the system's closed form
+    /// ([`DaeSystem::reduced_rhs`]), which wrote the multipliers too.
+    closed_form: bool,
 }
 
 impl PartitionedRhs {
@@ -92,6 +97,7 @@ impl PartitionedRhs {
             qdd: vec![0.0; n],
             lambda: vec![0.0; m],
             position_tolerance: 1e-14 * system.coordinate_scale(0).max(1e-300),
+            closed_form: false,
         }
     }
 
@@ -174,7 +180,40 @@ impl PartitionedRhs {
         zd: &[f64],
         zdd: &mut [f64],
     ) -> Result<(), StepFailure> {
+        self.evaluate_stage(system, t, z, zd, zdd, true)
+    }
+
+    /// [`PartitionedRhs::evaluate`] for an intermediate stage (`complete = false`): a system
+    /// with a closed form may then leave the multipliers and the dependent coordinates that
+    /// no acceleration needs ([`DaeSystem::reduced_rhs`]); the general path computes all.
+    pub fn evaluate_stage(
+        &mut self,
+        system: &dyn DaeSystem,
+        t: f64,
+        z: &[f64],
+        zd: &[f64],
+        zdd: &mut [f64],
+        complete: bool,
+    ) -> Result<(), StepFailure> {
         let (n, m, k) = (self.n, self.m, self.k());
+        for (a, &i) in self.independent.iter().enumerate() {
+            self.q[i] = z[a];
+            self.v[i] = zd[a];
+        }
+        let lambda = if complete {
+            Some(&mut self.lambda[..])
+        } else {
+            None
+        };
+        let closed = system.reduced_rhs(t, &mut self.q, &mut self.v, &mut self.qdd, lambda);
+        self.closed_form = closed.is_some();
+        if let Some(result) = closed {
+            result?;
+            for (a, &i) in self.independent.iter().enumerate() {
+                zdd[a] = self.qdd[i];
+            }
+            return Ok(());
+        }
         self.solve_positions(system, t, z)?;
         // Velocities.
         for (a, &i) in self.independent.iter().enumerate() {
@@ -261,6 +300,9 @@ impl PartitionedRhs {
     /// Multipliers of the last evaluation: `Phi_D^T lambda = (Q - M q'')_D` (with `Q - M b`
     /// kept by [`PartitionedRhs::evaluate`], `(Q - M q'')_D = (Q - M b)_D - (M G z'')_D`).
     pub fn multipliers(&mut self) {
+        if self.closed_form {
+            return;
+        }
         let k = self.k();
         for (c, &j) in self.dependent.iter().enumerate() {
             let mut s = self.force[j];

@@ -7,6 +7,8 @@
 //! Multipliers `lambda = [B_x, B_y, C_x, C_y]`: with `M q'' + Phi_q^T lambda = Q`, the force
 //! of the rod on the crank pin is `lambda_B` and on the slider `lambda_C` (global, N).
 
+use std::cell::Cell;
+
 use faer::reborrow::ReborrowMut;
 use faer::MatMut;
 use nalgebra::Vector2;
@@ -27,11 +29,42 @@ pub struct SliderCrankDae<'a> {
     pub slider_offset: f64,
     /// Gravity, m/s^2, global frame.
     pub gravity: Vector2<f64>,
+    /// The crank pin's motion at the last time the closed form asked for it (stages of a
+    /// Runge-Kutta step share their times); `t = NaN`: none yet.
+    pub pin_cache: Cell<PinAt>,
+}
+
+/// The crank pin's position, velocity and acceleration at a time.
+#[derive(Clone, Copy, Debug)]
+pub struct PinAt {
+    pub t: f64,
+    pub pin: [Vector2<f64>; 3],
+}
+
+impl Default for PinAt {
+    fn default() -> PinAt {
+        PinAt {
+            t: f64::NAN,
+            pin: [Vector2::zeros(); 3],
+        }
+    }
 }
 
 impl SliderCrankDae<'_> {
     /// Pins B and C, two each.
     pub const N_CONSTRAINTS: usize = 4;
+
+    /// [`CrankLaw::pin`] at `t`, from the cache when `t` is the last time asked.
+    pub fn pin_at(&self, t: f64) -> (Vector2<f64>, Vector2<f64>, Vector2<f64>) {
+        let cached = self.pin_cache.get();
+        if cached.t == t {
+            let [p, v, a] = cached.pin;
+            return (p, v, a);
+        }
+        let (p, v, a) = self.crank.pin(t);
+        self.pin_cache.set(PinAt { t, pin: [p, v, a] });
+        (p, v, a)
+    }
 
     fn nr(&self) -> usize {
         self.rod.n_coordinates()
@@ -163,6 +196,23 @@ impl DaeSystem for SliderCrankDae<'_> {
         q[iphi] = phi;
         q[nr] = pin.x + rotate(d).x;
         true
+    }
+
+    fn has_reduced_rhs(&self) -> bool {
+        self.rod.ffr_kernel().is_some()
+    }
+
+    /// The FFR rod's closed form on minimal coordinates ([`super::minimal`]).
+    fn reduced_rhs(
+        &self,
+        t: f64,
+        q: &mut [f64],
+        v: &mut [f64],
+        qdd: &mut [f64],
+        lambda: Option<&mut [f64]>,
+    ) -> Option<Result<(), crate::integrator::StepFailure>> {
+        let kernel = self.rod.ffr_kernel()?;
+        Some(self.minimal_rhs(kernel, t, q, v, qdd, lambda))
     }
 
     fn add_tangent(

@@ -3,6 +3,7 @@
 
 pub mod crank;
 pub mod dae;
+pub mod minimal;
 pub mod outputs;
 pub mod slider_crank;
 pub mod spec;

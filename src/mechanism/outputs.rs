@@ -46,7 +46,6 @@ use super::slider_crank::{Mechanism, OutputSolve};
 use super::state::MechanismState;
 use crate::error::ModelError;
 use crate::integrator::{DaeSystem, StepFailure};
-use crate::rod::RodPoint;
 
 impl Mechanism {
     /// The transverse deflection of the rod from the chord B -> C, m, positive to the left of
@@ -56,8 +55,7 @@ impl Mechanism {
     /// positions alone; no allocation. N < 2 writes zeros.
     pub fn deflection_shape(&self, state: &MechanismState, out: &mut [f64]) {
         let q = &state.dae.q;
-        let rb = self.rod.point(RodPoint::B, q);
-        let rc = self.rod.point(RodPoint::C, q);
+        let [rb, rc, mid] = self.rod.points(q);
         let chord = rc - rb;
         let length = chord.norm();
         let n = out.len();
@@ -67,7 +65,7 @@ impl Mechanism {
                 continue;
             }
             let r = if 2 * i + 1 == n {
-                self.rod.point(RodPoint::Mid, q)
+                mid
             } else {
                 self.rod
                     .point_at(i as f64 * self.rod.length() / (n - 1) as f64, q)
@@ -130,9 +128,7 @@ impl Mechanism {
         let lambda = &work.solve.lambda;
         let nr = self.rod.n_coordinates();
         let q = &state.dae.q;
-        let rb = self.rod.point(RodPoint::B, q);
-        let rc = self.rod.point(RodPoint::C, q);
-        let rm = self.rod.point(RodPoint::Mid, q);
+        let [rb, rc, rm] = self.rod.points(q);
         let chord = rc - rb;
         let d = rm - rb;
         let deflection = (chord.x * d.y - chord.y * d.x) / chord.norm();

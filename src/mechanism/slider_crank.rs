@@ -9,6 +9,7 @@ use super::dae::SliderCrankDae;
 use super::spec::{MechanismSpec, SolverMethod};
 use super::state::MechanismState;
 use crate::error::ModelError;
+use crate::integrator::dopri5::{DORMAND_PRINCE, RK4_FSAL};
 use crate::integrator::generalized_alpha::AlphaErrorControl;
 use crate::integrator::{
     ConstrainedSolve, DaeState, DaeSystem, Dopri5, ErrorControl, ExplicitRk4, GeneralizedAlpha,
@@ -21,6 +22,10 @@ use crate::rod::RodBody;
 /// (calibrated by `tests/error_control.rs` over random parameter sets: the global error is
 /// proportional to the local tolerance).
 pub const LOCAL_TOLERANCE_FACTOR: f64 = 0.01;
+
+/// The same for the embedded RK4(3) pair that `auto` takes on the closed-form minimal
+/// coordinates (calibrated the same way).
+pub const LOCAL_TOLERANCE_FACTOR_RK4: f64 = 0.03;
 
 /// The same for the adaptive generalized-alpha method (second order: its global error goes
 /// with the local tolerance to the power 2/3).
@@ -83,6 +88,7 @@ pub(super) fn dae_context<'a>(
         slider_force: state.slider_force,
         slider_offset: spec.mechanism.slider_offset,
         gravity: Vector2::from(spec.mechanism.gravity),
+        pin_cache: Default::default(),
     }
 }
 
@@ -119,6 +125,7 @@ impl Mechanism {
             slider_force: 0.0,
             slider_offset: spec.mechanism.slider_offset,
             gravity: Vector2::from(spec.mechanism.gravity),
+            pin_cache: Default::default(),
         };
         let (integrator, max_step): (Box<dyn Integrator>, f64) = match method {
             SolverMethod::Dopri5 => {
@@ -132,8 +139,17 @@ impl Mechanism {
                         allowed: "generalized_alpha, rk4 or auto with rod.model = segments (dopri5 integrates the FFR rod's modal coordinates)".into(),
                     });
                 };
+                // `auto` with the closed-form minimal coordinates: the RK4(3) pair (module
+                // documentation of `crate::integrator::dopri5`: four evaluations a step and
+                // 2.8 times the stable step on the stiff mode); `dopri5` as asked.
+                let minimal = spec.solver.method == SolverMethod::Auto && probe.has_reduced_rhs();
+                let (tableau, factor) = if minimal {
+                    (&RK4_FSAL, LOCAL_TOLERANCE_FACTOR_RK4)
+                } else {
+                    (&DORMAND_PRINCE, LOCAL_TOLERANCE_FACTOR)
+                };
                 let control = ErrorControl {
-                    tolerance: spec.solver.tolerance * LOCAL_TOLERANCE_FACTOR,
+                    tolerance: spec.solver.tolerance * factor,
                     amplitude_floor: AMPLITUDE_FLOOR,
                     scales: elastic.clone().map(|i| rod.coordinate_scale(i)).collect(),
                     rate_weights: omega.iter().map(|w| w.max(1.0)).collect(),
@@ -141,7 +157,12 @@ impl Mechanism {
                     max_rejections: 40,
                 };
                 (
-                    Box::new(Dopri5::new(&probe, elastic.collect(), control)),
+                    Box::new(Dopri5::with_tableau(
+                        &probe,
+                        elastic.collect(),
+                        control,
+                        tableau,
+                    )),
                     f64::INFINITY,
                 )
             }

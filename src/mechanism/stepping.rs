@@ -45,7 +45,10 @@ impl Mechanism {
         let n_sub = n_sub_f as usize;
         let result = (|| {
             if adaptive {
-                self.restart_consistently(state)?;
+                let stale = self.restart_consistently(state)?;
+                if !stale && self.slider_force_consistent(state) {
+                    self.integrator.reuse_first_stage();
+                }
                 return self.adaptive_steps(state, t_end);
             }
             for k in 0..n_sub {
@@ -124,17 +127,30 @@ impl Mechanism {
     /// Before the steps of an adaptive integrator: where the inputs set at this communication
     /// point moved the crank off the law the state followed (a sampled motion's new angle,
     /// speed and acceleration), the positions and velocities move onto the new law's
-    /// constraints by the M-weighted least change (the index-1 projection, as the fixed-step
-    /// RK4 does after every step), and the accelerations and multipliers are recomputed: the
-    /// jump is not charged to the error control as a local error.
+    /// constraints and the accelerations and multipliers are recomputed: the jump is not
+    /// charged to the error control as a local error. With minimal coordinates in closed form
+    /// (`DaeSystem::reduced_rhs`) the modal coordinates and rates stay and the dependent ones
+    /// follow (one evaluation, whose accelerations start the next step); otherwise by the
+    /// M-weighted least change (the index-1 projection, as the fixed-step RK4 does after every
+    /// step). Returns whether the state's accelerations still need an evaluation (after the
+    /// general projection).
     fn restart_consistently(
         &mut self,
         state: &mut MechanismState,
-    ) -> Result<(), (f64, f64, String)> {
+    ) -> Result<bool, (f64, f64, String)> {
         let t = state.dae.t;
         let sys = dae_context(self.rod.as_ref(), &self.spec, state);
-        let mut phi = [0.0; 4];
-        sys.constraints(t, &state.dae.q, &mut phi);
+        // The constraint residual of `SliderCrankDae::constraints`, with the pin's motion of
+        // the new law computed once for the position and the velocity checks.
+        let (pin, v_new, a_new) = sys.crank.pin(t);
+        let [rb, rc, _] = self.rod.points(&state.dae.q);
+        let ns = self.rod.n_coordinates();
+        let phi = [
+            rb.x - pin.x,
+            rb.y - pin.y,
+            rc.x - state.dae.q[ns],
+            rc.y - sys.slider_offset,
+        ];
         let tolerance = 1e-14 * self.rod.length();
         let mut work = self
             .output_solve
@@ -145,8 +161,6 @@ impl Mechanism {
         };
         let result = (|| {
             let positions_off = phi.iter().any(|x| x.abs() > tolerance);
-            let mut rate = [0.0; 4];
-            sys.constraint_rate(t, &state.dae.q, &mut rate);
             let mut velocities_off = positions_off;
             if !velocities_off {
                 let previous = CrankLaw {
@@ -154,13 +168,24 @@ impl Mechanism {
                     t_k: state.previous_input_time,
                     input: state.previous_input,
                 };
-                let (_, v_new, a_new) = sys.crank.pin(t);
                 let (_, v_old, a_old) = previous.pin(t);
                 velocities_off = (v_new - v_old).norm() > 1e-14 * (1.0 + v_new.norm())
                     || (a_new - a_old).norm() > 1e-12 * (1.0 + a_new.norm());
             }
             if !velocities_off {
-                return Ok(());
+                return Ok(false);
+            }
+            // Minimal coordinates in closed form: the modal coordinates and their rates stay,
+            // the frame and the slider follow the new law, with the accelerations and
+            // multipliers of the same evaluation (they are the next step's first stage).
+            let d = &mut state.dae;
+            let lambda = Some(&mut d.lambda[..]);
+            if let Some(result) = sys.reduced_rhs(t, &mut d.q, &mut d.v, &mut d.qdd, lambda) {
+                result.map_err(fail)?;
+                d.acc.copy_from_slice(&d.qdd);
+                // A right-hand side, counted with the integrator's (the one it saves).
+                state.stats.newton_iterations += 1;
+                return Ok(false);
             }
             work.solve
                 .project_positions(&sys, t, &mut state.dae.q, tolerance, 4)
@@ -174,10 +199,27 @@ impl Mechanism {
             state.dae.qdd.copy_from_slice(&work.solve.qdd);
             state.dae.acc.copy_from_slice(&work.solve.qdd);
             state.dae.lambda.copy_from_slice(&work.solve.lambda);
-            Ok(())
+            Ok(true)
         })();
         self.output_solve = Some(work);
         result
+    }
+
+    /// Whether the state's accelerations and multipliers satisfy the slider's equation
+    /// `m_s x_s'' - lambda_Cx = F_s + m_s g_x` with the slider force now in force (to
+    /// round-off): then they came from the same inputs (the crank law checked by
+    /// [`Mechanism::restart_consistently`]) and the next step may start from them. A function
+    /// of the state alone, so a restored state replays bit for bit.
+    fn slider_force_consistent(&self, state: &MechanismState) -> bool {
+        let ns = self.rod.n_coordinates();
+        let d = &state.dae;
+        let m_s = self.slider_mass;
+        let g_x = self.spec.mechanism.gravity[0];
+        let inertia = m_s * d.qdd[ns];
+        let residual = inertia - d.lambda[2] - state.slider_force - m_s * g_x;
+        let scale =
+            inertia.abs() + d.lambda[2].abs() + state.slider_force.abs() + (m_s * g_x).abs();
+        residual.abs() <= 1e-12 * scale.max(1e-300)
     }
 
     /// Accepted steps of an adaptive integrator until `t_end` (the last one lands on it).

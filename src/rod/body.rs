@@ -51,6 +51,12 @@ pub trait RodBody: Send {
     fn frame_coordinates(&self) -> Option<[usize; 3]> {
         None
     }
+    /// The FFR rod's shape integrals in fixed-size arrays, where the model is an FFR rod with
+    /// 1 to [`crate::rod::ffr::MAX_MODES`] modes: the mechanism then evaluates its equations
+    /// of motion on minimal coordinates in closed form (`mechanism::minimal`).
+    fn ffr_kernel(&self) -> Option<&crate::rod::ffr::FfrKernel> {
+        None
+    }
     /// Mass matrix (n x n) into `m`.
     fn mass(&self, q: &[f64], m: MatMut<'_, f64>);
     /// Generalized forces: quadratic velocity terms, elastic and damping forces, and the
@@ -77,6 +83,15 @@ pub trait RodBody: Send {
     /// Global position of the material point at undeformed arc length `s` from B (clamped to
     /// `0..=L`), without allocating; the FMI 3.0 `rod.shape` output samples it.
     fn point_at(&self, s: f64, q: &[f64]) -> Vector2<f64>;
+    /// The global positions of B, C and the midpoint together (one evaluation of the frame's
+    /// rotation where the model has one).
+    fn points(&self, q: &[f64]) -> [Vector2<f64>; 3] {
+        [
+            self.point(RodPoint::B, q),
+            self.point(RodPoint::C, q),
+            self.point(RodPoint::Mid, q),
+        ]
+    }
     /// Jacobian `d r_p / d q` (2 x n) into `out`.
     fn point_jacobian(&self, p: RodPoint, q: &[f64], out: MatMut<'_, f64>);
     /// `(d/dt J_p) q'`: the velocity-product part of the point's acceleration.

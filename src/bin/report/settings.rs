@@ -17,12 +17,16 @@ pub enum Model {
     Segments,
     /// FFR with axial stiffening, explicit RK4 with projection (`solver.method = "rk4"`).
     FfrRk4,
-    /// FFR with axial stiffening, error-controlled (`solver.method = "auto"`: Dormand-Prince
-    /// on the modal coordinates); `h` of the setting is `solver.tolerance`.
+    /// FFR with axial stiffening, error-controlled (`solver.method = "auto"`: RK4(3) on the
+    /// closed-form minimal coordinates; Dormand-Prince on the general partitioned evaluation
+    /// before issue 12's speed work); `h` of the setting is `solver.tolerance`.
     FfrAuto,
     /// The segment chain, error-controlled (`auto`: adaptive generalized-alpha); `h` is the
     /// tolerance.
     SegmentsAuto,
+    /// FFR with axial stiffening, `solver.method = "dopri5"`: Dormand-Prince 5(4) on the
+    /// closed-form minimal coordinates; `h` is the tolerance.
+    FfrDopri5,
 }
 
 impl Model {
@@ -35,6 +39,7 @@ impl Model {
             Model::FfrRk4 => "ffr_stiffened_rk4",
             Model::FfrAuto => "ffr_stiffened_auto",
             Model::SegmentsAuto => "segments_auto",
+            Model::FfrDopri5 => "ffr_stiffened_dopri5",
         }
     }
 
@@ -95,6 +100,14 @@ impl Setting {
         }
     }
 
+    /// Dormand-Prince (`solver.method = "dopri5"`) with `solver.tolerance = tolerance`.
+    pub fn dopri5(elements: usize, modes: usize, tolerance: f64) -> Setting {
+        Setting {
+            model: Model::FfrDopri5,
+            ..Setting::ffr(true, elements, modes, tolerance)
+        }
+    }
+
     /// Error-controlled segment chain with `solver.tolerance = tolerance`.
     pub fn seg_auto(n: usize, tolerance: f64) -> Setting {
         Setting {
@@ -130,7 +143,8 @@ impl Setting {
         self.model == other.model
             && self.elements == other.elements
             && self.h == other.h
-            && (self.model == Model::FfrRk4 || self.rho_inf == other.rho_inf)
+            && (matches!(self.model, Model::FfrRk4 | Model::FfrDopri5)
+                || self.rho_inf == other.rho_inf)
             && (matches!(self.model, Model::Segments | Model::SegmentsAuto)
                 || (self.modes == other.modes && self.reference == other.reference))
     }
@@ -169,7 +183,7 @@ impl Setting {
     /// error-controlled settings (whose `h` is the tolerance) 3e-4 s, the default scene's.
     pub fn communication_step(&self) -> f64 {
         match self.model {
-            Model::FfrAuto | Model::SegmentsAuto => 3e-4,
+            Model::FfrAuto | Model::SegmentsAuto | Model::FfrDopri5 => 3e-4,
             _ => self.h,
         }
     }
@@ -187,6 +201,9 @@ impl Setting {
             Model::FfrRk4 => format!("FFR stiffened RK4 {el}el/{modes}m {r} h={h:.1e}"),
             Model::FfrAuto => format!("FFR stiffened auto {el}el/{modes}m {r} tol={h:.0e}"),
             Model::SegmentsAuto => format!("segments auto N={el} tol={h:.0e}"),
+            Model::FfrDopri5 => {
+                format!("FFR stiffened Dormand-Prince {el}el/{modes}m {r} tol={h:.0e}")
+            }
             Model::FfrLinear => format!("FFR linear {el}el/{modes}m {r} h={h:.0e} rho={rho}"),
             Model::FfrStiffened => {
                 format!("FFR stiffened {el}el/{modes}m {r} h={h:.0e} rho={rho}")
@@ -220,6 +237,11 @@ impl Setting {
                 s.rod.axial_stiffening = m != Model::FfrLinear;
                 if m == Model::FfrRk4 {
                     s.solver.method = SolverMethod::Rk4;
+                }
+                if m == Model::FfrDopri5 {
+                    s.solver.method = SolverMethod::Dopri5;
+                    s.solver.step = 3e-4;
+                    s.solver.tolerance = self.h;
                 }
                 if m == Model::FfrAuto {
                     s.solver.method = SolverMethod::Auto;

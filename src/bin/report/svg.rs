@@ -18,16 +18,17 @@ pub struct Panel {
     pub points: Vec<Point>,
 }
 
-const MODEL_NAMES: [&str; 6] = [
+const MODEL_NAMES: [&str; 7] = [
     "FFR linear",
     "FFR stiffened",
     "segments",
     "FFR stiffened, RK4",
-    "FFR stiffened, auto (error control)",
+    "FFR stiffened, auto (RK4(3), minimal coordinates)",
     "segments, auto (error control)",
+    "FFR stiffened, Dormand-Prince (minimal coordinates)",
 ];
-const COLOURS: [&str; 6] = [
-    "#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b",
+const COLOURS: [&str; 7] = [
+    "#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#17becf",
 ];
 
 fn marker(model: usize, x: f64, y: f64) -> String {

@@ -43,6 +43,9 @@ pub struct FfrRod {
     pub(super) n: usize,
     /// Mass samples and cuts of the section-force recovery.
     pub(super) sampling: super::sections::Sampling,
+    /// The shape integrals in fixed-size arrays (at most `MAX_MODES` modes), for the
+    /// minimal-coordinate right-hand side.
+    pub(super) kernel: Option<Box<super::kernel::FfrKernel>>,
 }
 
 impl FfrRod {
@@ -63,7 +66,7 @@ impl FfrRod {
             Some([g_a, _]) => (g_a.clone(), 1.0),
         };
         let mass = integrals.mass;
-        FfrRod {
+        let mut rod = FfrRod {
             sampling: super::sections::Sampling::new(&modes),
             acceleration_stiffness,
             coupling_scale,
@@ -76,7 +79,10 @@ impl FfrRod {
             rho_a: section.mass_per_length(),
             mass,
             modes,
-        }
+            kernel: None,
+        };
+        rod.kernel = super::kernel::FfrKernel::new(&rod).map(Box::new);
+        rod
     }
 
     /// Number of modal coordinates.
@@ -175,6 +181,10 @@ impl RodBody for FfrRod {
 
     fn frame_coordinates(&self) -> Option<[usize; 3]> {
         Some([0, 1, 2])
+    }
+
+    fn ffr_kernel(&self) -> Option<&super::kernel::FfrKernel> {
+        self.kernel.as_deref()
     }
 
     fn elastic_circular_frequencies(&self) -> Option<Vec<f64>> {
@@ -300,6 +310,12 @@ impl RodBody for FfrRod {
     fn point_at(&self, s: f64, q: &[f64]) -> Vector2<f64> {
         let (c, sn) = rot(q[2]);
         Vector2::new(q[0], q[1]) + rotate(c, sn, self.ubar_at(s, q))
+    }
+
+    fn points(&self, q: &[f64]) -> [Vector2<f64>; 3] {
+        let (c, s) = rot(q[2]);
+        let r = Vector2::new(q[0], q[1]);
+        [RodPoint::B, RodPoint::C, RodPoint::Mid].map(|p| r + rotate(c, s, self.ubar(p, q)))
     }
 
     fn point_jacobian(&self, p: RodPoint, q: &[f64], mut out: MatMut<'_, f64>) {

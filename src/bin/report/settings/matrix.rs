@@ -24,6 +24,7 @@ pub fn matrix(quick: bool) -> Vec<Setting> {
         v.push(Setting::seg(16, 1e-4));
         v.push(Setting::rk4(8, 3, 3e-4));
         v.push(Setting::auto(8, 3, 1e-3));
+        v.push(Setting::dopri5(8, 3, 1e-3));
         v.push(Setting::seg_auto(16, 1e-3));
         v.push(reference_setting(true));
         return v;
@@ -65,6 +66,11 @@ pub fn matrix(quick: bool) -> Vec<Setting> {
         for &tol in tolerances {
             v.push(Setting::auto(8, modes, tol));
         }
+    }
+    // The Dormand-Prince pair on the same closed-form minimal coordinates (what `auto` took
+    // before RK4(3) won on these cases).
+    for tol in [1e-2, 3e-3, 1e-3, 3e-4] {
+        v.push(Setting::dopri5(8, 3, tol));
     }
     for n in [16, 32] {
         for tol in [1e-2, 1e-3] {

@@ -1,0 +1,189 @@
+//! Issue 12 (speed): the numbers of the README's speed fragment, measured in process on this
+//! machine (medians of repeats; the machine's load shows in them, compare rows of one run):
+//! - two revolutions of the default scene at 150 rad/s, outputs every 3e-4 s (`auto`: RK4(3)
+//!   on the closed-form minimal coordinates), and the same with `solver.method = "dopri5"`;
+//! - one right-hand side on the modal coordinates: the closed form (an intermediate stage, and a
+//!   last stage with the frame angle and the multipliers) against the general partitioned
+//!   evaluation it replaces;
+//! - `fmi2DoStep` at a 1e-5 s communication step through the exported C functions, without
+//!   inputs and with `fmi2SetReal` of the crank angle and speed before every call;
+//! - the accuracy of the default scene against the geometrically exact beam is in the
+//!   `exact-beam` fragment (`cargo test --release --test geometric_reference`).
+//!
+//! `cargo run --release --example speed` prints the table; with `FLEXROD_BLESS=1` it also
+//! writes `docs/generated/speed-minimal.md`.
+
+use std::ffi::CString;
+use std::hint::black_box;
+use std::ptr;
+use std::time::Instant;
+
+use flexrod::drive::{self, communication_grid, CrankDrive};
+use flexrod::fmi::ffi::{self, fmi2CallbackFunctions};
+use flexrod::fmi::ModelDescription;
+use flexrod::integrator::{GeneralPath, PartitionedRhs};
+use flexrod::scene::SolverMethod;
+use flexrod::{CrankInput, Scene, Simulation};
+
+const W: f64 = 150.0;
+
+fn median(mut x: Vec<f64>) -> f64 {
+    x.sort_by(|a, b| a.total_cmp(b));
+    x[x.len() / 2]
+}
+
+/// Median wall time of `f` over `repeats` calls, s.
+fn time(repeats: usize, mut f: impl FnMut()) -> f64 {
+    f();
+    median(
+        (0..repeats)
+            .map(|_| {
+                let t = Instant::now();
+                f();
+                t.elapsed().as_secs_f64()
+            })
+            .collect(),
+    )
+}
+
+/// Two revolutions at 150 rad/s, outputs every 3e-4 s: (ms, steps, right-hand sides, peak).
+fn two_revolutions(scene: &Scene) -> (f64, u64, u64, f64) {
+    let grid = communication_grid(0.0, 3e-4, 279);
+    let law = CrankDrive::Constant { speed: W };
+    let mut sim = Simulation::new(scene).unwrap();
+    let mut peak = 0.0;
+    let s = time(41, || {
+        peak = drive::run(&mut sim, &law, 0.0, &grid)
+            .unwrap()
+            .peak_deflection_rel();
+    });
+    let stats = sim.stats();
+    (s * 1e3, stats.steps, stats.newton_iterations, peak)
+}
+
+/// One right-hand side of the default scene, ns: closed form (intermediate, last stage), general.
+fn right_hand_sides() -> [f64; 3] {
+    let mut sim = Simulation::new(&Scene::benchmark()).unwrap();
+    let input = CrankInput {
+        angle: 0.3,
+        speed: W,
+        acceleration: 0.0,
+    };
+    sim.start(0.0, input, 0.0).unwrap();
+    let mech = sim.mechanism();
+    let sys = mech.system(sim.state());
+    let general = GeneralPath(&sys);
+    let elastic: Vec<usize> = mech.rod.elastic_coordinates().unwrap().collect();
+    let (z, zd, mut zdd) = ([1e-4, -2e-5, 1e-6], [1e-2, 1e-3, -1e-3], [0.0; 3]);
+    let n = 20_000;
+    let mut out = [0.0; 3];
+    for (k, complete) in [(0, false), (1, true), (2, true)] {
+        let system: &dyn flexrod::integrator::DaeSystem = if k == 2 { &general } else { &sys };
+        let mut rhs = PartitionedRhs::new(system, elastic.clone());
+        rhs.q.copy_from_slice(&sim.state().dae.q);
+        out[k] =
+            1e9 * time(31, || {
+                for i in 0..n {
+                    let t = black_box(1e-3 + 1e-9 * i as f64);
+                    rhs.evaluate_stage(system, t, &z, &zd, &mut zdd, complete)
+                        .unwrap();
+                    if complete {
+                        rhs.multipliers();
+                    }
+                }
+            }) / n as f64;
+    }
+    out
+}
+
+/// `fmi2DoStep` at 1e-5 s in process, us a call: (no inputs, with `fmi2SetReal` of the crank).
+fn do_step() -> [f64; 2] {
+    let scene = Scene::benchmark();
+    let guid = CString::new(ModelDescription::for_scene(&scene).unwrap().guid).unwrap();
+    let name = CString::new("speed").unwrap();
+    let functions = fmi2CallbackFunctions {
+        logger: None,
+        allocate_memory: None,
+        free_memory: None,
+        step_finished: None,
+        component_environment: ptr::null_mut(),
+    };
+    let h = 1e-5;
+    let calls = 2000;
+    let mut out = [0.0; 2];
+    for (k, out) in out.iter_mut().enumerate() {
+        // SAFETY: valid NUL-terminated strings, a callback struct that outlives the instance,
+        // NULL resource location (the compiled-in default scene, GUID checked).
+        let comp = unsafe {
+            ffi::fmi2Instantiate(
+                name.as_ptr(),
+                1,
+                guid.as_ptr(),
+                ptr::null(),
+                &functions,
+                0,
+                0,
+            )
+        };
+        assert!(!comp.is_null());
+        // SAFETY: comp is a live instance.
+        unsafe {
+            assert_eq!(ffi::fmi2SetupExperiment(comp, 0, 0.0, 0.0, 0, 0.0), 0);
+            assert_eq!(ffi::fmi2EnterInitializationMode(comp), 0);
+            assert_eq!(ffi::fmi2ExitInitializationMode(comp), 0);
+        }
+        let mut t = 0.0;
+        let vr = [1u32, 2];
+        let s = time(41, || {
+            for _ in 0..calls {
+                let values = [W * t, W];
+                // SAFETY: comp is live in StepComplete at time t; two references and values.
+                let status = unsafe {
+                    if k == 1 {
+                        ffi::fmi2SetReal(comp, vr.as_ptr(), 2, values.as_ptr());
+                    }
+                    ffi::fmi2DoStep(comp, t, h, 1)
+                };
+                assert_eq!(status, 0);
+                t += h;
+            }
+        });
+        *out = s * 1e6 / calls as f64;
+        // SAFETY: comp came from fmi2Instantiate and is freed once.
+        unsafe { ffi::fmi2FreeInstance(comp) };
+    }
+    out
+}
+
+fn main() {
+    let (ms, steps, rhs, peak) = two_revolutions(&Scene::benchmark());
+    let mut dopri = Scene::benchmark();
+    dopri.solver.method = SolverMethod::Dopri5;
+    let (ms_dp, steps_dp, rhs_dp, _) = two_revolutions(&dopri);
+    let [rhs_stage, rhs_last, rhs_general] = right_hand_sides();
+    let [step, step_inputs] = do_step();
+    let simulated = 4.0 * std::f64::consts::PI / W;
+    let text = format!(
+        "<!-- written by `FLEXROD_BLESS=1 cargo run --release --example speed`: rerun it, do not edit -->
+| measured in process (medians; `cargo run --release --example speed`) | value |
+|---|---|
+| two revolutions at 150 rad/s, default scene (`auto`: RK4(3) on minimal coordinates, tolerance 1e-3), outputs every 3e-4 s | {ms:.3} ms ({:.0} x real time); {steps} steps, {rhs} right-hand sides; peak v_mid/L {peak:.4e} |
+| the same with `solver.method = \"dopri5\"` (Dormand-Prince on minimal coordinates) | {ms_dp:.3} ms; {steps_dp} steps, {rhs_dp} right-hand sides |
+| one right-hand side on minimal coordinates: intermediate stage / last stage (frame angle, multipliers) | {rhs_stage:.0} ns / {rhs_last:.0} ns |
+| one right-hand side by the general partitioned evaluation (the previous one) | {rhs_general:.0} ns |
+| `fmi2DoStep` at a 1e-5 s communication step | {step:.2} us a call ({:.1} x real time) |
+| `fmi2SetReal` (crank angle and speed) + `fmi2DoStep` at 1e-5 s | {step_inputs:.2} us a call |
+",
+        simulated / (ms * 1e-3),
+        1e-5 / (step * 1e-6),
+    );
+    print!("{text}");
+    if std::env::var_os("FLEXROD_BLESS").is_some() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/docs/generated/speed-minimal.md"
+        );
+        std::fs::write(path, &text).unwrap();
+        println!("wrote {path}");
+    }
+}

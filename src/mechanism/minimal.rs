@@ -1,0 +1,379 @@
+//! The slider-crank with the FFR rod on minimal coordinates, in closed form
+//! (docs/physics.md, "Minimal coordinates"): with the crank prescribed, the mechanism's own
+//! degrees of freedom are the rod's modal coordinates `p` (n of them); the frame `(R, phi)` and
+//! the slider `x_s` follow from the four pin constraints of [`super::dae`].
+//!
+//! Notation (global frame unless "body"): pin B at `P(t)` with velocity `V` and acceleration
+//! `a_P` ([`super::crank::CrankLaw::pin`]); slider line `y = e`; body-frame points
+//! `u_B = xbar_B + S_B p`, `u_C = xbar_C + S_C p - 1/2 (p^T G_0 p) e_x` (the foreshortening
+//! with axial stiffening, [`crate::rod::ffr::stiffening`]); chord `d = u_C - u_B` (body),
+//! `rho = |d|`; `(X, Y) = A(phi) d` (global chord; `Y = e - P_y` by the C constraint).
+//!
+//! - Positions: `sin psi = Y / rho`, `cos psi = +-sqrt(1 - sin^2 psi)` (the sign of `X`: the
+//!   assembly branch, kept), with `psi = phi + beta`, `beta` the body angle of `d`:
+//!   `cos phi = (cos psi d_x + sin psi d_y) / rho`, `sin phi = (sin psi d_x - cos psi d_y) /
+//!   rho` (no inverse trigonometry on the way); `R = P - A u_B`, `x_s = P_x + X`.
+//! - Velocities `q' = T p' + t_v`: the difference of the pin constraints,
+//!   `phi' I~ A d + A D p' = (x_s', 0) - V` with `D = J_C - S_B` (body, `J_C = S_C -
+//!   e_x (G_0 p)^T`), gives from its y row `phi' = g_phi p' - V_y / X`,
+//!   `g_phi = -(A D)_y / X`, from its x row `x_s' = V_x - Y phi' + (A D)_x p'`, and pin B
+//!   `R' = V - phi' I~ A u_B - A S_B p'`.
+//! - Accelerations `q'' = T p'' + b` from the same rows with the velocity-product terms
+//!   `beta_P = A(-phi'^2 u_P + 2 phi' I~ J_P p')` (`- (p'^T G_0 p') e_x` at C, body):
+//!   `delta = beta_B - beta_C - a_P`, `b_phi = delta_y / X`, `b_x = -Y b_phi - delta_x`,
+//!   `b_R = a_P - beta_B - I~ A u_B b_phi`.
+//! - The reduced equations `(T^T M T) p'' = T^T (Q - M b)` (n x n; `M`, `Q` of
+//!   [`crate::rod::ffr::FfrRod`] with the slider, seed 000 eq. 3.17-3.18, 6.2), assembled from
+//!   the block structure of `M` (no general matrix), solved by Gaussian elimination with
+//!   partial pivoting (`M` carries the non-symmetric stiffening coupling `M_pR`).
+//! - Multipliers from the dependent rows of `M q'' + Phi_q^T lambda = Q` in the same
+//!   evaluation: `Phi_D^T lambda = (Q - M q'')_D` is, with `a_B = I~ A u_B`,
+//!   `a_C = a_B + (-Y, X)`: `lambda_B + lambda_C = r_R`, `a_B.lambda_B + a_C.lambda_C = r_phi`,
+//!   `-lambda_Cx = r_s`, solved in closed form (the 2 x 2 part has determinant `X`).
+//!
+//! Everything is on the stack, in loops of the compile-time size `N` (one instance per mode
+//! count up to [`MAX_MODES`]). An intermediate stage (no multipliers asked) computes the modal
+//! accelerations only: no frame angle (`atan2`), dependent velocities and accelerations or
+//! multipliers; the crank pin's motion is cached per time (stages share their times).
+
+use nalgebra::Vector2;
+
+use super::dae::SliderCrankDae;
+use crate::integrator::StepFailure;
+use crate::rod::ffr::{FfrKernel, MAX_MODES};
+
+type Row = [f64; MAX_MODES];
+
+#[inline(always)]
+fn dot<const N: usize>(a: &Row, b: &[f64; N]) -> f64 {
+    let mut s = 0.0;
+    for j in 0..N {
+        s += a[j] * b[j];
+    }
+    s
+}
+
+#[inline(always)]
+fn dot_n<const N: usize>(a: &[f64; N], b: &[f64; N]) -> f64 {
+    let mut s = 0.0;
+    for j in 0..N {
+        s += a[j] * b[j];
+    }
+    s
+}
+
+#[inline(always)]
+fn mat_vec<const N: usize>(m: &[Row; MAX_MODES], x: &[f64; N]) -> [f64; N] {
+    std::array::from_fn(|i| dot(&m[i], x))
+}
+
+/// The inputs of one evaluation besides the coordinates.
+struct Inputs {
+    pin: Vector2<f64>,
+    pin_v: Vector2<f64>,
+    pin_a: Vector2<f64>,
+    offset: f64,
+    slider_mass: f64,
+    slider_force: f64,
+    gravity: Vector2<f64>,
+}
+
+impl SliderCrankDae<'_> {
+    /// The closed-form evaluation (module documentation) where the rod has a kernel.
+    pub(super) fn minimal_rhs(
+        &self,
+        kernel: &FfrKernel,
+        t: f64,
+        q: &mut [f64],
+        v: &mut [f64],
+        qdd: &mut [f64],
+        lambda: Option<&mut [f64]>,
+    ) -> Result<(), StepFailure> {
+        let (pin, pin_v, pin_a) = self.pin_at(t);
+        let inputs = Inputs {
+            pin,
+            pin_v,
+            pin_a,
+            offset: self.slider_offset,
+            slider_mass: self.slider_mass,
+            slider_force: self.slider_force,
+            gravity: self.gravity,
+        };
+        let k = kernel;
+        match kernel.n {
+            1 => evaluate::<1>(k, &inputs, q, v, qdd, lambda),
+            2 => evaluate::<2>(k, &inputs, q, v, qdd, lambda),
+            3 => evaluate::<3>(k, &inputs, q, v, qdd, lambda),
+            4 => evaluate::<4>(k, &inputs, q, v, qdd, lambda),
+            5 => evaluate::<5>(k, &inputs, q, v, qdd, lambda),
+            6 => evaluate::<6>(k, &inputs, q, v, qdd, lambda),
+            7 => evaluate::<7>(k, &inputs, q, v, qdd, lambda),
+            8 => evaluate::<8>(k, &inputs, q, v, qdd, lambda),
+            _ => Err(StepFailure::SingularMatrix),
+        }
+    }
+}
+
+/// `x` wrapped to (-pi, pi].
+fn wrap(x: f64) -> f64 {
+    use std::f64::consts::{PI, TAU};
+    x - TAU * ((x + PI) / TAU).ceil() + TAU
+}
+
+/// Solve `a x = b` (n x n) by Gaussian elimination with partial pivoting; `b` becomes `x`.
+fn solve<const N: usize>(a: &mut [[f64; N]; N], b: &mut [f64; N]) -> Result<(), StepFailure> {
+    for col in 0..N {
+        let mut piv = col;
+        for r in col + 1..N {
+            if a[r][col].abs() > a[piv][col].abs() {
+                piv = r;
+            }
+        }
+        if a[piv][col] == 0.0 || !a[piv][col].is_finite() {
+            return Err(StepFailure::SingularMatrix);
+        }
+        a.swap(col, piv);
+        b.swap(col, piv);
+        let inv = 1.0 / a[col][col];
+        for r in col + 1..N {
+            let f = a[r][col] * inv;
+            for c in col + 1..N {
+                a[r][c] -= f * a[col][c];
+            }
+            b[r] -= f * b[col];
+        }
+    }
+    for col in (0..N).rev() {
+        let mut s = b[col];
+        for c in col + 1..N {
+            s -= a[col][c] * b[c];
+        }
+        b[col] = s / a[col][col];
+    }
+    Ok(())
+}
+
+#[allow(clippy::needless_range_loop)]
+fn evaluate<const N: usize>(
+    k: &FfrKernel,
+    inp: &Inputs,
+    q: &mut [f64],
+    v: &mut [f64],
+    qdd: &mut [f64],
+    lambda: Option<&mut [f64]>,
+) -> Result<(), StepFailure> {
+    let ns = 3 + N;
+    let p: [f64; N] = std::array::from_fn(|j| q[3 + j]);
+    let pd: [f64; N] = std::array::from_fn(|j| v[3 + j]);
+    // Positions.
+    let g0p = mat_vec(&k.g0, &p);
+    let u_b = [k.x_b + dot(&k.s_b[0], &p), dot(&k.s_b[1], &p)];
+    let u_c = [
+        k.x_c + dot(&k.s_c[0], &p) - 0.5 * dot_n(&p, &g0p),
+        dot(&k.s_c[1], &p),
+    ];
+    let d = [u_c[0] - u_b[0], u_c[1] - u_b[1]];
+    let rho = (d[0] * d[0] + d[1] * d[1]).sqrt();
+    let y = inp.offset - inp.pin.y;
+    let sine = y / rho;
+    if !(rho > 0.0 && sine.abs() < 1.0) {
+        return Err(StepFailure::SingularMatrix);
+    }
+    // The assembly branch: the sign of the chord's x, from the last slider position (or the
+    // last frame angle when the chord is near the perpendicular to the line).
+    let x_last = q[ns] - inp.pin.x;
+    let branch = if x_last.abs() > 0.25 * rho {
+        x_last.signum()
+    } else {
+        let (s0, c0) = q[2].sin_cos();
+        if c0 * d[0] - s0 * d[1] >= 0.0 {
+            1.0
+        } else {
+            -1.0
+        }
+    };
+    let cos_psi = branch * (1.0 - sine * sine).sqrt();
+    let x = rho * cos_psi;
+    let (c, s) = (
+        (cos_psi * d[0] + sine * d[1]) / rho,
+        (sine * d[0] - cos_psi * d[1]) / rho,
+    );
+    let rot = |w: [f64; 2]| [c * w[0] - s * w[1], s * w[0] + c * w[1]];
+    let wb = rot(u_b);
+    q[0] = inp.pin.x - wb[0];
+    q[1] = inp.pin.y - wb[1];
+    if lambda.is_some() {
+        q[2] += wrap(s.atan2(c) - q[2]);
+    }
+    q[ns] = inp.pin.x + x;
+    // Velocity map T: rows R (2), phi, x_s over the modal columns.
+    let inv_x = 1.0 / x;
+    let a_b = [-wb[1], wb[0]];
+    let mut g_phi = [0.0; N];
+    let mut t_x = [0.0; N];
+    let mut t_r = [[0.0; N]; 2];
+    let mut ad = [[0.0; N]; 2];
+    for j in 0..N {
+        let d0 = k.s_c[0][j] - g0p[j] - k.s_b[0][j];
+        let d1 = k.s_c[1][j] - k.s_b[1][j];
+        ad[0][j] = c * d0 - s * d1;
+        ad[1][j] = s * d0 + c * d1;
+        g_phi[j] = -ad[1][j] * inv_x;
+        t_x[j] = -y * g_phi[j] + ad[0][j];
+        let asb = rot([k.s_b[0][j], k.s_b[1][j]]);
+        t_r[0][j] = -a_b[0] * g_phi[j] - asb[0];
+        t_r[1][j] = -a_b[1] * g_phi[j] - asb[1];
+    }
+    // Velocities.
+    let w = dot_n(&g_phi, &pd) - inp.pin_v.y * inv_x;
+    let sb_pd = [dot(&k.s_b[0], &pd), dot(&k.s_b[1], &pd)];
+    let asb_pd = rot(sb_pd);
+    v[2] = w;
+    let complete = lambda.is_some();
+    if complete {
+        v[0] = inp.pin_v.x - a_b[0] * w - asb_pd[0];
+        v[1] = inp.pin_v.y - a_b[1] * w - asb_pd[1];
+        v[ns] = inp.pin_v.x - y * w + dot_n(&ad[0], &pd);
+    }
+    // Velocity-product terms of the pin accelerations (body frame, then global).
+    let w2 = w * w;
+    let sc_pd = [dot(&k.s_c[0], &pd) - dot_n(&g0p, &pd), dot(&k.s_c[1], &pd)];
+    let g0pd = mat_vec(&k.g0, &pd);
+    let beta_b = rot([
+        -w2 * u_b[0] - 2.0 * w * sb_pd[1],
+        -w2 * u_b[1] + 2.0 * w * sb_pd[0],
+    ]);
+    let beta_c = rot([
+        -w2 * u_c[0] - 2.0 * w * sc_pd[1] - dot_n(&pd, &g0pd),
+        -w2 * u_c[1] + 2.0 * w * sc_pd[0],
+    ]);
+    let delta = [
+        beta_b[0] - beta_c[0] - inp.pin_a.x,
+        beta_b[1] - beta_c[1] - inp.pin_a.y,
+    ];
+    let b_phi = delta[1] * inv_x;
+    let b_x = -y * b_phi - delta[0];
+    let b_r = [
+        inp.pin_a.x - beta_b[0] - a_b[0] * b_phi,
+        inp.pin_a.y - beta_b[1] - a_b[1] * b_phi,
+    ];
+    // Mass matrix blocks.
+    let f = [k.i1[0] + dot(&k.i2[0], &p), k.i1[1] + dot(&k.i2[1], &p)];
+    let af = rot(f);
+    let arm = [-af[1], af[0]];
+    let mut ai2 = [[0.0; N]; 2];
+    for j in 0..N {
+        let col = rot([k.i2[0][j], k.i2[1][j]]);
+        ai2[0][j] = col[0];
+        ai2[1][j] = col[1];
+    }
+    let muu_p = mat_vec(&k.m_uu, &p);
+    let m_phiphi = k.i3 + 2.0 * dot(&k.i4, &p) + dot_n(&p, &muu_p);
+    let mut m_phip = [0.0; N];
+    for j in 0..N {
+        let mut pst = 0.0;
+        for i in 0..N {
+            pst += p[i] * k.s_tilde[i][j];
+        }
+        m_phip[j] = -(k.i5[j] + pst) + k.i_rot[j];
+    }
+    let gap = mat_vec(&k.g_a, &p);
+    let m = k.mass;
+    let g = inp.gravity;
+    // Forces Q.
+    let i2pd = [dot(&k.i2[0], &pd), dot(&k.i2[1], &pd)];
+    let qr = rot([w2 * f[0] + 2.0 * w * i2pd[1], w2 * f[1] - 2.0 * w * i2pd[0]]);
+    let mut q_phi = arm[0] * g.x + arm[1] * g.y;
+    for j in 0..N {
+        q_phi -= 2.0 * w * (k.i4[j] + muu_p[j]) * pd[j];
+    }
+    let mgv_p = mat_vec(&k.m_uu_gv, &p);
+    let st_pd = mat_vec(&k.s_tilde, &pd);
+    // The p rows' coupling to R'': `M_pR = (A I2)^T + c_s (G_a p) (A e_x)^T`, row i `u_i`.
+    let mut u = [[0.0; N]; 2];
+    for i in 0..N {
+        u[0][i] = ai2[0][i] + gap[i] * c;
+        u[1][i] = ai2[1][i] + gap[i] * s;
+    }
+    // r = Q - M b, row blocks R, phi, p, s.
+    let r_r = [
+        qr[0] + m * g.x - m * b_r[0] - arm[0] * b_phi,
+        qr[1] + m * g.y - m * b_r[1] - arm[1] * b_phi,
+    ];
+    let r_phi = q_phi - (arm[0] * b_r[0] + arm[1] * b_r[1]) - m_phiphi * b_phi;
+    let mut r_p = [0.0; N];
+    for i in 0..N {
+        r_p[i] = w2 * (k.i4[i] + mgv_p[i])
+            - 2.0 * w * st_pd[i]
+            - k.stiffness[i] * p[i]
+            - k.damping[i] * pd[i]
+            + ai2[0][i] * g.x
+            + ai2[1][i] * g.y
+            - u[0][i] * b_r[0]
+            - u[1][i] * b_r[1]
+            - m_phip[i] * b_phi;
+    }
+    let r_s = inp.slider_force + inp.slider_mass * g.x - inp.slider_mass * b_x;
+    // M T (row blocks over the modal columns) and the reduced system.
+    let mut mt_r = [[0.0; N]; 2];
+    let mut mt_phi = [0.0; N];
+    let mut mt_s = [0.0; N];
+    for j in 0..N {
+        mt_r[0][j] = m * t_r[0][j] + arm[0] * g_phi[j] + ai2[0][j];
+        mt_r[1][j] = m * t_r[1][j] + arm[1] * g_phi[j] + ai2[1][j];
+        mt_phi[j] = arm[0] * t_r[0][j] + arm[1] * t_r[1][j] + m_phiphi * g_phi[j] + m_phip[j];
+        mt_s[j] = inp.slider_mass * t_x[j];
+    }
+    // T^T (M T): the R, phi and slider rows through T, the p rows directly
+    // (`M_pR T_R + M_pphi g_phi + M_ff`).
+    let slider = inp.slider_mass != 0.0;
+    let mut reduced = [[0.0; N]; N];
+    let mut rhs = [0.0; N];
+    for i in 0..N {
+        for j in 0..N {
+            let mut e = k.m_ff[i][j]
+                + t_r[0][i] * mt_r[0][j]
+                + t_r[1][i] * mt_r[1][j]
+                + u[0][i] * t_r[0][j]
+                + u[1][i] * t_r[1][j]
+                + g_phi[i] * mt_phi[j]
+                + m_phip[i] * g_phi[j];
+            if slider {
+                e += t_x[i] * mt_s[j];
+            }
+            reduced[i][j] = e;
+        }
+        rhs[i] = t_r[0][i] * r_r[0] + t_r[1][i] * r_r[1] + g_phi[i] * r_phi + r_p[i] + t_x[i] * r_s;
+    }
+    solve(&mut reduced, &mut rhs)?;
+    let zdd = rhs;
+    if zdd.iter().any(|x| !x.is_finite()) {
+        return Err(StepFailure::NonFinite);
+    }
+    // Accelerations (the dependent ones at a last stage only).
+    qdd[3..3 + N].copy_from_slice(&zdd);
+    let Some(lambda) = lambda else {
+        return Ok(());
+    };
+    qdd[0] = dot_n(&t_r[0], &zdd) + b_r[0];
+    qdd[1] = dot_n(&t_r[1], &zdd) + b_r[1];
+    qdd[2] = dot_n(&g_phi, &zdd) + b_phi;
+    qdd[ns] = dot_n(&t_x, &zdd) + b_x;
+    // Multipliers: Phi_D^T lambda = (Q - M q'')_D.
+    let rr = [
+        r_r[0] - dot_n(&mt_r[0], &zdd),
+        r_r[1] - dot_n(&mt_r[1], &zdd),
+    ];
+    let rphi = r_phi - dot_n(&mt_phi, &zdd);
+    let rs = r_s - dot_n(&mt_s, &zdd);
+    let a_c = [a_b[0] - y, a_b[1] + x];
+    let lcx = -rs;
+    let lbx = rr[0] + rs;
+    let kappa = rphi - a_b[0] * lbx - a_c[0] * lcx;
+    let lcy = (kappa - a_b[1] * rr[1]) * inv_x;
+    lambda[0] = lbx;
+    lambda[1] = rr[1] - lcy;
+    lambda[2] = lcx;
+    lambda[3] = lcy;
+    Ok(())
+}

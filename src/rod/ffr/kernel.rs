@@ -1,0 +1,142 @@
+//! The FFR rod's precomputed data in fixed-size arrays for the minimal-coordinate right-hand
+//! side of the slider-crank (`mechanism::minimal`): the shape integrals of
+//! [`crate::modal::ShapeIntegrals`] (seed 000, eq. 3.17-3.18 and 6.2; docs/physics.md, "Rod
+//! model 1") for at most [`MAX_MODES`] retained modes, copied once when the rod is built, so
+//! that an evaluation runs on the stack with loops of a size known at compile time and pays
+//! no general library's per-call overhead.
+//!
+//! Two combinations are formed once:
+//! - the velocity part of the axial stiffening is `-phi'^2 G_v p` in `Q_p` for every rod: for
+//!   the plain rod the quadratic axial force `n0 + n1 s + n2 s^2` of
+//!   [`FfrRod::axial_force_coefficients`] is linear in `phi'^2`, so
+//!   `G_v = rho A ((L x_b + L^2 / 2) G_0 - x_b G_1 - G_2 / 2)`; other rods carry `G_v` in
+//!   `ShapeIntegrals::g_axial`. The kernel keeps `M_uu - G_v` (`Qv_p = phi'^2 (I4 + (M_uu -
+//!   G_v) p) - ...`);
+//! - the acceleration part `M_pR = c_s (G_a p) (A e_x)^T` of [`FfrRod::add_stiffening_coupling`]
+//!   keeps `c_s G_a` (`c_s` the coupling scale).
+//!
+//! Units: SI (kg, m, s); body-frame quantities as in [`FfrRod`].
+
+use super::rod::FfrRod;
+
+/// Most retained modes the fixed-size kernel takes (more fall back to the general path).
+pub const MAX_MODES: usize = 8;
+
+type Row = [f64; MAX_MODES];
+type Square = [[f64; MAX_MODES]; MAX_MODES];
+
+/// The rod's shape integrals, fixed size (entries beyond `n` are zero).
+#[derive(Clone, Debug)]
+pub struct FfrKernel {
+    /// Retained modes n (1..=MAX_MODES).
+    pub n: usize,
+    /// Rod mass with end bodies m, kg.
+    pub mass: f64,
+    /// I1 (body frame), kg m.
+    pub i1: [f64; 2],
+    /// I2 = int rho S_hat: rows x and y.
+    pub i2: [Row; 2],
+    /// I3, kg m^2.
+    pub i3: f64,
+    pub i4: Row,
+    pub i5: Row,
+    pub i_rot: Row,
+    pub m_ff: Square,
+    pub m_uu: Square,
+    /// `M_uu - G_v` (see the module documentation); `M_uu` when the stiffening is off.
+    pub m_uu_gv: Square,
+    pub s_tilde: Square,
+    /// `c_s G_a` (zero when the stiffening is off).
+    pub g_a: Square,
+    /// G_0 (zero when the stiffening is off: no foreshortening at C).
+    pub g0: Square,
+    /// Undeformed body-frame x of B, C and the midpoint, m.
+    pub x_b: f64,
+    pub x_c: f64,
+    pub x_mid: f64,
+    /// S_hat at B, C and the midpoint: rows x and y.
+    pub s_b: [Row; 2],
+    pub s_c: [Row; 2],
+    pub s_mid: [Row; 2],
+    /// Modal stiffness `w_i^2` and damping `2 zeta w_i`.
+    pub stiffness: Row,
+    pub damping: Row,
+    /// Axial stiffening on (foreshortening at C, stiffening terms).
+    pub stiffening: bool,
+}
+
+fn square(n: usize, f: impl Fn(usize, usize) -> f64) -> Square {
+    let mut s = [[0.0; MAX_MODES]; MAX_MODES];
+    for (i, row) in s.iter_mut().enumerate().take(n) {
+        for (j, x) in row.iter_mut().enumerate().take(n) {
+            *x = f(i, j);
+        }
+    }
+    s
+}
+
+fn row(n: usize, f: impl Fn(usize) -> f64) -> Row {
+    let mut r = [0.0; MAX_MODES];
+    for (j, x) in r.iter_mut().enumerate().take(n) {
+        *x = f(j);
+    }
+    r
+}
+
+impl FfrKernel {
+    /// The kernel of `rod`, or `None` if it has no modes or more than [`MAX_MODES`].
+    pub fn new(rod: &FfrRod) -> Option<FfrKernel> {
+        let n = rod.n_modes();
+        if n == 0 || n > MAX_MODES {
+            return None;
+        }
+        let ig = &rod.integrals;
+        let stiff = rod.axial_stiffening;
+        let (l, xb, ra) = (rod.length, ig.x_b, rod.rho_a);
+        let g_v = |i: usize, j: usize| -> f64 {
+            if !stiff {
+                return 0.0;
+            }
+            match &ig.g_axial {
+                Some([_, g_v]) => g_v[(i, j)],
+                None => {
+                    ra * ((l * xb + 0.5 * l * l) * ig.g[0][(i, j)]
+                        - xb * ig.g[1][(i, j)]
+                        - 0.5 * ig.g[2][(i, j)])
+                }
+            }
+        };
+        let two = |m: &nalgebra::DMatrix<f64>| [row(n, |j| m[(0, j)]), row(n, |j| m[(1, j)])];
+        Some(FfrKernel {
+            n,
+            mass: ig.mass,
+            i1: [ig.i1.x, ig.i1.y],
+            i2: two(&ig.i2),
+            i3: ig.i3,
+            i4: row(n, |j| ig.i4[j]),
+            i5: row(n, |j| ig.i5[j]),
+            i_rot: row(n, |j| ig.i_rot[j]),
+            m_ff: square(n, |i, j| ig.m_ff[(i, j)]),
+            m_uu: square(n, |i, j| ig.m_uu[(i, j)]),
+            m_uu_gv: square(n, |i, j| ig.m_uu[(i, j)] - g_v(i, j)),
+            s_tilde: square(n, |i, j| ig.s_tilde[(i, j)]),
+            g_a: square(n, |i, j| {
+                if stiff {
+                    rod.coupling_scale * rod.acceleration_stiffness[(i, j)]
+                } else {
+                    0.0
+                }
+            }),
+            g0: square(n, |i, j| if stiff { ig.g[0][(i, j)] } else { 0.0 }),
+            x_b: ig.x_b,
+            x_c: ig.x_c,
+            x_mid: ig.x_mid,
+            s_b: two(&ig.s_b),
+            s_c: two(&ig.s_c),
+            s_mid: two(&ig.s_mid),
+            stiffness: row(n, |j| rod.stiffness[j]),
+            damping: row(n, |j| rod.damping[j]),
+            stiffening: stiff,
+        })
+    }
+}
