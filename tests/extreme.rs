@@ -40,7 +40,7 @@ static TABLE: Fragment = Fragment::new(
 
 /// The benchmark scene with the fixed-step explicit path (RK4, h 3e-4 s): the integrator
 /// these extreme cases were first characterized with, kept so that the table compares like with
-/// like. What the default `auto` integrator (error-controlled Dormand-Prince) does beyond the
+/// like. What the default `auto` integrator (error-controlled RK4(3) on minimal coordinates) does beyond the
 /// model's range is tested by `default_integrator_refuses_out_of_range_steps`.
 fn scene(f: impl FnOnce(&mut Scene)) -> Scene {
     let mut s = benchmark_rk4();
@@ -779,7 +779,7 @@ fn long_run_1e4_revolutions() {
     );
 }
 
-/// The default integrator (`auto`: Dormand-Prince on the modal coordinates) beyond the FFR
+/// The default integrator (`auto`: RK4(3) on the modal coordinates) beyond the FFR
 /// rod's range: at E / 100 the deflection passes 5 % of L (warned at the first communication
 /// point past it), and as it grows towards a third of L the reduced mass matrix of the
 /// stiffened linear modes degenerates: the step fails cleanly (StepFailed, the state before
