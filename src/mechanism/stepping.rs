@@ -6,7 +6,6 @@ use super::crank::CrankLaw;
 use super::slider_crank::{dae_context, Mechanism, OutputSolve};
 use super::state::MechanismState;
 use crate::error::ModelError;
-use crate::integrator::DaeSystem;
 use crate::rod::DeflectionPolicy;
 
 /// |v_mid| / L above which the small-deformation assumption is flagged.
