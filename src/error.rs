@@ -94,6 +94,27 @@ impl fmt::Display for ModelError {
 
 impl std::error::Error for ModelError {}
 
+/// Check that `value` is finite and inside the closed physical window `[low, high]` (in the
+/// parameter's SI unit `unit`): past it, the model's numbers mean nothing (issue 14: a
+/// denormal density gave natural frequencies of 1e149 Hz with fmi2OK).
+pub fn require_within(
+    name: &'static str,
+    value: f64,
+    low: f64,
+    high: f64,
+    unit: &str,
+) -> Result<(), ModelError> {
+    if value.is_finite() && (low..=high).contains(&value) {
+        Ok(())
+    } else {
+        Err(ModelError::InvalidParameter {
+            name,
+            value,
+            allowed: format!("a finite value in [{low:e}, {high:e}] {unit}"),
+        })
+    }
+}
+
 /// Check that `value` is finite and strictly positive.
 pub fn require_positive(name: &'static str, value: f64) -> Result<(), ModelError> {
     if value.is_finite() && value > 0.0 {

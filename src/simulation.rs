@@ -29,6 +29,16 @@ pub struct Simulation {
 const SNAPSHOT_MAGIC: &[u8; 8] = b"FLEXROD\0";
 const SNAPSHOT_VERSION: u32 = 2;
 
+/// The inputs of a simulation at one moment ([`Simulation::inputs_snapshot`]).
+#[derive(Clone, Copy, Debug)]
+pub struct InputSnapshot {
+    input: CrankInput,
+    input_time: f64,
+    previous_input: CrankInput,
+    previous_input_time: f64,
+    slider_force: f64,
+}
+
 impl Simulation {
     /// Build the model of `scene`: validate the parameters, preprocess the rod (modes,
     /// shape integrals). Errors name the parameter and its allowed range.
@@ -69,6 +79,37 @@ impl Simulation {
         self.state.input = input;
         self.state.input_time = self.state.time;
         Ok(())
+    }
+
+    /// The inputs in force (crank laws and slider force), to put back with
+    /// [`Simulation::restore_inputs`] when a step that set them is refused.
+    pub fn inputs_snapshot(&self) -> InputSnapshot {
+        let s = &self.state;
+        InputSnapshot {
+            input: s.input,
+            input_time: s.input_time,
+            previous_input: s.previous_input,
+            previous_input_time: s.previous_input_time,
+            slider_force: s.slider_force,
+        }
+    }
+
+    /// Put back inputs saved with [`Simulation::inputs_snapshot`]: a refused step leaves the
+    /// simulation exactly as before it (the next step then sees the same change of crank law
+    /// as a run that never tried, and restarts on it alike).
+    pub fn restore_inputs(&mut self, saved: InputSnapshot) {
+        let s = &mut self.state;
+        s.input = saved.input;
+        s.input_time = saved.input_time;
+        s.previous_input = saved.previous_input;
+        s.previous_input_time = saved.previous_input_time;
+        s.slider_force = saved.slider_force;
+    }
+
+    /// Refuse, before anything changes, a communication step `h` that needs more internal
+    /// steps than [`crate::mechanism::MAX_INTERNAL_STEPS`] (`ModelError::TooMuchWork`).
+    pub fn check_work(&self, h: f64) -> Result<(), ModelError> {
+        self.mechanism.check_work(self.state.time, h)
     }
 
     /// Set the external slider force along +x, N, from the current time on.

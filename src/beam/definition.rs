@@ -3,7 +3,7 @@
 
 use super::section::RodProperties;
 use super::section_table::{End, EndBody, SectionTable};
-use crate::error::{require_positive, ModelError};
+use crate::error::ModelError;
 
 /// A straight rod B-C. SI units.
 #[derive(Clone, Debug, PartialEq)]
@@ -81,9 +81,19 @@ impl RodDefinition {
     pub fn validate(&self) -> Result<(), ModelError> {
         self.properties.validate()?;
         if let Some(g) = self.shear_modulus {
-            require_positive("rod.shear_modulus", g)?;
+            // The lower end of Young's modulus window (`PHYSICAL_RANGES`) a decade lower,
+            // G = E / (2 (1 + nu)); no upper end: a rigid-shear limit is the Rayleigh beam.
+            let low = super::section::PHYSICAL_RANGES[1].0 / 10.0;
+            if !(g.is_finite() && g >= low) {
+                return Err(ModelError::InvalidParameter {
+                    name: "rod.shear_modulus",
+                    value: g,
+                    allowed: format!("a finite value >= {low:e} Pa"),
+                });
+            }
         }
         if let Some(t) = &self.table {
+            t.validate_physical()?;
             if (t.length() - self.properties.length).abs() > 1e-9 * self.properties.length {
                 return Err(ModelError::InvalidParameter {
                     name: "rod.length",

@@ -1,6 +1,36 @@
 //! Material and section properties of a uniform rod.
 
-use crate::error::{require_positive, ModelError};
+use crate::error::{require_within, ModelError};
+
+/// Physical windows of the rod properties (SI): length 1 mm to 100 m; Young's modulus from soft
+/// rubber (1e5 Pa) to 1e17 Pa (half a million times steel's: the rigid limit is approached
+/// numerically); density from foams (10 kg/m^3) to above osmium
+/// (1e5); area 1e-10 to 1 m^2; area moment 1e-22 to 1 m^4. Order: L, E, rho, A, I.
+pub const PHYSICAL_RANGES: [(f64, f64); 5] = [
+    (1e-3, 100.0),
+    (1e5, 1e17),
+    (10.0, 1e5),
+    (1e-10, 1.0),
+    (1e-22, 1.0),
+];
+
+/// The radius of gyration `sqrt(I / A)` of a section must not exceed the rod length `L`
+/// (`I <= A L^2`): beyond that the body is not a rod and beam theory does not hold.
+pub fn require_gyration_radius(area: f64, area_moment: f64, length: f64) -> Result<(), ModelError> {
+    if area_moment <= area * length * length {
+        Ok(())
+    } else {
+        Err(ModelError::InvalidParameter {
+            name: "rod.area_moment",
+            value: area_moment,
+            allowed: format!(
+                "at most rod.area * rod.length^2 = {:e} m^4 (the radius of gyration sqrt(I / A) = {:e} m must not exceed the rod length {length} m)",
+                area * length * length,
+                (area_moment / area).sqrt()
+            ),
+        })
+    }
+}
 
 /// A uniform straight rod. SI units.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -29,13 +59,19 @@ impl RodProperties {
         }
     }
 
-    /// Every property must be finite and > 0; the error names the first that is not.
+    /// Every property must be finite and inside [`PHYSICAL_RANGES`], and the section's
+    /// radius of gyration `sqrt(I / A)` at most the length (a rod, not a block); the error
+    /// names the first that is not. Together these bound every natural frequency of the rod
+    /// below `pi^2 / L sqrt(E / rho)` < 1e12 rad/s (1.6e11 Hz), so no calculated value is beyond the
+    /// 1e12 the FMU stands behind.
     pub fn validate(&self) -> Result<(), ModelError> {
-        require_positive("rod.length", self.length)?;
-        require_positive("rod.youngs_modulus", self.youngs_modulus)?;
-        require_positive("rod.density", self.density)?;
-        require_positive("rod.area", self.area)?;
-        require_positive("rod.area_moment", self.area_moment)
+        let [l, e, rho, a, i] = PHYSICAL_RANGES;
+        require_within("rod.length", self.length, l.0, l.1, "m")?;
+        require_within("rod.youngs_modulus", self.youngs_modulus, e.0, e.1, "Pa")?;
+        require_within("rod.density", self.density, rho.0, rho.1, "kg/m^3")?;
+        require_within("rod.area", self.area, a.0, a.1, "m^2")?;
+        require_within("rod.area_moment", self.area_moment, i.0, i.1, "m^4")?;
+        require_gyration_radius(self.area, self.area_moment, self.length)
     }
 
     /// Mass per unit length rho A, kg/m.

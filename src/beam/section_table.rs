@@ -69,8 +69,9 @@ impl EndBody {
             End::B => ("rod.big_end.mass", "rod.big_end.inertia"),
             End::C => ("rod.small_end.mass", "rod.small_end.inertia"),
         };
-        crate::error::require_non_negative(mass_name, self.mass)?;
-        crate::error::require_non_negative(inertia_name, self.inertia)
+        // Windows as the slider's: up to 1e6 kg and 1e6 kg m^2.
+        crate::error::require_within(mass_name, self.mass, 0.0, 1e6, "kg")?;
+        crate::error::require_within(inertia_name, self.inertia, 0.0, 1e6, "kg m^2")
     }
 
     /// Whether the body has no mass and no inertia.
@@ -246,6 +247,39 @@ impl SectionTable {
             shear_area: st.shear_area.unwrap_or(st.area * DEFAULT_SHEAR_AREA_FACTOR),
             fibre_distance: st.fibre_distance,
         }
+    }
+
+    /// The physical windows of the uniform rod (`PHYSICAL_RANGES` of area and area moment),
+    /// per station, and the radius of gyration at most the rod length; the error names the
+    /// station.
+    pub fn validate_physical(&self) -> Result<(), ModelError> {
+        let [_, _, _, area, moment] = super::section::PHYSICAL_RANGES;
+        let length = self.length();
+        for (i, st) in self.stations.iter().enumerate() {
+            for (name, v, (lo, hi), unit) in [
+                ("rod.section.area", st.area, area, "m^2"),
+                ("rod.section.area_moment", st.area_moment, moment, "m^4"),
+            ] {
+                if !(lo..=hi).contains(&v) {
+                    let allowed = format!("a value in [{lo:e}, {hi:e}] {unit}");
+                    return Err(station_error(name, i, st, v, &allowed));
+                }
+            }
+            if st.area_moment > st.area * length * length {
+                let allowed = format!(
+                    "at most area * rod.length^2 = {:e} m^4 (radius of gyration at most the rod length)",
+                    st.area * length * length
+                );
+                return Err(station_error(
+                    "rod.section.area_moment",
+                    i,
+                    st,
+                    st.area_moment,
+                    &allowed,
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// Properties at arc length `s` (clamped to `[0, L]`): linear between stations; at a step

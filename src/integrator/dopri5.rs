@@ -281,7 +281,8 @@ impl Integrator for Dopri5 {
             state.step_hint
         } else {
             self.control.initial_step
-        };
+        }
+        .min(super::MAX_ADAPTIVE_STEP);
         let mut h = if h_max <= 1.25 * proposal {
             h_max
         } else {

@@ -150,7 +150,8 @@ impl GeneralizedAlpha {
             state.step_hint
         } else {
             control.initial_step
-        };
+        }
+        .min(super::MAX_ADAPTIVE_STEP);
         let mut h = if h_max <= 1.25 * proposal {
             h_max
         } else {

@@ -40,6 +40,13 @@ pub use system::{DaeSystem, GeneralPath};
 /// choices then do not follow round-off-level differences in the error estimate, so the same
 /// run driven by different importers (communication points computed in other ways, Newton
 /// iterations stopping one iteration apart) takes the same steps.
+/// Largest internal step the error-controlled integrators propose, s (a step may be stretched by
+/// 25 % to land on the communication point). It makes the work of a communication step
+/// bounded from below by `h / (1.25 MAX_ADAPTIVE_STEP)` steps, so a step beyond the work limit
+/// is refused before it starts (issue 14), and keeps the crank law's evaluations far from
+/// overflow. At 300 rad/s it is 3 rad of crank: accuracy bounds the step long before it.
+pub const MAX_ADAPTIVE_STEP: f64 = 1e-2;
+
 pub fn quantize_step(h: f64) -> f64 {
     if !(h.is_finite() && h > 0.0) {
         return h;

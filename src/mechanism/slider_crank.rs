@@ -101,9 +101,18 @@ impl Mechanism {
         spec.validate()?;
         let rod = crate::rod::build(&spec.rod)?;
         let n = rod.n_coordinates() + 1;
-        // RK4 is stable for w h < 2.78: its step is capped at 2.5 / w_max of the highest mode.
-        let explicit_limit =
-            2.5 / (2.0 * std::f64::consts::PI * rod.highest_frequency_hz()).max(1e-300);
+        // RK4 is stable for |lambda| h < 2.78: its step is capped at 2.5 / |lambda|_max, the
+        // fastest eigenvalue of the retained modes: w_max for a damping ratio zeta <= 1, and
+        // w_max (zeta + sqrt(zeta^2 - 1)) for an overdamped one (modal damping with one ratio,
+        // docs/physics.md "Elastic and damping forces").
+        let zeta = spec.rod.damping_ratio;
+        let overdamping = if zeta > 1.0 {
+            zeta + (zeta * zeta - 1.0).sqrt()
+        } else {
+            1.0
+        };
+        let explicit_limit = 2.5
+            / (2.0 * std::f64::consts::PI * rod.highest_frequency_hz() * overdamping).max(1e-300);
         // `auto`: error-controlled steps; the explicit pair on the modal coordinates where
         // its stability limit leaves a useful step, else the implicit method (the segment
         // chain, many or very stiff modes).

@@ -6,6 +6,7 @@ use super::crank::CrankLaw;
 use super::slider_crank::{dae_context, Mechanism, OutputSolve};
 use super::state::MechanismState;
 use crate::error::ModelError;
+use crate::integrator::MAX_ADAPTIVE_STEP;
 use crate::rod::DeflectionPolicy;
 
 /// |v_mid| / L above which the small-deformation assumption is flagged.
@@ -23,24 +24,14 @@ pub const MAX_OUTPUT_MAGNITUDE: f64 = 1e12;
 impl Mechanism {
     /// Integrate `state` over `[t, t + h]`; on failure `state` is restored and the error says why.
     pub fn advance(&mut self, state: &mut MechanismState, h: f64) -> Result<(), ModelError> {
+        let t_start = state.time;
+        self.check_work(t_start, h)?;
         self.backup.clone_from(&state.dae);
         self.integrator.forget_between_steps();
         let backup_stats = state.stats;
-        let t_start = state.time;
         let t_end = t_start + h;
         let n_sub_f = ((h / self.max_step) * (1.0 - 1e-12)).ceil().max(1.0);
         let adaptive = self.integrator.is_adaptive();
-        if !adaptive && n_sub_f > MAX_INTERNAL_STEPS as f64 {
-            return Err(ModelError::TooMuchWork {
-                time: t_start,
-                step: h,
-                message: format!(
-                    "it needs {n_sub_f:e} internal steps of at most {:e} s, allowed at most {MAX_INTERNAL_STEPS} per communication step (h <= {:e} s)",
-                    self.max_step,
-                    self.max_step * MAX_INTERNAL_STEPS as f64
-                ),
-            });
-        }
         let n_sub = n_sub_f as usize;
         let result = (|| {
             if adaptive {
@@ -121,6 +112,39 @@ impl Mechanism {
                 })
             }
         }
+    }
+
+    /// Refuse, before anything changes, a communication step `h` from `t_start` that needs
+    /// more than [`MAX_INTERNAL_STEPS`] internal steps: fixed-step integrators take equal
+    /// sub-steps of at most the solver step; the error-controlled ones at most
+    /// `1.25 MAX_ADAPTIVE_STEP` each.
+    pub fn check_work(&self, t_start: f64, h: f64) -> Result<(), ModelError> {
+        let refuse = |message: String| {
+            Err(ModelError::TooMuchWork {
+                time: t_start,
+                step: h,
+                message,
+            })
+        };
+        if self.integrator.is_adaptive() {
+            let bound = MAX_INTERNAL_STEPS as f64 * 1.25 * MAX_ADAPTIVE_STEP;
+            if h.is_nan() || h > bound {
+                return refuse(format!(
+                    "the error-controlled internal steps are at most {:e} s, so it needs more than {MAX_INTERNAL_STEPS} internal steps, the most allowed per communication step (h <= {bound:e} s)",
+                    1.25 * MAX_ADAPTIVE_STEP
+                ));
+            }
+        } else {
+            let n_sub = ((h / self.max_step) * (1.0 - 1e-12)).ceil().max(1.0);
+            if n_sub.is_nan() || n_sub > MAX_INTERNAL_STEPS as f64 {
+                return refuse(format!(
+                    "it needs {n_sub:e} internal steps of at most {:e} s, allowed at most {MAX_INTERNAL_STEPS} per communication step (h <= {:e} s)",
+                    self.max_step,
+                    self.max_step * MAX_INTERNAL_STEPS as f64
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// Before the steps of an adaptive integrator: where the inputs set at this communication

@@ -34,17 +34,31 @@ impl Instance {
                 )));
             }
         }
-        // A new law starts at every communication point: theta_k, omega_k as set (or the
-        // previous law's values at t_k), alpha_k as set at t_k or 0 (see `inputs`).
+        // Refusals that change nothing come first: a step beyond the work bound.
         simulation
-            .set_input(self.inputs.crank_input())
+            .check_work(h)
             .map_err(|e| FmiError::rejected(model_error(e)))?;
-        if self.inputs.force_changed {
-            simulation
-                .set_slider_force(self.inputs.slider_force)
-                .map_err(|e| FmiError::rejected(model_error(e)))?;
+        // A new law starts at every communication point: theta_k, omega_k as set (or the
+        // previous law's values at t_k), alpha_k as set at t_k or 0 (see `inputs`). A step
+        // that is refused puts the inputs in force back (with the state, which the core
+        // restores), so that continuing gives what a run that never tried gives.
+        let saved_inputs = simulation.inputs_snapshot();
+        let mut set_inputs = || {
+            simulation.set_input(self.inputs.crank_input())?;
+            if self.inputs.force_changed {
+                simulation.set_slider_force(self.inputs.slider_force)?;
+            }
+            Ok(())
+        };
+        if let Err(e) = set_inputs() {
+            simulation.restore_inputs(saved_inputs);
+            return Err(FmiError::rejected(model_error(e)));
         }
-        match simulation.advance(h) {
+        let result = simulation.advance(h);
+        if result.is_err() {
+            simulation.restore_inputs(saved_inputs);
+        }
+        match result {
             Ok(_) => {
                 // The values the law used at the new time, from the core's own law.
                 let time = simulation.time();

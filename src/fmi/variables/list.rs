@@ -410,9 +410,9 @@ impl VariableTable {
             DIMENSIONLESS,
             |s| s.solver.tolerance,
             |s, v| s.solver.tolerance = v,
-            "Accuracy of the integration (solver.method auto or dopri5): pointwise error of the deflection relative to its peak, in (0, 0.1]",
+            "Accuracy of the integration (solver.method auto or dopri5): pointwise error of the deflection relative to its peak, in [1e-10, 0.1]",
         );
-        b.bounds(Some(Value::Real(0.0)), Some(Value::Real(0.1)));
+        b.bounds(Some(Value::Real(1e-10)), Some(Value::Real(0.1)));
 
         // Issue 14: what a step beyond the small-deformation range does.
         b.real_parameter(
