@@ -108,6 +108,8 @@ fn random_call_sequences_keep_the_contract() {
     let n = env_u64("FLEXROD_FUZZ_SEQUENCES", DEFAULT_SEQUENCES);
     let first = env_u64("FLEXROD_FUZZ_FIRST", 0);
     let threads = env_u64("FLEXROD_FUZZ_THREADS", 1).max(1);
+    // The code under test: the commit at the start (files may change while a long run runs).
+    let code = commit();
     let t0 = Instant::now();
     let results: Vec<(Totals, Violations)> = std::thread::scope(|s| {
         let handles: Vec<_> = (0..threads)
@@ -186,7 +188,7 @@ fn random_call_sequences_keep_the_contract() {
                 "{figures}; {:.0} s on {threads} thread(s) ({:.2} ms per sequence and thread), at commit {}.\n",
                 seconds,
                 seconds * threads as f64 / n as f64 * 1e3,
-                commit()
+                code
             ),
         );
     }
