@@ -1,5 +1,6 @@
 //! A hand-written SVG of error against run time: one log-log panel per case, one marker
-//! style per rod model, the Pareto front as a line.
+//! style per rod model, the Pareto front as a dashed line and the front of the fixed-step
+//! settings alone (what the report had before issue 12's error control) as a grey line.
 
 /// One point of a panel.
 pub struct Point {
@@ -7,7 +8,8 @@ pub struct Point {
     pub time: f64,
     /// Error (fraction of the reference peak).
     pub error: f64,
-    /// 0 = FFR linear, 1 = FFR stiffened, 2 = segments.
+    /// Index into the model names (0 = FFR linear, 1 = FFR stiffened, 2 = segments, 3 = RK4,
+    /// 4 to 6 the error-controlled settings).
     pub model: usize,
     pub pareto: bool,
 }
@@ -30,6 +32,26 @@ const MODEL_NAMES: [&str; 7] = [
 const COLOURS: [&str; 7] = [
     "#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#17becf",
 ];
+
+/// Models 0 to 3 of [`MODEL_NAMES`] step with a fixed step (the methods before issue 12).
+const FIXED_STEP_MODELS: usize = 4;
+/// Colour of the fixed-step front.
+const OLD_FRONT: &str = "#bbbbbb";
+
+/// The points no other point beats in both run time and error, by increasing run time.
+fn non_dominated<'a>(points: &[&'a &'a Point]) -> Vec<&'a Point> {
+    let mut sorted: Vec<&Point> = points.iter().map(|p| **p).collect();
+    sorted.sort_by(|a, b| a.time.total_cmp(&b.time).then(a.error.total_cmp(&b.error)));
+    let mut front = Vec::new();
+    let mut best = f64::INFINITY;
+    for p in sorted {
+        if p.error < best {
+            best = p.error;
+            front.push(p);
+        }
+    }
+    front
+}
 
 fn marker(model: usize, x: f64, y: f64) -> String {
     let c = COLOURS[model];
@@ -65,25 +87,24 @@ pub fn error_vs_runtime(title: &str, panels: &[Panel]) -> String {
     let (pw, ph) = (520.0, 380.0);
     let cols = 2usize;
     let rows = panels.len().div_ceil(cols).max(1);
-    let (w, h) = (pw * cols as f64, ph * rows as f64 + 60.0);
+    let (w, h) = (pw * cols as f64, ph * rows as f64 + 80.0);
     let mut s = format!(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"{}\" y=\"20\" text-anchor=\"middle\" font-size=\"15\">{title}</text>\n",
         w / 2.0
     );
-    // Legend.
-    for m in 0..4 {
-        let x = 20.0 + 140.0 * m as f64;
-        s += &marker(m, x, 40.0);
-        s += &format!(
-            "<text x=\"{}\" y=\"44\">{}</text>\n",
-            x + 9.0,
-            MODEL_NAMES[m]
-        );
+    // Legend: every model's marker (two rows), then the two fronts.
+    for (m, name) in MODEL_NAMES.iter().enumerate() {
+        let (col, row) = (m % 4, m / 4);
+        let x = 20.0 + 260.0 * col as f64;
+        let y = 36.0 + 14.0 * row as f64;
+        s += &marker(m, x, y);
+        s += &format!("<text x=\"{}\" y=\"{}\">{name}</text>\n", x + 9.0, y + 4.0);
     }
-    s += "<line x1=\"600\" x2=\"630\" y1=\"40\" y2=\"40\" stroke=\"black\" stroke-dasharray=\"4 2\"/><text x=\"635\" y=\"44\">Pareto front</text>\n";
+    s += "<line x1=\"15\" x2=\"45\" y1=\"64\" y2=\"64\" stroke=\"black\" stroke-dasharray=\"4 2\"/><text x=\"50\" y=\"68\">Pareto front (all settings)</text>\n";
+    s += &format!("<line x1=\"275\" x2=\"305\" y1=\"64\" y2=\"64\" stroke=\"{OLD_FRONT}\" stroke-width=\"2\"/><text x=\"310\" y=\"68\">front of the fixed-step settings (the methods before issue 12)</text>\n");
     for (i, panel) in panels.iter().enumerate() {
         let ox = pw * (i % cols) as f64;
-        let oy = 60.0 + ph * (i / cols) as f64;
+        let oy = 80.0 + ph * (i / cols) as f64;
         let (ml, mr, mt, mb) = (70.0, 15.0, 28.0, 45.0);
         let pts: Vec<&Point> = panel
             .points
@@ -169,6 +190,20 @@ pub fn error_vs_runtime(title: &str, panels: &[Panel]) -> String {
                 .collect();
             s += &format!(
                 "<polyline fill=\"none\" stroke=\"black\" stroke-dasharray=\"4 2\" points=\"{}\"/>\n",
+                path.join(" ")
+            );
+        }
+        // The front of the fixed-step methods alone (models 0 to 3, what the report had
+        // before issue 12's error control), for comparison with today's.
+        let old: Vec<&&Point> = pts.iter().filter(|p| p.model < FIXED_STEP_MODELS).collect();
+        let old_front = non_dominated(&old);
+        if old_front.len() > 1 {
+            let path: Vec<String> = old_front
+                .iter()
+                .map(|p| format!("{:.1},{:.1}", px(p.time), py(p.error)))
+                .collect();
+            s += &format!(
+                "<polyline fill=\"none\" stroke=\"{OLD_FRONT}\" stroke-width=\"2\" points=\"{}\"/>\n",
                 path.join(" ")
             );
         }
