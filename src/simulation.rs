@@ -39,6 +39,11 @@ pub struct InputSnapshot {
     slider_force: f64,
 }
 
+/// Largest magnitudes of the inputs (issue 14: past them no output can be trusted): crank
+/// angle 1e9 rad (the phase keeps 1e-7 rad), crank speed 1e4 rad/s (95 000 rpm), crank
+/// acceleration 1e8 rad/s^2, slider force 1e8 N.
+pub const INPUT_WINDOWS: [f64; 4] = [1e9, 1e4, 1e8, 1e8];
+
 impl Simulation {
     /// Build the model of `scene`: validate the parameters, preprocess the rod (modes,
     /// shape integrals). Errors name the parameter and its allowed range.
@@ -219,21 +224,23 @@ impl Simulation {
 }
 
 fn check_input(input: CrankInput, slider_force: f64) -> Result<(), ModelError> {
-    let checks: [(&'static str, f64); 4] = [
-        ("crank.angle", input.angle),
-        ("crank.speed", input.speed),
+    let checks: [(&'static str, f64, f64, &str); 4] = [
+        ("crank.angle", input.angle, INPUT_WINDOWS[0], "rad"),
+        ("crank.speed", input.speed, INPUT_WINDOWS[1], "rad/s"),
         (
             "crank.speed derivative (crank acceleration)",
             input.acceleration,
+            INPUT_WINDOWS[2],
+            "rad/s^2",
         ),
-        ("slider.force", slider_force),
+        ("slider.force", slider_force, INPUT_WINDOWS[3], "N"),
     ];
-    for (name, value) in checks {
-        if !value.is_finite() {
+    for (name, value, bound, unit) in checks {
+        if !(value.is_finite() && value.abs() <= bound) {
             return Err(ModelError::InvalidParameter {
                 name,
                 value,
-                allowed: "a finite value".into(),
+                allowed: format!("a finite value with |value| <= {bound:e} {unit}"),
             });
         }
     }

@@ -68,6 +68,20 @@ impl Mechanism {
         state.dae.lambda.copy_from_slice(&work.solve.lambda);
         state.dae.acc.copy_from_slice(&state.dae.qdd);
         state.outputs = self.compute_outputs(&mut work, &state)?;
+        // The initial outputs obey the bound of every accepted step (a heavy slider at the
+        // fastest crank can ask for forces no model stands behind).
+        for (name, x) in state.outputs.named() {
+            if !(x.is_finite() && x.abs() < super::MAX_OUTPUT_MAGNITUDE) {
+                return Err(ModelError::InvalidParameter {
+                    name: "initial state",
+                    value: x,
+                    allowed: format!(
+                        "output {name} finite with |value| < {:e} in SI units at the start (lower the crank speed, the slider force or the masses)",
+                        super::MAX_OUTPUT_MAGNITUDE
+                    ),
+                });
+            }
+        }
         Ok(state)
     }
 

@@ -226,6 +226,18 @@ pub fn call(rng: &mut Rng, cx: &Context<'_>, own: &mut OwnStates) -> (Func, fmi2
                 };
                 (f, s, Expect::Error)
             }
+            // Experiments with a non-finite start, a stop before the start or a NaN stop.
+            9 if cx.state == State::Instantiated && rng.one_in(3) => {
+                let (start, defined, stop) = rng.pick(&[
+                    (f64::NAN, 0, 0.0),
+                    (f64::INFINITY, 0, 0.0),
+                    (0.0, 1, -1.0),
+                    (0.0, 1, f64::NAN),
+                    (1.0, 1, 0.5),
+                ]);
+                let s = fmi2SetupExperiment(c, 0, 0.0, start, defined, stop);
+                (Func::SetupExperiment, s, Expect::Error)
+            }
             // Integers and enumerations out of their declared range (refused at the set call).
             8 | 9 => {
                 let (vr, v) = match rng.below(4) {
@@ -307,8 +319,55 @@ pub fn call(rng: &mut Rng, cx: &Context<'_>, own: &mut OwnStates) -> (Func, fmi2
             // NULL outputs of the state functions and the status queries.
             16 => {
                 let live = own.live.first().copied().unwrap_or(null_state());
-                let (f, s) = match rng.below(6) {
+                let vr = [vars.real_inputs[1]];
+                let (f, s) = match rng.below(16) {
                     0 => (Func::GetFMUstate, fmi2GetFMUstate(c, ptr::null_mut())),
+                    6 => (
+                        Func::GetRealStatus,
+                        fmi2GetRealStatus(c, 2, ptr::null_mut()),
+                    ),
+                    7 => (
+                        Func::GetIntegerStatus,
+                        fmi2GetIntegerStatus(c, 0, ptr::null_mut()),
+                    ),
+                    8 => (
+                        Func::GetBooleanStatus,
+                        fmi2GetBooleanStatus(c, 3, ptr::null_mut()),
+                    ),
+                    9 => (
+                        Func::GetStringStatus,
+                        fmi2GetStringStatus(c, 1, ptr::null_mut()),
+                    ),
+                    10 => (
+                        Func::SetRealInputDerivatives,
+                        fmi2SetRealInputDerivatives(
+                            c,
+                            ptr::null(),
+                            1,
+                            [1].as_ptr(),
+                            [1.0].as_ptr(),
+                        ),
+                    ),
+                    11 => (
+                        Func::SetRealInputDerivatives,
+                        fmi2SetRealInputDerivatives(c, vr.as_ptr(), 1, ptr::null(), [1.0].as_ptr()),
+                    ),
+                    12 => (
+                        Func::SetRealInputDerivatives,
+                        fmi2SetRealInputDerivatives(c, vr.as_ptr(), 1, [1].as_ptr(), ptr::null()),
+                    ),
+                    13 => (
+                        Func::SerializeFMUstate,
+                        fmi2SerializeFMUstate(c, live, ptr::null_mut(), 100),
+                    ),
+                    14 => (
+                        Func::GetString,
+                        fmi2GetString(c, vr.as_ptr(), 1, ptr::null_mut()),
+                    ),
+                    15 => (
+                        Func::SetBoolean,
+                        fmi2SetBoolean(c, vr.as_ptr(), 1, ptr::null()),
+                    ),
                     1 => (Func::FreeFMUstate, fmi2FreeFMUstate(c, ptr::null_mut())),
                     2 => (
                         Func::SerializedFMUstateSize,

@@ -184,6 +184,8 @@ fn input(rng: &mut Rng, vars: &Vars) -> Op {
     let k = rng.below(vars.real_inputs.len());
     let vr = vars.real_inputs[k];
     let value = match k {
+        // Huge and denormal inputs now and then: refused (or taken) alike by both instances.
+        _ if rng.one_in(50) => rng.pick(&[1e300, -1e300, 5e-324, f64::MAX, 1e12]),
         0 => rng.uniform(-7.0, 7.0),
         1 if rng.one_in(10) => rng.pick(&[-1163.7, 600.0, 0.0, 1e4]),
         1 => rng.uniform(-300.0, 300.0),

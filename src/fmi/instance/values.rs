@@ -6,7 +6,7 @@
 use super::Instance;
 use crate::fmi::state_machine::MachineState;
 use crate::fmi::status::{FmiError, FmiResult, Status};
-use crate::fmi::variables::{Access, Causality, Family, ValueReference, Variable};
+use crate::fmi::variables::{Access, Causality, Family, InputSlot, ValueReference, Variable};
 
 impl Instance {
     pub(super) fn variable(&self, vr: ValueReference, family: Family) -> FmiResult<&Variable> {
@@ -180,6 +180,20 @@ impl Instance {
                     "{} = {x} (value reference {vr}) is out of range: allowed a finite value; nothing was set",
                     v.name
                 )));
+            }
+            if let Access::Input(slot) = v.access {
+                let bound = crate::simulation::INPUT_WINDOWS[match slot {
+                    InputSlot::CrankAngle => 0,
+                    InputSlot::CrankSpeed => 1,
+                    InputSlot::CrankAcceleration => 2,
+                    InputSlot::SliderForce => 3,
+                }];
+                if x.abs() > bound {
+                    return Err(FmiError::rejected(format!(
+                        "{} = {x:e} (value reference {vr}) is out of range: allowed |value| <= {bound:e} in SI units; nothing was set",
+                        v.name
+                    )));
+                }
             }
         }
         let mut parameter_changed = false;
