@@ -141,7 +141,10 @@ fn write_stress_curve(rows: &[Row], reference: &[Row]) {
             b[8] / 1e6
         );
     }
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/figures/automotive_stress.csv");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/docs/figures/automotive_stress.csv"
+    );
     std::fs::write(path, csv).unwrap();
     println!("wrote {path}");
 }

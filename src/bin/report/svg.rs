@@ -87,24 +87,24 @@ pub fn error_vs_runtime(title: &str, panels: &[Panel]) -> String {
     let (pw, ph) = (520.0, 380.0);
     let cols = 2usize;
     let rows = panels.len().div_ceil(cols).max(1);
-    let (w, h) = (pw * cols as f64, ph * rows as f64 + 80.0);
+    let (w, h) = (pw * cols as f64, ph * rows as f64 + 95.0);
     let mut s = format!(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"{}\" y=\"20\" text-anchor=\"middle\" font-size=\"15\">{title}</text>\n",
         w / 2.0
     );
-    // Legend: every model's marker (two rows), then the two fronts.
+    // Legend: every model's marker (three columns), then the two fronts.
     for (m, name) in MODEL_NAMES.iter().enumerate() {
-        let (col, row) = (m % 4, m / 4);
-        let x = 20.0 + 260.0 * col as f64;
+        let (col, row) = (m % 3, m / 3);
+        let x = 20.0 + 340.0 * col as f64;
         let y = 36.0 + 14.0 * row as f64;
         s += &marker(m, x, y);
         s += &format!("<text x=\"{}\" y=\"{}\">{name}</text>\n", x + 9.0, y + 4.0);
     }
-    s += "<line x1=\"15\" x2=\"45\" y1=\"64\" y2=\"64\" stroke=\"black\" stroke-dasharray=\"4 2\"/><text x=\"50\" y=\"68\">Pareto front (all settings)</text>\n";
-    s += &format!("<line x1=\"275\" x2=\"305\" y1=\"64\" y2=\"64\" stroke=\"{OLD_FRONT}\" stroke-width=\"2\"/><text x=\"310\" y=\"68\">front of the fixed-step settings (the methods before issue 12)</text>\n");
+    s += "<line x1=\"15\" x2=\"45\" y1=\"80\" y2=\"80\" stroke=\"black\" stroke-dasharray=\"4 2\"/><text x=\"50\" y=\"84\">Pareto front (all settings)</text>\n";
+    s += &format!("<line x1=\"355\" x2=\"385\" y1=\"80\" y2=\"80\" stroke=\"{OLD_FRONT}\" stroke-width=\"2\"/><text x=\"390\" y=\"84\">front of the fixed-step settings (the methods before issue 12)</text>\n");
     for (i, panel) in panels.iter().enumerate() {
         let ox = pw * (i % cols) as f64;
-        let oy = 80.0 + ph * (i / cols) as f64;
+        let oy = 95.0 + ph * (i / cols) as f64;
         let (ml, mr, mt, mb) = (70.0, 15.0, 28.0, 45.0);
         let pts: Vec<&Point> = panel
             .points
