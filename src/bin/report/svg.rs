@@ -181,32 +181,29 @@ pub fn error_vs_runtime(title: &str, panels: &[Panel]) -> String {
             ox + 16.0,
             ox + 16.0
         );
-        let mut front: Vec<&&Point> = pts.iter().filter(|p| p.pareto).collect();
-        front.sort_by(|a, b| a.time.total_cmp(&b.time));
-        if front.len() > 1 {
+        let polyline = |front: &[&Point], style: &str| {
+            if front.len() < 2 {
+                return String::new();
+            }
             let path: Vec<String> = front
                 .iter()
                 .map(|p| format!("{:.1},{:.1}", px(p.time), py(p.error)))
                 .collect();
-            s += &format!(
-                "<polyline fill=\"none\" stroke=\"black\" stroke-dasharray=\"4 2\" points=\"{}\"/>\n",
+            format!(
+                "<polyline fill=\"none\" {style} points=\"{}\"/>\n",
                 path.join(" ")
-            );
-        }
+            )
+        };
+        let mut front: Vec<&Point> = pts.iter().filter(|p| p.pareto).copied().collect();
+        front.sort_by(|a, b| a.time.total_cmp(&b.time));
+        s += &polyline(&front, "stroke=\"black\" stroke-dasharray=\"4 2\"");
         // The front of the fixed-step methods alone (models 0 to 3, what the report had
         // before issue 12's error control), for comparison with today's.
         let old: Vec<&&Point> = pts.iter().filter(|p| p.model < FIXED_STEP_MODELS).collect();
-        let old_front = non_dominated(&old);
-        if old_front.len() > 1 {
-            let path: Vec<String> = old_front
-                .iter()
-                .map(|p| format!("{:.1},{:.1}", px(p.time), py(p.error)))
-                .collect();
-            s += &format!(
-                "<polyline fill=\"none\" stroke=\"{OLD_FRONT}\" stroke-width=\"2\" points=\"{}\"/>\n",
-                path.join(" ")
-            );
-        }
+        s += &polyline(
+            &non_dominated(&old),
+            &format!("stroke=\"{OLD_FRONT}\" stroke-width=\"2\""),
+        );
         for p in &pts {
             s += &marker(p.model, px(p.time), py(p.error));
             s += "\n";
