@@ -136,13 +136,13 @@ fn random_call_sequences_keep_the_contract() {
         totals.steps_discarded += t.steps_discarded;
         totals.segment_sequences += t.segment_sequences;
         totals.panics += t.panics;
-        totals.work_bound_refusals += t.work_bound_refusals;
+        totals.unchanged_refusals += t.unchanged_refusals;
         violations.count += v.count;
         violations.first.extend(v.first);
     }
     let seconds = t0.elapsed().as_secs_f64();
     println!(
-        "fuzz: {} sequences (from {first}, {threads} thread(s)), {} calls ({} legal on both instances, {} hostile), {} refused, {} steps accepted, {} discarded, {} sequences with the segment chain, {} legal steps refused by the work bound, {} panics caught, contract violations: {}, {seconds:.1} s",
+        "fuzz: {} sequences (from {first}, {threads} thread(s)), {} calls ({} legal on both instances, {} hostile), {} refused, {} steps accepted, {} discarded, {} sequences with the segment chain, {} legal steps refused with the instance unchanged (input window or work bound), {} panics caught, contract violations: {}, {seconds:.1} s",
         totals.sequences,
         totals.counts.calls,
         totals.legal_calls,
@@ -151,7 +151,7 @@ fn random_call_sequences_keep_the_contract() {
         totals.steps_accepted,
         totals.steps_discarded,
         totals.segment_sequences,
-        totals.work_bound_refusals,
+        totals.unchanged_refusals,
         totals.panics,
         violations.count
     );
@@ -165,7 +165,7 @@ fn random_call_sequences_keep_the_contract() {
         .min()
         .unwrap_or(0);
     let figures = format!(
-        "{} sequences (seeds {first} to {}): {} calls, {} of them refused, every one of the 34 fmi2 functions called (the least called {least} times); {} legal calls on both instances of a pair and {} hostile calls on one; {} steps accepted, {} discarded, {} refused by the work bound; {} sequences with the segment chain; {} panics caught; **contract violations: {}**",
+        "{} sequences (seeds {first} to {}): {} calls, {} of them refused, every one of the 34 fmi2 functions called (the least called {least} times); {} legal calls on both instances of a pair and {} hostile calls on one; {} steps accepted, {} discarded, {} refused with the instance unchanged (the crank law past an input window, or the work bound); {} sequences with the segment chain; {} panics caught; **contract violations: {}**",
         totals.sequences,
         first + n - 1,
         totals.counts.calls,
@@ -174,7 +174,7 @@ fn random_call_sequences_keep_the_contract() {
         totals.hostile_calls,
         totals.steps_accepted,
         totals.steps_discarded,
-        totals.work_bound_refusals,
+        totals.unchanged_refusals,
         totals.segment_sequences,
         totals.panics,
         violations.count,

@@ -142,8 +142,8 @@ pub fn after(f: Func, s: State, status: fmi2Status) -> State {
         Func::DoStep if status == DISCARD => StepFailed,
         // A legal step answered fmi2Error: the model failed or `rod.deflection_policy` = error
         // refused it (FMI 2.0: fmi2Error leaves only reset or a restored state), or it needed
-        // more internal steps than the work bound (refused with the instance unchanged): the
-        // caller tells the two apart with the probe.
+        // more internal steps than the work bound or the crank law left an input window
+        // (refused with the instance unchanged): the caller tells the two apart with the probe.
         Func::DoStep if status == ERROR => Error,
         Func::Terminate if ok => Terminated,
         Func::Reset if ok => Instantiated,
