@@ -103,7 +103,22 @@ fn main() {
             }),
         ),
         (
-            "segment chain, 32 segments (no shear)",
+            "segment chain, 32 segments, shear slides and axial springs (within 0.5 % of the shear beam)",
+            with(&|s| {
+                s.rod.model = RodModelKind::Segments;
+                s.rod.elements = 32;
+                s.rod.axial_springs = true;
+            }),
+        ),
+        (
+            "segment chain, 32 segments, shear slides, axially rigid",
+            with(&|s| {
+                s.rod.model = RodModelKind::Segments;
+                s.rod.elements = 32;
+            }),
+        ),
+        (
+            "segment chain, 32 segments, no shear slides, axially rigid (the chain before issue 11's check)",
             with(&|s| {
                 s.rod.model = RodModelKind::Segments;
                 s.rod.elements = 32;

@@ -6,13 +6,13 @@
 //! forces at the firing spike within 1 %.
 //!
 //! The run, the same in both: from rest, undeformed, the crank speed ramps smoothly to
-//! 628.3 rad/s over 40 ms (`CrankDrive::Ramp`; a start the two models share exactly, without the
+//! 628.3 rad/s over 40 ms (`flexrod::drive::engine`, `CrankDrive::Ramp`; a start the two models share exactly, without the
 //! start-up transient that an impulsive start at full speed would ring through the undamped
 //! reference), then two revolutions at 6000 rpm; a 38 kN gas-force pulse on the slider 15 degrees
 //! after the first top dead centre at full speed, held over each 1e-5 s communication step at its
 //! mid-step value. No damping (`rod.damping_ratio = 0`; the reference has none).
 
-use flexrod::drive::CrankDrive;
+use flexrod::drive::engine::{EngineErrors as Errors, EngineRow, EngineRun};
 use flexrod::scene::{RodModelKind, SolverMethod};
 use flexrod::Scene;
 
@@ -20,40 +20,27 @@ mod common;
 use common::check_generated;
 use common::exudyn::read_rows;
 
-const W: f64 = 628.3;
-const T_RAMP: f64 = 0.04;
-const T_STOP: f64 = 0.06;
-const DT: f64 = 1e-5;
-/// Reference sampling interval, s.
-const SAMPLE: f64 = 2e-5;
-
-/// The gas force of the reference (tests/data/automotive_reference.py, `gas`), N.
-fn gas(theta: f64) -> f64 {
-    let firing = 4.0 * std::f64::consts::PI + 15f64.to_radians();
-    let d = (theta - firing) / 20f64.to_radians();
-    -38.0e3 * (-d * d).exp()
-}
-
 /// Columns of the reference: t, v_mid/L, FBx, FBy, FCx, FCy, N_mid, M_mid, stress at L/2.
-type Row = [f64; 9];
+type Row = EngineRow;
 
 fn reference() -> Vec<Row> {
     reference_file("exudyn_automotive_rod.csv")
 }
 
 fn reference_file(name: &str) -> Vec<Row> {
+    let setup = EngineRun::automotive();
     let rows: Vec<Row> = read_rows(name, 9)
         .into_iter()
         .map(|v| v.try_into().unwrap())
         .collect();
     for (k, r) in rows.iter().enumerate() {
         assert!(
-            (r[0] - k as f64 * SAMPLE).abs() < 1e-9,
+            (r[0] - k as f64 * setup.sample).abs() < 1e-9,
             "row {k} at {}",
             r[0]
         );
     }
-    assert!((rows.last().unwrap()[0] - T_STOP).abs() < 1e-9);
+    assert!((rows.last().unwrap()[0] - setup.stop).abs() < 1e-9);
     rows
 }
 
@@ -64,60 +51,15 @@ fn scene() -> Scene {
     s
 }
 
-/// Run the reference's load case, rows at the reference's sampling times.
+/// The engine run of `flexrod::drive::engine` (the reference's run).
 fn run(scene: &Scene) -> (Vec<Row>, std::time::Duration, String) {
-    let law = CrankDrive::Ramp {
-        speed: W,
-        time: T_RAMP,
-    };
-    // Section at L/2 (the stations are linear in between).
-    let stations = &scene.rod.section;
-    let half = 0.5 * scene.rod.length;
-    let at = |f: &dyn Fn(&flexrod::beam::SectionStation) -> f64| {
-        let k = stations.partition_point(|s| s.position <= half).max(1);
-        let (a, b) = (&stations[k - 1], &stations[k]);
-        let u = (half - a.position) / (b.position - a.position);
-        f(a) + u * (f(b) - f(a))
-    };
-    let area = at(&|s| s.area);
-    let moment = at(&|s| s.area_moment);
-    let fibre = at(&|s| s.fibre_distance.unwrap());
-    let mut sim = flexrod::Simulation::new(scene).unwrap();
-    let clock = std::time::Instant::now();
-    sim.start(0.0, law.at(0.0), 0.0).unwrap();
-    let row = |sim: &flexrod::Simulation, t: f64| -> Row {
-        let o = sim.outputs();
-        let (n, m) = (o.section.axial_force_mid, o.section.bending_moment_mid);
-        [
-            t,
-            o.deflection_rel,
-            o.pin_b_force[0],
-            o.pin_b_force[1],
-            o.pin_c_force[0],
-            o.pin_c_force[1],
-            n,
-            m,
-            n.abs() / area + m.abs() * fibre / moment,
-        ]
-    };
-    let mut rows = vec![row(&sim, 0.0)];
-    let n = (T_STOP / DT).round() as usize;
-    let every = (SAMPLE / DT).round() as usize;
-    for k in 0..n {
-        let t = k as f64 * DT;
-        sim.set_input(law.at(t)).unwrap();
-        sim.set_slider_force(gas(law.at(t + 0.5 * DT).angle))
-            .unwrap();
-        sim.advance(DT).unwrap_or_else(|e| panic!("step {k}: {e}"));
-        if (k + 1) % every == 0 {
-            rows.push(row(&sim, (k + 1) as f64 * DT));
-        }
-    }
-    (
-        rows,
-        clock.elapsed(),
-        format!("{:?}", sim.mechanism().integrator_name()),
-    )
+    EngineRun::automotive()
+        .run(scene)
+        .unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn compare(run: &[Row], reference: &[Row]) -> Errors {
+    Errors::new(run, reference, &EngineRun::automotive())
 }
 
 /// With FLEXROD_BLESS=1: the stress at L/2 of the shipped scene and of the reference against
@@ -127,10 +69,7 @@ fn write_stress_curve(rows: &[Row], reference: &[Row]) {
     if !common::fragments::blessing() {
         return;
     }
-    let law = CrankDrive::Ramp {
-        speed: W,
-        time: T_RAMP,
-    };
+    let law = EngineRun::automotive().law();
     let mut csv = String::from("t_s,crank_angle_deg,ffr_stress_mpa,reference_stress_mpa\n");
     for (a, b) in rows.iter().zip(reference) {
         csv += &format!(
@@ -147,55 +86,6 @@ fn write_stress_curve(rows: &[Row], reference: &[Row]) {
     );
     std::fs::write(path, csv).unwrap();
     println!("wrote {path}");
-}
-
-/// Pointwise errors relative to the reference's peak.
-#[derive(Debug, Default)]
-struct Errors {
-    deflection: f64,
-    stress: f64,
-    axial: f64,
-    moment: f64,
-    /// |F_B - F_B,ref| / max |F_B,ref|, over the whole run.
-    pin_b: f64,
-    pin_c: f64,
-    /// The same over the firing spike (from 60 degrees before to 120 degrees after it).
-    pin_b_firing: f64,
-    pin_c_firing: f64,
-}
-
-fn compare(run: &[Row], reference: &[Row]) -> Errors {
-    assert_eq!(run.len(), reference.len());
-    let peak = |f: &dyn Fn(&Row) -> f64| reference.iter().map(f).fold(0.0, f64::max);
-    let worst = |f: &dyn Fn(&Row, &Row) -> f64, window: bool| {
-        let fire = T_RAMP + 15f64.to_radians() / W;
-        run.iter()
-            .zip(reference)
-            .filter(|(r, _)| {
-                !window || (r[0] > fire - 60f64.to_radians() / W && r[0] < fire + 2.0 / W)
-            })
-            .map(|(a, b)| f(a, b))
-            .fold(0.0, f64::max)
-    };
-    let col = |i: usize| {
-        worst(&|a: &Row, b: &Row| (a[i] - b[i]).abs(), false) / peak(&|r: &Row| r[i].abs())
-    };
-    let pin = |i: usize, window: bool| {
-        worst(
-            &|a: &Row, b: &Row| (a[i] - b[i]).hypot(a[i + 1] - b[i + 1]),
-            window,
-        ) / peak(&|r: &Row| r[i].hypot(r[i + 1]))
-    };
-    Errors {
-        deflection: col(1),
-        stress: col(8),
-        axial: col(6),
-        moment: col(7),
-        pin_b: pin(2, false),
-        pin_c: pin(4, false),
-        pin_b_firing: pin(2, true),
-        pin_c_firing: pin(4, true),
-    }
 }
 
 #[test]
@@ -220,12 +110,17 @@ fn automotive_rod_against_the_geometrically_exact_shear_beam() {
         s.solver.step = step;
         s
     };
-    let chain = |n: usize| {
+    let chain = |n: usize, axial: bool| {
         let mut s = scene();
         s.rod.model = RodModelKind::Segments;
+        s.rod.elements = n;
+        s.rod.axial_springs = axial;
+        s
+    };
+    let euler_bernoulli_chain = |n: usize, axial: bool| {
+        let mut s = chain(n, axial);
         s.rod.shear_deformation = false;
         s.rod.shear_modulus = None;
-        s.rod.elements = n;
         s
     };
     // (name, scene, bounds on deflection, stress and the pin forces); None: reported only.
@@ -266,17 +161,28 @@ fn automotive_rod_against_the_geometrically_exact_shear_beam() {
             Some((0.005, 0.005, 0.01)),
         ),
         (
-            "segment chain, 32 segments (no shear deformation; axially rigid, the default)",
-            chain(32),
+            "segment chain, 32 segments, shear slides and axial springs",
+            chain(32, true),
+            Some((0.005, 0.005, 0.01)),
+        ),
+        (
+            "segment chain, 16 segments, shear slides and axial springs",
+            chain(16, true),
             None,
         ),
         (
-            "segment chain, 16 segments, axial springs (no shear deformation)",
-            {
-                let mut s = chain(16);
-                s.rod.axial_springs = true;
-                s
-            },
+            "segment chain, 32 segments, shear slides (axially rigid, the default)",
+            chain(32, false),
+            None,
+        ),
+        (
+            "segment chain, 32 segments, no shear deformation (axially rigid; the chain before it had shear slides)",
+            euler_bernoulli_chain(32, false),
+            None,
+        ),
+        (
+            "segment chain, 16 segments, axial springs, no shear deformation",
+            euler_bernoulli_chain(16, true),
             // The pin forces, not the bending (no shear deformation).
             Some((0.2, 0.01, 0.01)),
         ),
@@ -284,18 +190,9 @@ fn automotive_rod_against_the_geometrically_exact_shear_beam() {
     let mut table = String::from(
         "| model (automotive rod, undamped, ramp to 6000 rpm, gas pulse) | v_mid/L | stress at L/2 | N_mid | M_mid | pin B | pin C | pin B, firing | pin C, firing |\n|---|---|---|---|---|---|---|---|---|\n",
     );
-    for (k, (name, scene, bounds)) in cases.into_iter().enumerate() {
-        let (rows, time, integrator) = run(&scene);
-        if k == 0 {
-            write_stress_curve(&rows, &reference);
-        }
-        let e = compare(&rows, &reference);
-        println!(
-            "{name} [{integrator}, {:.0} ms]: {e:?}",
-            time.as_secs_f64() * 1e3
-        );
-        let pct = |x: f64| format!("{:.2} %", 100.0 * x);
-        table += &format!(
+    let pct = |x: f64| format!("{:.2} %", 100.0 * x);
+    let table_row = |name: &str, e: &Errors| {
+        format!(
             "| {name} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
             pct(e.deflection),
             pct(e.stress),
@@ -305,7 +202,26 @@ fn automotive_rod_against_the_geometrically_exact_shear_beam() {
             pct(e.pin_c),
             pct(e.pin_b_firing),
             pct(e.pin_c_firing)
+        )
+    };
+    // The two rod models against each other: the FFR rod as shipped and the chain's row.
+    let chain_row = "segment chain, 32 segments, shear slides and axial springs";
+    let (mut shipped_rows, mut chain_rows) = (Vec::new(), Vec::new());
+    for (k, (name, scene, bounds)) in cases.into_iter().enumerate() {
+        let (rows, time, integrator) = run(&scene);
+        if k == 0 {
+            write_stress_curve(&rows, &reference);
+            shipped_rows = rows.clone();
+        }
+        if name == chain_row {
+            chain_rows = rows.clone();
+        }
+        let e = compare(&rows, &reference);
+        println!(
+            "{name} [{integrator}, {:.0} ms]: {e:?}",
+            time.as_secs_f64() * 1e3
         );
+        table += &table_row(name, &e);
         if let Some((deflection, stress, pins)) = bounds {
             assert!(
                 e.deflection < deflection && e.stress < stress,
@@ -322,6 +238,12 @@ fn automotive_rod_against_the_geometrically_exact_shear_beam() {
             assert!(e.pin_b < 0.2 && e.pin_c < 0.2, "{name}: {e:?}");
         }
     }
+    let e = compare(&chain_rows, &shipped_rows);
+    let name = "the segment chain (32 segments, shear slides, axial springs) against the FFR rod as shipped, not against the reference";
+    println!("{name}: {e:?}");
+    assert!(e.deflection < 0.005 && e.stress < 0.005, "{name}: {e:?}");
+    assert!(e.pin_b < 0.01 && e.pin_c < 0.01, "{name}: {e:?}");
+    table += &table_row(name, &e);
     check_generated("automotive-reference", &table);
 }
 

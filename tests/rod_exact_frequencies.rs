@@ -520,14 +520,19 @@ fn end_bodies_and_taper_in_the_shape_integrals_and_the_chain() {
     );
     let eye = nalgebra::DMatrix::<f64>::identity(6, 6);
     assert!((&ig.m_ff - eye).abs().max() < 1e-10);
-    // Segment chain (no shear): total mass and first moment about B.
+    // Segment chain (no shear): total mass and first moment about B (the shank's segments and
+    // the end bodies at the pins).
     def.shear_modulus = None;
     let chain = SegmentRod::from_definition(&def, 10, 0.0, false).unwrap();
     let (m, c, _) = chain.segment_masses();
+    let ([m_b, m_c], _) = chain.end_bodies();
     let seg_l = l / 10.0;
-    let total: f64 = m.iter().sum();
+    let total: f64 = m.iter().sum::<f64>() + m_b + m_c;
     assert!((total - def.total_mass()).abs() < 1e-14);
-    let first: f64 = (0..10).map(|k| m[k] * (k as f64 * seg_l + c[k])).sum();
+    let first: f64 = (0..10)
+        .map(|k| m[k] * (k as f64 * seg_l + c[k]))
+        .sum::<f64>()
+        + m_c * l;
     assert!((first / total - def.centre_of_mass()).abs() < 1e-14);
     assert!((chain.total_mass() - def.total_mass()).abs() < 1e-15);
 }

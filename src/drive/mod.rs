@@ -8,6 +8,7 @@
 //! The packager's `--simulate`, the command-line tool, the report, the benchmarks and the
 //! tests all drive the model through this module.
 
+pub mod engine;
 pub mod law;
 pub mod run;
 

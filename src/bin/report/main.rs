@@ -24,6 +24,10 @@
 //!   (simulated time / wall time);
 //! - internal steps, Newton iterations, step halvings.
 //!
+//! The engine section ([`engine`]): the automotive rod (`scenes/automotive_rod.toml`) in its
+//! engine run with a gas pulse against the geometrically exact shear beam, both rod models,
+//! errors against run time.
+//!
 //! Outputs: `report.csv` ([`csv`]), `report.md` ([`markdown`]), `error_vs_runtime.svg`
 //! ([`svg`]) in the output folder; the full matrix into the default folder also writes the
 //! README-facing fragments `docs/generated/report-*.md` ([`fragments`]; [`pareto`] picks the
@@ -34,6 +38,7 @@
 
 mod cases;
 mod csv;
+mod engine;
 mod filter;
 mod fragments;
 mod markdown;
@@ -157,6 +162,9 @@ fn run_report(options: &Options) -> Result<Vec<Row>, String> {
         peaks.push((case.key, peak));
     }
     progress.finish();
+    println!("the automotive rod's engine run (issue 11) ...");
+    let engine_rows = engine::measure(quick)?;
+    let engine_table = engine::table(&engine_rows);
     let out = &options.out;
     write_file(out, "report.csv", &csv::csv(&rows))?;
     let summary = markdown::Summary {
@@ -165,10 +173,14 @@ fn run_report(options: &Options) -> Result<Vec<Row>, String> {
         quick,
         seconds: clock.elapsed().as_secs_f64(),
     };
+    let engine_section = format!(
+        "\n## The automotive rod in its engine run (issue 11)\n\n`scenes/automotive_rod.toml` undamped, ramp to 6000 rpm over 40 ms, two revolutions, a 38 kN gas pulse at firing (`flexrod::drive::engine`), against the geometrically exact shear beam `tests/data/exudyn_automotive_rod.csv`: largest pointwise differences relative to the reference's peaks (firing: 60 degrees before to 120 after the gas peak), and the median wall time of {} run(s).\n\n{engine_table}",
+        if quick { 1 } else { 3 }
+    );
     write_file(
         out,
         "report.md",
-        &markdown::markdown(&rows, &all_cases, &summary),
+        &(markdown::markdown(&rows, &all_cases, &summary) + &engine_section),
     )?;
     write_file(out, "error_vs_runtime.svg", &figure(&rows, &all_cases))?;
     if let Some(folder) = &options.fragments {
@@ -176,6 +188,11 @@ fn run_report(options: &Options) -> Result<Vec<Row>, String> {
         for f in fragments::fragments(&rows, &all_cases, default_setting) {
             write_file(folder, &format!("{}.md", f.id), &f.text)?;
         }
+        write_file(
+            folder,
+            "report-engine.md",
+            &format!("{}{engine_table}", fragments::SOURCE),
+        )?;
     }
     Ok(rows)
 }
@@ -297,7 +314,12 @@ mod tests {
             let text = std::fs::read_to_string(out.join(name)).unwrap();
             assert!(text.len() > 200, "{name}");
         }
-        for id in ["report-fastest", "report-front", "report-speed"] {
+        for id in [
+            "report-fastest",
+            "report-front",
+            "report-speed",
+            "report-engine",
+        ] {
             let text =
                 std::fs::read_to_string(out.join("generated").join(format!("{id}.md"))).unwrap();
             assert!(text.starts_with("<!--") && text.contains("\n|---|"), "{id}");

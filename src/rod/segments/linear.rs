@@ -9,6 +9,8 @@
 //! [`generalized_symmetric_eigen`](crate::modal::eigen::generalized_symmetric_eigen):
 //! - pinned-pinned bending (the mechanism's end conditions, both ends pinned): `x_B = y_B = 0`
 //!   and `y_C = l sum_k theta_k = 0`, so `theta_{N-1} = -sum_{k<N-1} theta_k` (N - 1 modes);
+//!   shear-deformable: `y_B = y_0 - t_B = 0` and `y_C = t_B + l sum_k theta_k + sum_j t_j +
+//!   t_C = 0` give `y_0 = t_B` and the massless `t_C` (2 N modes: N - 1 bending, N + 1 shear);
 //! - fixed-fixed axial (both pins also hold the ends along the rod): `x_B = 0`,
 //!   `x_C - L = sum_j s_j = 0` (N - 2 modes);
 //! - free-free axial (seed 002's convergence table, "Illustrations/convergence"): `x_B` and all
@@ -33,6 +35,13 @@ pub(crate) struct LinearizedChain {
     axial: bool,
     k_rot: Vec<f64>,
     k_ax: Vec<f64>,
+    /// Shear springs and the index of `t_B` in `q` (shear-deformable chains).
+    k_sh: Vec<f64>,
+    shear_base: usize,
+    /// Segment length l, m.
+    segment_length: f64,
+    /// The end body rotations: (index in `q`, end segment, spring N m/rad).
+    end_rotations: Vec<(usize, usize, f64)>,
 }
 
 /// `T^T A T` for a dense `a` (n x n) and `t` (n x r).
@@ -69,43 +78,93 @@ impl LinearizedChain {
             axial: rod.has_axial_springs(),
             k_rot,
             k_ax,
+            k_sh: rod.shear_springs().0.to_vec(),
+            shear_base: rod.shear_index(0),
+            segment_length: rod.segment().0,
+            end_rotations: [(0, 0), (1, rod.n_segments() - 1)]
+                .into_iter()
+                .filter(|&(e, _)| rod.has_end_rotation(e))
+                .map(|(e, k)| (rod.end_rotation_index(e), k, rod.end_springs()[e]))
+                .collect(),
         }
     }
 
-    /// Pinned-pinned bending frequencies, Hz (N - 1 of them).
+    /// Pinned-pinned bending frequencies, Hz (N - 1 of them; 2 N with shear slides, the
+    /// N + 1 highest being the shear modes).
     pub(crate) fn pinned_bending_hz(&self) -> Result<Vec<f64>, ModelError> {
         let n = self.n_seg;
-        if n < 2 {
+        let shear = !self.k_sh.is_empty();
+        if n < 2 && !shear && self.end_rotations.is_empty() {
             return Ok(Vec::new());
         }
-        let r = n - 1;
-        // Angle block of M_0 and the tridiagonal joint stiffness.
-        let m = Mat::from_fn(n, n, |i, j| self.mass[(2 + i, 2 + j)]);
-        let k = Mat::from_fn(n, n, |i, j| {
-            // Joint j joins angles j and j + 1: K_ii = k_{i-1} + k_i, K_{i,i+1} = -k_i (for
-            // equal springs 1 k or 2 k exactly, k + k being exact).
-            if i == j {
-                let left = if i > 0 { self.k_rot[i - 1] } else { 0.0 };
-                let right = if i + 1 < n { self.k_rot[i] } else { 0.0 };
-                if i == 0 {
-                    right
-                } else if i == n - 1 {
-                    left
+        // Bending coordinates z: the angles, then (shear) y_0 and t_0 .. t_N, then the end body
+        // rotations.
+        let mut idx: Vec<usize> = (0..n).map(|k| 2 + k).collect();
+        if shear {
+            idx.push(1);
+            idx.extend((0..=n).map(|i| self.shear_base + i));
+        }
+        let n_base = idx.len();
+        idx.extend(self.end_rotations.iter().map(|&(i, _, _)| i));
+        let nz = idx.len();
+        let m = Mat::from_fn(nz, nz, |i, j| self.mass[(idx[i], idx[j])]);
+        // Joint j joins angles j and j + 1 (K_ii = k_{i-1} + k_i, K_{i,i+1} = -k_i); the shear
+        // springs are diagonal.
+        let mut k = Mat::<f64>::zeros(nz, nz);
+        for (j, &kr) in self.k_rot.iter().enumerate() {
+            k[(j, j)] += kr;
+            k[(j + 1, j + 1)] += kr;
+            k[(j, j + 1)] -= kr;
+            k[(j + 1, j)] -= kr;
+        }
+        for (i, &ks) in self.k_sh.iter().enumerate() {
+            k[(n + 1 + i, n + 1 + i)] += ks;
+        }
+        for (r, &(_, segment, ke)) in self.end_rotations.iter().enumerate() {
+            let (a, b) = (n_base + r, segment);
+            k[(a, a)] += ke;
+            k[(b, b)] += ke;
+            k[(a, b)] -= ke;
+            k[(b, a)] -= ke;
+        }
+        let base = if shear {
+            // r = [theta_0 .. theta_{N-1}, t_B, t_1 .. t_{N-1}]: y_0 = t_B,
+            // t_C = -(t_B + l sum theta + sum t_j).
+            // z index n + 1 + i holds t_i, r index n + i (i < N).
+            let one = |b: bool| if b { 1.0 } else { 0.0 };
+            Mat::from_fn(n_base, 2 * n, |i, j| {
+                if i < n {
+                    one(i == j)
+                } else if i == n {
+                    one(j == n)
+                } else if i < n_base - 1 {
+                    one(j == i - 1)
+                } else if j < n {
+                    -self.segment_length
                 } else {
-                    left + right
+                    -1.0
                 }
-            } else if i.abs_diff(j) == 1 {
-                -self.k_rot[i.min(j)]
-            } else {
-                0.0
-            }
-        });
-        // theta_j = r_j (j < N-1), theta_{N-1} = -sum r_j.
-        let t = Mat::from_fn(n, r, |i, j| {
-            if i == j {
+            })
+        } else {
+            // theta_j = r_j (j < N-1), theta_{N-1} = -sum r_j.
+            Mat::from_fn(n, n - 1, |i, j| {
+                if i == j {
+                    1.0
+                } else if i == n - 1 {
+                    -1.0
+                } else {
+                    0.0
+                }
+            })
+        };
+        // The end rotations are free: identity.
+        let (rb, cb) = (base.nrows(), base.ncols());
+        let ne = self.end_rotations.len();
+        let t = Mat::from_fn(rb + ne, cb + ne, |i, j| {
+            if i < rb && j < cb {
+                base[(i, j)]
+            } else if i >= rb && j >= cb && i - rb == j - cb {
                 1.0
-            } else if i == n - 1 {
-                -1.0
             } else {
                 0.0
             }

@@ -12,6 +12,8 @@ pub struct SegmentRod {
     pub(super) n_seg: usize,
     /// Prismatic joints with axial springs (coordinates `s_j`).
     pub(super) axial: bool,
+    /// Shear slides (coordinates `t_i`, `i = 0..=N`: at B, at every joint, at C).
+    pub(super) shear: bool,
     /// Rod length L, m.
     pub(super) length: f64,
     /// Segment length l = L/N, m.
@@ -28,7 +30,8 @@ pub struct SegmentRod {
     pub(super) second: Vec<f64>,
     /// Mass beyond segment j, `a_j = sum_{k>j} m_k`, kg (uniform: m (N - 1 - j)).
     pub(super) beyond: Vec<f64>,
-    /// Total mass of the segments (end bodies included), kg (uniform: N m).
+    /// Total mass of the segments, kg (uniform: N m); the end bodies are point masses of their
+    /// own ([`Self::end_bodies`]).
     pub(super) total: f64,
     /// The velocity-product sums are accumulated with the weights `weights[k]` and multiplied
     /// by `weight_scale` at the end: `(1, m)` for the uniform rod (the original arithmetic), and
@@ -42,6 +45,18 @@ pub struct SegmentRod {
     /// Axial springs k_a, N/m, and dampers c_a, N s/m, of the joints (0 without axial springs).
     pub(super) k_ax: Vec<f64>,
     pub(super) c_ax: Vec<f64>,
+    /// Shear springs k_s, N/m, and dampers c_s, N s/m, of the shear slides (`N + 1` with shear
+    /// deformation: slide 0 at B, slide `j + 1` at joint `j`, slide `N` at C; else empty).
+    pub(super) k_sh: Vec<f64>,
+    pub(super) c_sh: Vec<f64>,
+    /// The end bodies at B and C: masses (kg, point masses at the pins) and inertias about the
+    /// pins (kg m^2); an inertia turns with a rotation coordinate of its own (`phi_B`, `phi_C`)
+    /// joined to the end segment by a rotational spring `k_end` (N m/rad: the half segment
+    /// next to the pin, `1 / int ds / (E I)`) and damper `c_end` (N m s/rad).
+    pub(super) end_mass: [f64; 2],
+    pub(super) end_inertia: [f64; 2],
+    pub(super) k_end: [f64; 2],
+    pub(super) c_end: [f64; 2],
     /// Mass of the rod with its end bodies, kg.
     pub(super) total_mass: f64,
     /// The material midpoint: (segment, distance from its start in m).
@@ -106,15 +121,19 @@ impl SegmentRod {
     /// Build the chain of any rod: each segment `k` (arc lengths `[k l, (k + 1) l]`) takes the
     /// mass, centroid and centroidal inertia of its piece of the section table,
     /// `int rho A`, `int rho A s`, `int rho A s^2` (exact; the section's own rotary inertia
-    /// `rho I` is left out, as in the uniform chain and the Euler-Bernoulli beam), and the end
+    /// `rho I` is left out, as in the uniform chain and the Euler-Bernoulli beam, except with
+    /// shear deformation, where `int rho I` is added as in the Timoshenko beam), and the end
     /// bodies are added to the first and last segment (point mass at B or C, inertia about it;
     /// parallel-axis theorem). The joint between segments `j` and `j + 1` stands for the rod
     /// from the middle of segment `j` to the middle of segment `j + 1` (two half segments in
     /// series): `k_r = 1 / int ds / (E I(s))` over that length, the harmonic mean of `E I / l`
     /// (exact for linear `I`: the `ln` form of
     /// [`crate::beam::SectionTable::compliance_integral`]); the same for the axial spring with
-    /// `E A(s)`. For the uniform rod these are `E I / l` and `E A / l`. The shear-deformable
-    /// option does not apply to the chain (rejected).
+    /// `E A(s)`. For the uniform rod these are `E I / l` and `E A / l`.
+    ///
+    /// With shear deformation (`def.shear_modulus`), every joint also gets a shear slide with
+    /// `k_s = 1 / int ds / (G A_s(s))` over the same length, and B and C get one each for the
+    /// half segment next to them, `int_0^{l/2}` and `int_{L - l/2}^L` (module docs, "Shear").
     pub fn from_definition(
         def: &RodDefinition,
         n_segments: usize,
@@ -127,13 +146,6 @@ impl SegmentRod {
         def.validate()?;
         validate_segments(n_segments)?;
         require_non_negative("rod.damping_ratio", damping_ratio)?;
-        if let Some(g) = def.shear_modulus {
-            return Err(ModelError::InvalidParameter {
-                name: "rod.shear_deformation",
-                value: g,
-                allowed: "false with rod.model = \"segments\" (the chain has no shear flexibility; use rod.model = \"ffr\")".into(),
-            });
-        }
         let n = n_segments;
         let length = def.properties.length;
         let l = length / n as f64;
@@ -141,6 +153,7 @@ impl SegmentRod {
         let e_mod = def.properties.youngs_modulus;
         let table = def.section_table();
         let mut rod = Self::empty(length, n, axial_springs);
+        rod.shear = def.shear_modulus.is_some();
         for k in 0..n {
             let s0 = k as f64 * l;
             let moments = |p: i32| {
@@ -148,16 +161,10 @@ impl SegmentRod {
                     rho * v.area * (s - s0).powi(p) * w
                 })
             };
-            let (mut mk, mut fk, mut jk) = (moments(0), moments(1), moments(2));
-            if k == 0 {
-                mk += def.big_end.mass;
-                jk += def.big_end.inertia;
-            }
-            if k == n - 1 {
-                let c = def.small_end;
-                mk += c.mass;
-                fk += c.mass * l;
-                jk += c.mass * l * l + c.inertia;
+            let (mk, fk, mut jk) = (moments(0), moments(1), moments(2));
+            if rod.shear {
+                // Rotary inertia of the sections (Timoshenko): the segment turns with them.
+                jk += table.integrate(s0, s0 + l, 0.0, |_, v, w| rho * v.area_moment * w);
             }
             let ck = fk / mk;
             rod.masses.push(mk);
@@ -181,6 +188,25 @@ impl SegmentRod {
                 0.0
             });
         }
+        // The end bodies: point masses at the pins, their inertias on rotations of their own
+        // joined to the end segments by the bending stiffness of the half segment between.
+        rod.end_mass = [def.big_end.mass, def.small_end.mass];
+        rod.end_inertia = [def.big_end.inertia, def.small_end.inertia];
+        let half_segment = [(0.0, 0.5 * l), (length - 0.5 * l, length)];
+        for (e, (a, b)) in half_segment.into_iter().enumerate() {
+            if rod.end_inertia[e] > 0.0 {
+                rod.k_end[e] = e_mod / table.compliance_integral(a, b, |v| v.area_moment);
+            }
+        }
+        if let Some(g) = def.shear_modulus {
+            let spring = |a: f64, b: f64| g / table.compliance_integral(a, b, |v| v.shear_area);
+            rod.k_sh.push(spring(0.0, 0.5 * l));
+            for j in 0..n - 1 {
+                rod.k_sh
+                    .push(spring((j as f64 + 0.5) * l, (j as f64 + 1.5) * l));
+            }
+            rod.k_sh.push(spring(length - 0.5 * l, length));
+        }
         rod.total_mass = def.total_mass();
         rod.set_cuts(&table);
         rod.finish(damping_ratio, |rod| {
@@ -201,11 +227,17 @@ impl SegmentRod {
     /// A chain with its geometry set and no masses or springs yet.
     fn empty(length: f64, n: usize, axial: bool) -> SegmentRod {
         let l = length / n as f64;
-        let half = 0.5 * length;
-        let k_mid = ((half / l).floor() as usize).min(n - 1);
+        // The material midpoint: the joint N/2 (start of segment N/2) for even N, the middle of
+        // segment (N - 1)/2 for odd N (exactly, not by floor(half / l) and round-off).
+        let (k_mid, xi_mid) = if n.is_multiple_of(2) {
+            (n / 2, 0.0)
+        } else {
+            ((n - 1) / 2, 0.5 * l)
+        };
         SegmentRod {
             n_seg: n,
             axial,
+            shear: false,
             length,
             seg_len: l,
             masses: Vec::with_capacity(n),
@@ -222,8 +254,14 @@ impl SegmentRod {
             c_rot: Vec::new(),
             k_ax: Vec::with_capacity(n),
             c_ax: Vec::new(),
+            k_sh: Vec::new(),
+            c_sh: Vec::new(),
+            end_mass: [0.0; 2],
+            end_inertia: [0.0; 2],
+            k_end: [0.0; 2],
+            c_end: [0.0; 2],
             total_mass: 0.0,
-            mid: (k_mid, half - k_mid as f64 * l),
+            mid: (k_mid, xi_mid),
             frequencies: Vec::new(),
             bending: Vec::new(),
             axial_modes: Vec::new(),
@@ -254,10 +292,18 @@ impl SegmentRod {
             .collect();
         all.sort_by(|a, b| a.total_cmp(b));
         self.frequencies = all;
+        self.c_sh = vec![0.0; self.k_sh.len()];
         if let Some(f1) = self.bending.first() {
-            let f1 = *f1;
+            // Stiffness-proportional: the rotational and shear springs with the same factor.
+            let beta = 2.0 * damping_ratio / (2.0 * std::f64::consts::PI * f1);
             for (c, k) in self.c_rot.iter_mut().zip(&self.k_rot) {
-                *c = 2.0 * damping_ratio / (2.0 * std::f64::consts::PI * f1) * k;
+                *c = beta * k;
+            }
+            for (c, k) in self.c_sh.iter_mut().zip(&self.k_sh) {
+                *c = beta * k;
+            }
+            for (c, k) in self.c_end.iter_mut().zip(&self.k_end) {
+                *c = beta * k;
             }
         }
         if self.axial && n >= 2 {
@@ -286,9 +332,41 @@ impl SegmentRod {
     }
 
     /// Per segment: mass (kg), centroid offset from its B-side joint (m), centroidal inertia
-    /// (kg m^2).
+    /// (kg m^2); the shank only (the end bodies: [`Self::end_bodies`]).
     pub fn segment_masses(&self) -> (&[f64], &[f64], &[f64]) {
         (&self.masses, &self.centroids, &self.inertias)
+    }
+
+    /// The end bodies at B and C: masses (kg) and inertias about the pins (kg m^2).
+    pub fn end_bodies(&self) -> ([f64; 2], [f64; 2]) {
+        (self.end_mass, self.end_inertia)
+    }
+
+    /// The rotational springs between the end bodies' rotations and the end segments, N m/rad
+    /// (0 where an end body has no inertia).
+    pub fn end_springs(&self) -> [f64; 2] {
+        self.k_end
+    }
+
+    /// The dampers beside [`Self::end_springs`], N m s/rad (stiffness-proportional, as the
+    /// joints').
+    pub fn end_dampers(&self) -> [f64; 2] {
+        self.c_end
+    }
+
+    /// Whether end body `e` (0 at B, 1 at C) turns with a rotation coordinate of its own
+    /// (it has an inertia).
+    #[inline]
+    pub fn has_end_rotation(&self, e: usize) -> bool {
+        self.end_inertia[e] > 0.0
+    }
+
+    /// Index of the end body rotation `phi_B` (`e = 0`) or `phi_C` (`e = 1`) in `q` (only
+    /// where [`Self::has_end_rotation`]).
+    #[inline]
+    pub fn end_rotation_index(&self, e: usize) -> usize {
+        let base = 2 + self.n_seg + self.n_stretch() + self.n_shear();
+        base + usize::from(e == 1 && self.has_end_rotation(0))
     }
 
     /// Mass of the rod with its end bodies, kg (the FMU's `rod.mass`).
@@ -308,6 +386,17 @@ impl SegmentRod {
     /// Every joint's springs `(k_r, k_a)`, N - 1 each.
     pub fn joint_springs(&self) -> (&[f64], &[f64]) {
         (&self.k_rot, &self.k_ax)
+    }
+
+    /// Whether the chain is shear-deformable (shear slides `t_i` at B, the joints and C).
+    pub fn has_shear(&self) -> bool {
+        self.shear
+    }
+
+    /// The shear springs `k_s` (N/m) and dampers `c_s` (N s/m): `N + 1` each with shear
+    /// deformation (slide 0 at B, `j + 1` at joint `j`, `N` at C), else empty.
+    pub fn shear_springs(&self) -> (&[f64], &[f64]) {
+        (&self.k_sh, &self.c_sh)
     }
 
     /// Joint damper constants `(c_r, c_a)` of the first joint: N m s/rad and N s/m.
@@ -339,5 +428,12 @@ impl SegmentRod {
     #[inline]
     pub fn stretch_index(&self, j: usize) -> usize {
         2 + self.n_seg + j
+    }
+
+    /// Index of the shear slide `t_i` in `q` (shear deformation only; `i = 0` at B, `j + 1`
+    /// at joint `j`, `N` at C).
+    #[inline]
+    pub fn shear_index(&self, i: usize) -> usize {
+        2 + self.n_seg + self.n_stretch() + i
     }
 }

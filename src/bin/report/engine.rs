@@ -1,0 +1,139 @@
+//! The report's engine section (issue 11): the automotive rod (`scenes/automotive_rod.toml`,
+//! undamped) in its engine run ([`flexrod::drive::engine`]: ramp to 6000 rpm, two revolutions,
+//! a 38 kN gas pulse) against the independent geometrically exact shear beam
+//! (`tests/data/exudyn_automotive_rod.csv`), for both rod models and several tolerances: the
+//! largest pointwise errors of deflection, stress at L/2 and pin forces (relative to the
+//! reference's peaks), against the median wall time of the run.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use flexrod::drive::engine::{read_reference, EngineErrors, EngineRun};
+use flexrod::scene::{RodModelKind, SolverMethod};
+use flexrod::Scene;
+
+use crate::markdown::pct;
+
+/// One setting of the automotive rod, measured.
+pub struct EngineRow {
+    pub label: String,
+    pub errors: EngineErrors,
+    /// Median wall time of the run, s.
+    pub seconds: f64,
+    pub integrator: String,
+}
+
+/// The settings: the scene as shipped, its mode count and tolerance varied, and the segment
+/// chain with shear slides and axial springs. `quick`: the shipped scene and the 16-segment
+/// chain.
+fn settings(quick: bool) -> Result<Vec<(String, Scene)>, String> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/automotive_rod.toml");
+    let base = Scene::from_file(&path).map_err(|e| e.to_string())?;
+    let with = |f: &dyn Fn(&mut Scene)| {
+        let mut s = base.clone();
+        s.rod.damping_ratio = 0.0;
+        f(&mut s);
+        s
+    };
+    let ffr = |elements: usize, modes: usize, method: SolverMethod, tolerance: f64| {
+        with(&|s| {
+            s.rod.elements = elements;
+            s.rod.modes = modes;
+            s.solver.method = method;
+            s.solver.tolerance = tolerance;
+        })
+    };
+    let chain = |n: usize| {
+        with(&|s| {
+            s.rod.model = RodModelKind::Segments;
+            s.rod.elements = n;
+            s.rod.axial_springs = true;
+        })
+    };
+    let mut list = vec![(
+        "FFR 8 el, 7 modes, auto, tolerance 1e-3 (the scene as shipped)".to_string(),
+        with(&|_| {}),
+    )];
+    if !quick {
+        for tol in [1e-2, 1e-4] {
+            list.push((
+                format!("FFR 8 el, 7 modes, auto, tolerance {tol:e}"),
+                ffr(8, 7, SolverMethod::Auto, tol),
+            ));
+        }
+        list.push((
+            "FFR 8 el, 4 modes, auto, tolerance 1e-3".into(),
+            ffr(8, 4, SolverMethod::Auto, 1e-3),
+        ));
+        list.push((
+            "FFR 16 el, 8 modes, Dormand-Prince, tolerance 1e-5".into(),
+            ffr(16, 8, SolverMethod::Dopri5, 1e-5),
+        ));
+    }
+    list.push((
+        "segments N = 16, shear slides, axial springs".into(),
+        chain(16),
+    ));
+    if !quick {
+        list.push((
+            "segments N = 32, shear slides, axial springs".into(),
+            chain(32),
+        ));
+    }
+    Ok(list)
+}
+
+/// Run every setting `repeats` times (median wall time) and compare it with the reference.
+pub fn measure(quick: bool) -> Result<Vec<EngineRow>, String> {
+    let reference = read_reference(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/exudyn_automotive_rod.csv"),
+    )?;
+    let setup = EngineRun::automotive();
+    let repeats = if quick { 1 } else { 3 };
+    let mut rows = Vec::new();
+    for (label, scene) in settings(quick)? {
+        let mut times = Vec::new();
+        let mut last = None;
+        for _ in 0..repeats {
+            let (record, time, integrator) =
+                setup.run(&scene).map_err(|e| format!("{label}: {e}"))?;
+            times.push(time.as_secs_f64());
+            last = Some((record, integrator));
+        }
+        let (record, integrator) = last.expect("at least one run");
+        times.sort_by(f64::total_cmp);
+        rows.push(EngineRow {
+            label,
+            errors: EngineErrors::new(&record, &reference, &setup),
+            seconds: times[times.len() / 2],
+            integrator,
+        });
+    }
+    Ok(rows)
+}
+
+/// The section's table: errors against run time (ms per simulated second, real-time factor).
+pub fn table(rows: &[EngineRow]) -> String {
+    let stop = EngineRun::automotive().stop;
+    let mut s = String::from(
+        "| automotive rod, engine run (60 ms) | v_mid/L | stress at L/2 | pin B, firing | pin C, firing | wall time | ms per simulated s | real-time factor | integrator |\n|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for r in rows {
+        let e = &r.errors;
+        writeln!(
+            s,
+            "| {} | {} | {} | {} | {} | {:.0} ms | {:.0} | {:.2} | {} |",
+            r.label,
+            pct(e.deflection),
+            pct(e.stress),
+            pct(e.pin_b_firing),
+            pct(e.pin_c_firing),
+            r.seconds * 1e3,
+            r.seconds / stop * 1e3,
+            stop / r.seconds,
+            r.integrator
+        )
+        .unwrap();
+    }
+    s
+}
