@@ -27,7 +27,7 @@ pub struct Simulation {
 
 /// Magic bytes and version of serialized snapshots.
 const SNAPSHOT_MAGIC: &[u8; 8] = b"FLEXROD\0";
-const SNAPSHOT_VERSION: u32 = 2;
+const SNAPSHOT_VERSION: u32 = 3;
 
 /// The inputs of a simulation at one moment ([`Simulation::inputs_snapshot`]).
 #[derive(Clone, Copy, Debug)]
@@ -61,6 +61,13 @@ impl Simulation {
     /// (all of them, retained or not).
     pub fn frequencies_hz(&self) -> &[f64] {
         self.mechanism.frequencies_hz()
+    }
+
+    /// The rod model and what it keeps (the FFR rod: the retained modes, bending or axial), and
+    /// the integrator, in words.
+    pub fn describe(&self) -> String {
+        let (integrator, _) = self.mechanism.integrator_name();
+        format!("{}; integrator {integrator}", self.mechanism.rod.describe())
     }
 
     /// Consistent start at `t0`: rod undeformed, rigid coordinates and velocities

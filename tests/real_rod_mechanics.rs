@@ -159,7 +159,7 @@ fn gravity_forces_are_the_work_rate_on_the_momentum() {
                 &format!("axial_stiffening = true\naxial_springs = {axial}"),
             );
         let scene = Scene::from_toml_str(&text, "gravity").unwrap();
-        let rod = flexrod::rod::build(&scene.rod).unwrap();
+        let rod = flexrod::rod::build(&scene.rod, scene.slider.mass).unwrap();
         let n = rod.n_coordinates();
         let g = Vector2::new(3.0, -9.81);
         let mut worst: f64 = 0.0;
@@ -422,4 +422,36 @@ fn segment_chain_summation_moment_equals_the_joint_spring_moment() {
     }
     println!("chain: summation vs spring moment at the middle joint, worst {worst:.2e} N m of peak {peak:.3e} N m");
     assert!(worst < 1e-6 * peak, "{worst} vs {peak}");
+}
+
+/// The section outputs are part of the serialized state: restored with it, not left at the
+/// values of the last step (both rod models).
+#[test]
+fn section_outputs_are_restored_with_a_serialized_state() {
+    for model in ["ffr", "segments"] {
+        let text = include_str!("../scenes/automotive_rod.toml")
+            .replace("model = \"ffr\"", &format!("model = \"{model}\""));
+        let scene = Scene::from_toml_str(&text, "automotive_rod.toml").unwrap();
+        let mut sim = flexrod::Simulation::new(&scene).unwrap();
+        let input = |t: f64| CrankInput {
+            angle: 628.3 * t,
+            speed: 628.3,
+            acceleration: 0.0,
+        };
+        sim.start(0.0, input(0.0), 0.0).unwrap();
+        for k in 0..20 {
+            sim.set_input(input(k as f64 * 1e-5)).unwrap();
+            sim.advance(1e-5).unwrap();
+        }
+        let saved = sim.snapshot_to_bytes();
+        let at_save = sim.outputs().section;
+        for k in 20..60 {
+            sim.set_input(input(k as f64 * 1e-5)).unwrap();
+            sim.advance(1e-5).unwrap();
+        }
+        assert_ne!(sim.outputs().section, at_save, "{model}: the loads move");
+        sim.restore_from_bytes(&saved).unwrap();
+        assert_eq!(sim.outputs().section, at_save, "{model}");
+        assert!(at_save.stress_max.is_finite() && at_save.stress_max > 0.0);
+    }
 }

@@ -103,7 +103,7 @@ impl Mechanism {
     /// generalized-alpha).
     pub fn new(spec: &MechanismSpec) -> Result<Mechanism, ModelError> {
         spec.validate()?;
-        let rod = crate::rod::build(&spec.rod)?;
+        let rod = crate::rod::build(&spec.rod, spec.slider.mass)?;
         let n = rod.n_coordinates() + 1;
         // RK4 is stable for |lambda| h < 2.78: its step is capped at 2.5 / |lambda|_max, the
         // fastest eigenvalue of the retained modes: w_max for a damping ratio zeta <= 1, and

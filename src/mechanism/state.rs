@@ -83,6 +83,15 @@ impl MechanismState {
                 put(x);
             }
         }
+        let s = &self.outputs.section;
+        for x in [
+            s.axial_force_mid,
+            s.bending_moment_mid,
+            s.stress_max,
+            s.stress_max_position,
+        ] {
+            put(x);
+        }
         for c in [
             self.stats.steps,
             self.stats.newton_iterations,
@@ -97,7 +106,7 @@ impl MechanismState {
     pub fn read_bytes(&mut self, bytes: &[u8]) -> Result<(), String> {
         let n = self.dae.q.len();
         let m = self.dae.lambda.len();
-        let expected = 8 * (22 + 4 * n + m) + 8 * 3 + 1;
+        let expected = 8 * (26 + 4 * n + m) + 8 * 3 + 1;
         if bytes.len() != expected {
             return Err(format!(
                 "{} bytes of state, this model needs {expected} (truncated or from another model)",
@@ -144,6 +153,11 @@ impl MechanismState {
         for x in self.dae.lambda.iter_mut() {
             *x = get();
         }
+        let s = &mut self.outputs.section;
+        s.axial_force_mid = get();
+        s.bending_moment_mid = get();
+        s.stress_max = get();
+        s.stress_max_position = get();
         let mut at = expected - 25;
         let mut count = || {
             let c = u64::from_le_bytes(bytes[at..at + 8].try_into().unwrap());
@@ -190,9 +204,22 @@ impl MechanismState {
             ("the step proposal", self.dae.step_hint),
             ("the deflection amplitude", self.dae.amplitude),
         ];
-        for (name, x) in named.into_iter().chain(o.named()) {
+        let section = [
+            ("rod.axial_force_mid", o.section.axial_force_mid),
+            ("rod.bending_moment_mid", o.section.bending_moment_mid),
+        ];
+        for (name, x) in named.into_iter().chain(o.named()).chain(section) {
             if !x.is_finite() {
                 return Err(format!("{name} is {x}, allowed a finite value"));
+            }
+        }
+        // The stress is NaN where the rod has no fibre distances (not computed).
+        for (name, x) in [
+            ("rod.stress_max", o.section.stress_max),
+            ("rod.stress_max_position", o.section.stress_max_position),
+        ] {
+            if x.is_infinite() {
+                return Err(format!("{name} is {x}, allowed a finite value or NaN"));
             }
         }
         let d = &self.dae;

@@ -20,6 +20,9 @@ pub struct ComponentModes {
     pub mass_kind: MassKind,
     /// Every natural frequency of the reduced rod, Hz, ascending (retained or not).
     pub all_frequencies_hz: Vec<f64>,
+    /// Every mode's share of its kinetic energy in the axial displacements `u`, 0 to 1 (same
+    /// order): a mode is axial above 1/2, else bending.
+    pub all_axial_shares: Vec<f64>,
     /// Indices of the retained modes into `all_frequencies_hz`.
     pub retained: Vec<usize>,
     /// Squared circular frequencies of the retained modes, (rad/s)^2.
@@ -119,7 +122,48 @@ impl ComponentModes {
             .iter()
             .map(|&l| l.max(0.0).sqrt() / (2.0 * std::f64::consts::PI))
             .collect();
-        let retained = selection.select(&all_frequencies_hz)?;
+        // Each mode in full coordinates, and its kinetic energy in the axial displacements
+        // (node i's u at 3 i): s_u^T M_uu s_u / s^T M s.
+        let full_shape = |j: usize| -> Vec<f64> {
+            match &basis.selection {
+                Some(kept) => {
+                    let mut full = vec![0.0; b.nrows()];
+                    for (i, &row) in kept.iter().enumerate() {
+                        full[row] = eig.vectors[(i, j)];
+                    }
+                    full
+                }
+                None => (0..b.nrows())
+                    .map(|r| {
+                        (0..b.ncols())
+                            .map(|c| b[(r, c)] * eig.vectors[(c, j)])
+                            .sum()
+                    })
+                    .collect(),
+            }
+        };
+        let n_full = m.nrows();
+        let all_axial_shares: Vec<f64> = (0..eig.values.len())
+            .map(|j| {
+                let x = full_shape(j);
+                let (mut axial, mut total) = (0.0, 0.0);
+                for r in 0..n_full {
+                    for c in 0..n_full {
+                        let e = x[r] * m[(r, c)] * x[c];
+                        total += e;
+                        if r % 3 == 0 && c % 3 == 0 {
+                            axial += e;
+                        }
+                    }
+                }
+                if total > 0.0 {
+                    axial / total
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let retained = selection.select_classified(&all_frequencies_hz, &all_axial_shares)?;
         let phi = Mat::from_fn(eig.vectors.nrows(), retained.len(), |i, j| {
             eig.vectors[(i, retained[j])]
         });
@@ -141,6 +185,7 @@ impl ComponentModes {
             reference,
             mass_kind,
             all_frequencies_hz,
+            all_axial_shares,
             retained,
             omega2,
             shapes,
@@ -150,6 +195,30 @@ impl ComponentModes {
     /// Number of retained modes.
     pub fn n_modes(&self) -> usize {
         self.retained.len()
+    }
+
+    /// Whether mode `k` of the full list is axial (more than half its kinetic energy in the
+    /// axial displacements).
+    pub fn is_axial(&self, k: usize) -> bool {
+        self.all_axial_shares[k] > 0.5
+    }
+
+    /// The retained modes in words: `"2010 Hz bending, 7310 Hz axial, ..."`.
+    pub fn summary(&self) -> String {
+        if self.retained.is_empty() {
+            return "no elastic modes (rigid rod)".into();
+        }
+        self.retained
+            .iter()
+            .map(|&k| {
+                format!(
+                    "{:.0} Hz {}",
+                    self.all_frequencies_hz[k],
+                    if self.is_axial(k) { "axial" } else { "bending" }
+                )
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
     }
 
     /// The rows of `B_r Phi` for element `e` (6 x n_modes).

@@ -113,6 +113,10 @@ pub trait RodBody: Send {
     fn linear_momentum(&self, q: &[f64], v: &[f64]) -> Vector2<f64>;
     /// Natural frequencies under the rod's reference or end conditions, Hz, ascending.
     fn frequencies_hz(&self) -> &[f64];
+    /// What the rod keeps, in words (the FFR rod: its retained modes and their kinds).
+    fn describe(&self) -> String {
+        format!("{} natural frequencies", self.frequencies_hz().len())
+    }
     /// Rod length L, m.
     fn length(&self) -> f64;
     /// Mass of the rod with its end bodies (big end at B, small end at C), kg.

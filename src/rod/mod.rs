@@ -21,8 +21,9 @@ use crate::error::ModelError;
 use crate::modal::{ComponentModes, ModeSelection, ReferenceConditions};
 
 /// Build the rod model `spec` asks for: validates the section, preprocesses the modes (FFR)
-/// or the chain (segments).
-pub fn build(spec: &RodSpec) -> Result<Box<dyn RodBody>, ModelError> {
+/// or the chain (segments). `slider_mass` (kg) decides the automatic axial mode
+/// ([`RodSpec::min_axial_modes`]).
+pub fn build(spec: &RodSpec, slider_mass: f64) -> Result<Box<dyn RodBody>, ModelError> {
     let definition = spec.definition()?;
     match spec.model {
         RodModelKind::Ffr => {
@@ -32,7 +33,10 @@ pub fn build(spec: &RodSpec) -> Result<Box<dyn RodBody>, ModelError> {
                 spec.elements,
                 reference,
                 spec.mass,
-                &ModeSelection::Count(spec.modes),
+                &ModeSelection::CountWithAxial {
+                    count: spec.modes,
+                    axial: spec.min_axial_modes(slider_mass),
+                },
             )?;
             Ok(Box::new(ffr::FfrRod::new(
                 modes,

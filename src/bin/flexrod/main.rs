@@ -93,21 +93,32 @@ fn modes(args: &[String]) -> Result<(), String> {
         },
     )
     .map_err(|e| e.to_string())?;
+    // The selection the model makes (rod.modes lowest, plus axial modes: rod.axial_modes).
+    let kept = ModeSelection::CountWithAxial {
+        count: scene.rod.modes,
+        axial: scene.rod.min_axial_modes(scene.slider.mass),
+    }
+    .select_classified(&all.all_frequencies_hz, &all.all_axial_shares)
+    .map_err(|e| e.to_string())?;
     println!(
-        "scene {}: {} elements, {:?} reference conditions, {:?} mass; {} modes retained of {}",
+        "scene {}: {} elements, {:?} reference conditions, {:?} mass; {} modes retained of {} (rod.modes = {}, at least {} axial)",
         scene.name,
         scene.rod.elements,
         scene.rod.reference,
         scene.rod.mass,
-        scene.rod.modes.min(all.all_frequencies_hz.len()),
-        all.all_frequencies_hz.len()
+        kept.len(),
+        all.all_frequencies_hz.len(),
+        scene.rod.modes,
+        scene.rod.min_axial_modes(scene.slider.mass)
     );
-    println!("mode  frequency_hz  retained");
+    println!("mode  frequency_hz  kind     axial_share  retained");
     for (k, f) in all.all_frequencies_hz.iter().enumerate() {
         println!(
-            "{:>4}  {f:>12.4}  {}",
+            "{:>4}  {f:>12.4}  {:<7}  {:>11.3}  {}",
             k + 1,
-            if k < scene.rod.modes { "yes" } else { "no" }
+            if all.is_axial(k) { "axial" } else { "bending" },
+            all.all_axial_shares[k],
+            if kept.contains(&k) { "yes" } else { "no" }
         );
     }
     if let Some(path) = flag(&flags, "csv") {

@@ -86,8 +86,13 @@ impl Instance {
                 Some(f) => format!("lowest natural frequency {f} Hz"),
                 None => "no natural frequency (rigid rod)".to_string(),
             };
+            let model = self
+                .simulation
+                .as_ref()
+                .map(|s| s.describe())
+                .unwrap_or_default();
             self.logger.event(&format!(
-                "initialized at t = {t0} s with crank.angle = {} rad, crank.speed = {} rad/s; {frequency}",
+                "initialized at t = {t0} s with crank.angle = {} rad, crank.speed = {} rad/s; {frequency}; {model}",
                 self.inputs.angle, self.inputs.speed,
             ));
         }

@@ -413,6 +413,10 @@ impl RodBody for FfrRod {
         &self.modes.all_frequencies_hz
     }
 
+    fn describe(&self) -> String {
+        format!("FFR rod, modes kept: {}", self.modes.summary())
+    }
+
     fn length(&self) -> f64 {
         self.length
     }

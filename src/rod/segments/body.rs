@@ -431,6 +431,21 @@ impl RodBody for SegmentRod {
         &self.frequencies
     }
 
+    fn describe(&self) -> String {
+        let mut kinds = vec!["rotational springs"];
+        if self.axial {
+            kinds.push("axial springs");
+        }
+        if self.shear {
+            kinds.push("shear slides");
+        }
+        format!(
+            "segment chain, {} segments with {}",
+            self.n_seg,
+            kinds.join(", ")
+        )
+    }
+
     fn length(&self) -> f64 {
         self.length
     }
