@@ -400,6 +400,95 @@ fn cantilever_with_tip_mass_and_inertia_against_frequency_equation() {
     );
 }
 
+/// A pinned-pinned rod with end bodies (the mechanism's end conditions): point masses and
+/// rotary inertias `J_B`, `J_C` at both pins. The pins hold the ends transversely, so the masses
+/// do not enter the bending modes; the inertias turn with the end slopes. Hamilton's principle
+/// gives the moment conditions `E I w''(0) = -J_B w^2 w'(0)`, `E I w''(L) = J_C w^2 w'(L)`
+/// (and `w = 0` at both ends); with the field transfer matrix `T` of the uniform segment on
+/// `[w, w', E I w'', E I w''']` the unknowns at B are `(w'(0), V(0))`, and the frequency equation
+/// is the 2 x 2 determinant of the two conditions at C. Limits: `J = 0` gives the pinned-pinned
+/// rod (checked: `(n pi / L)^2 sqrt(E I / rho A)`).
+#[test]
+fn pinned_rod_with_end_bodies_against_frequency_equation() {
+    let props = RodProperties::seed001_benchmark();
+    let (l, rho_a, ei) = (
+        props.length,
+        props.mass_per_length(),
+        props.bending_rigidity(),
+    );
+    let m_rod = rho_a * l;
+    let (j_b, j_c) = (0.05 * m_rod * l * l, 0.01 * m_rod * l * l);
+    let det = |jb: f64, jc: f64| {
+        move |w: f64| {
+            let t = field(l, ei, rho_a, w);
+            let w2 = w * w;
+            let a11 = t[0][1] - jb * w2 * t[0][2];
+            let a12 = t[0][3];
+            let a21 = (t[2][1] - jb * w2 * t[2][2]) - jc * w2 * (t[1][1] - jb * w2 * t[1][2]);
+            let a22 = t[2][3] - jc * w2 * t[1][3];
+            a11 * a22 - a12 * a21
+        }
+    };
+    let w1 = (PI / l).powi(2) * (ei / rho_a).sqrt();
+    // The limit J = 0: the pinned-pinned rod.
+    let plain = roots(det(0.0, 0.0), 0.05 * w1, 0.01 * w1, 3);
+    for (k, w) in plain.iter().enumerate() {
+        let n = (k + 1) as f64;
+        assert!((w / (n * n * w1) - 1.0).abs() < 1e-9, "mode {}: {w}", k + 1);
+    }
+    let exact: Vec<f64> = roots(det(j_b, j_c), 0.05 * w1, 0.01 * w1, 3)
+        .iter()
+        .map(|w| w / (2.0 * PI))
+        .collect();
+    let mut def = RodDefinition::uniform(props);
+    def.big_end = EndBody {
+        mass: 0.4 * m_rod,
+        inertia: j_b,
+    };
+    def.small_end = EndBody {
+        mass: 0.2 * m_rod,
+        inertia: j_c,
+    };
+    let n = 32;
+    let fe = bending_hz(def.clone(), n, ReferenceConditions::SimplySupported);
+    let computed: Vec<f64> = exact.iter().map(|&x| nearest(&fe, x)).collect();
+    assert_eq!(&computed[..], &fe[..3]);
+    // The segment chain (end bodies at the pins, their inertias on rotations of their own):
+    // second order in the segment length.
+    let mut previous: Option<Vec<f64>> = None;
+    for n_seg in [32, 64, 128] {
+        let chain = SegmentRod::from_definition(&def, n_seg, 0.0, false).unwrap();
+        let f = chain.bending_frequencies_hz();
+        let err: Vec<f64> = (0..3).map(|k| (f[k] - exact[k]) / exact[k]).collect();
+        println!("segment chain N = {n_seg}: relative errors {err:?}");
+        if let Some(p) = &previous {
+            for k in 0..3 {
+                let order = (p[k] / err[k]).abs().log2();
+                assert!(
+                    (1.8..2.2).contains(&order),
+                    "chain mode {}: order {order}",
+                    k + 1
+                );
+            }
+        }
+        if n_seg == 128 {
+            assert!(err.iter().all(|e| e.abs() < 2e-4), "{err:?}");
+        }
+        previous = Some(err);
+    }
+    // The inertias lower every frequency (more kinetic energy, Rayleigh).
+    for (k, f) in exact.iter().enumerate() {
+        assert!(*f < plain[k] / (2.0 * PI));
+    }
+    report(
+        "pinned-pinned, end masses 0.4 / 0.2 m_rod, end inertias 0.05 / 0.01 m_rod L^2",
+        "32 EB elements",
+        &exact,
+        &computed,
+        1e-4,
+    );
+}
+
 /// The uniform rod through the station table (quadrature path) gives the closed-form path's
 /// frequencies; FFR and segment chain.
 #[test]
