@@ -91,12 +91,13 @@ impl RodBody for SegmentRod {
         g: Vector2<f64>,
         force_c: Vector2<f64>,
     ) -> crate::rod::SectionLoads {
-        // Walk from C: the pin force, the small end body (d'Alembert force and couple), then
-        // segment k (its centroid's d'Alembert force and couple) before the cut at its B-side
-        // joint (cut k; cut N is C), the big end body before the cut at B.
+        // Walk from C: the pin force and the small end body (d'Alembert force and couple) before
+        // the cut at C (cut N), then segment k (its centroid's d'Alembert force and couple)
+        // before the cut at its B-side joint (cut k). The big end body lies beyond the cut at B
+        // (between it and the pin): no cut carries it. As the FFR rod's walk.
         let n = self.n_seg;
         let mut walk = LoadWalk::new();
-        let [pin_b, pin_c] = self.pins();
+        let [_, pin_c] = self.pins();
         let end_body = |walk: &mut LoadWalk, p: super::kinematics::Located, e: usize| {
             let r = self.located_point(p, q);
             let a = self.located_velocity(p, q, qdd) + self.located_bias(p, q, v);
@@ -109,13 +110,10 @@ impl RodBody for SegmentRod {
         };
         let r_c = self.located_point(pin_c, q);
         walk.add(r_c, force_c, 0.0);
+        end_body(&mut walk, pin_c, 1);
         let (e_last, _) = axes(q[self.theta_index(n - 1)]);
         walk.cut(&self.cuts[n], r_c, e_last, self.mid_cut == n);
-        end_body(&mut walk, pin_c, 1);
         for k in (0..n).rev() {
-            if k == 0 {
-                end_body(&mut walk, pin_b, 0);
-            }
             let t = self.theta_index(k);
             let ck = self.centroids[k];
             let r = self.material_point(k, ck, q);
