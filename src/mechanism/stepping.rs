@@ -173,6 +173,13 @@ impl Mechanism {
             rc.y - sys.slider_offset,
         ];
         let tolerance = 1e-14 * self.rod.length();
+        // The crank angle's own round-off: a master's angle `omega t` carries a few ulps of
+        // `|theta|` (2e-13 rad at 1000 rad, a long run), which moves the pin by `r` times that
+        // and turns its velocity and acceleration by as much. A law that differs by no more has
+        // not changed: restarting on it cost a factorization every step of a long run.
+        let angle_noise =
+            4.0 * f64::EPSILON * state.input.angle.abs().max(state.previous_input.angle.abs());
+        let position_noise = tolerance + self.crank_length * angle_noise;
         let mut work = self
             .output_solve
             .take()
@@ -181,7 +188,7 @@ impl Mechanism {
             (t, 0.0, format!("restart at the communication point: {f}"))
         };
         let result = (|| {
-            let positions_off = phi.iter().any(|x| x.abs() > tolerance);
+            let positions_off = phi.iter().any(|x| x.abs() > position_noise);
             let mut velocities_off = positions_off;
             if !velocities_off {
                 let previous = CrankLaw {
@@ -190,8 +197,10 @@ impl Mechanism {
                     input: state.previous_input,
                 };
                 let (_, v_old, a_old) = previous.pin(t);
-                velocities_off = (v_new - v_old).norm() > 1e-14 * (1.0 + v_new.norm())
-                    || (a_new - a_old).norm() > 1e-12 * (1.0 + a_new.norm());
+                velocities_off = (v_new - v_old).norm()
+                    > 1e-14 * (1.0 + v_new.norm()) + angle_noise * v_new.norm()
+                    || (a_new - a_old).norm()
+                        > 1e-12 * (1.0 + a_new.norm()) + angle_noise * a_new.norm();
             }
             if !velocities_off {
                 return Ok(false);
