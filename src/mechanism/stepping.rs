@@ -183,8 +183,13 @@ impl Mechanism {
         // `|theta|` (2e-13 rad at 1000 rad, a long run), which moves the pin by `r` times that
         // and turns its velocity and acceleration by as much. A law that differs by no more has
         // not changed: restarting on it cost a factorization every step of a long run.
-        let angle_noise =
-            4.0 * f64::EPSILON * state.input.angle.abs().max(state.previous_input.angle.abs());
+        let angle_noise = 4.0
+            * f64::EPSILON
+            * state
+                .input
+                .angle
+                .abs()
+                .max(state.previous_input.angle.abs());
         let position_noise = tolerance + self.crank_length * angle_noise;
         let mut work = self
             .output_solve

@@ -98,30 +98,18 @@ impl SegmentRod {
     /// the slides).
     #[inline]
     pub(super) fn offset(&self, j: usize, q: &[f64], v: &[f64]) -> JointOffset {
-        let mut d = JointOffset {
-            along: self.seg_len,
-            along_rate: 0.0,
-            across: 0.0,
-            across_rate: 0.0,
-        };
-        if j + 1 < self.n_seg {
-            if self.axial {
-                let i = self.stretch_index(j);
-                d.along += q[i];
-                d.along_rate = v[i];
-            }
-            if self.shear {
-                let i = self.shear_index(j + 1);
-                d.across = q[i];
-                d.across_rate = v[i];
-            }
-        }
-        d
+        self.offset_with(j, q, Some(v))
     }
 
     /// Joint `j`'s offset from positions only (rates zero).
     #[inline]
     pub(super) fn offset_q(&self, j: usize, q: &[f64]) -> JointOffset {
+        self.offset_with(j, q, None)
+    }
+
+    /// [`Self::offset`], the rates read from `v` if given.
+    #[inline(always)]
+    fn offset_with(&self, j: usize, q: &[f64], v: Option<&[f64]>) -> JointOffset {
         let mut d = JointOffset {
             along: self.seg_len,
             along_rate: 0.0,
@@ -129,11 +117,16 @@ impl SegmentRod {
             across_rate: 0.0,
         };
         if j + 1 < self.n_seg {
+            let rate = |i: usize| v.map_or(0.0, |v| v[i]);
             if self.axial {
-                d.along += q[self.stretch_index(j)];
+                let i = self.stretch_index(j);
+                d.along += q[i];
+                d.along_rate = rate(i);
             }
             if self.shear {
-                d.across = q[self.shear_index(j + 1)];
+                let i = self.shear_index(j + 1);
+                d.across = q[i];
+                d.across_rate = rate(i);
             }
         }
         d
