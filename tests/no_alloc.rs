@@ -111,11 +111,15 @@ fn advance_does_not_allocate() {
     let ffr = Scene::benchmark();
     // Communication step = 3 internal steps, so sub-stepping is exercised too.
     let a_ffr = allocations_per_1000_advances(&ffr, 3e-4);
+    // A communication step far below the internal step: dense output (steps held ahead,
+    // interpolated states).
+    let a_dense = allocations_per_1000_advances(&ffr, 1e-5);
     let mut seg = Scene::benchmark();
     seg.rod.model = RodModelKind::Segments;
     seg.rod.elements = 16;
     let a_seg = allocations_per_1000_advances(&seg, 1e-4);
-    println!("allocations in 1000 advances after the first: FFR {a_ffr}, segments {a_seg}");
+    println!("allocations in 1000 advances after the first: FFR {a_ffr}, FFR at 1e-5 s (dense output) {a_dense}, segments {a_seg}");
     assert_eq!(a_ffr, 0);
+    assert_eq!(a_dense, 0);
     assert_eq!(a_seg, 0);
 }

@@ -22,7 +22,7 @@
 
 use super::failure::{StepError, StepFailure};
 use super::partitioned::PartitionedRhs;
-use super::state::DaeState;
+use super::state::{hermite5, DaeState, StepAhead};
 use super::system::DaeSystem;
 use super::{quantize_step, Integrator};
 
@@ -129,6 +129,12 @@ pub struct ErrorControl {
     pub initial_step: f64,
     /// Rejected tries of one step before it counts as failed.
     pub max_rejections: usize,
+    /// Error per unit step: with `Some(c)` the local tolerance of a step of size `h` is
+    /// `tolerance min(1, c h / T)`, `T` the system's [`DaeSystem::error_time_scale`], so that
+    /// the local errors of the `T / h` steps of one period add up to a bounded global error
+    /// however small the steps are (Hairer, Norsett and Wanner, *Solving ODEs I*, section
+    /// II.4, "error per unit step"); `None`: error per step.
+    pub per_unit_step: Option<f64>,
 }
 
 /// The integrator and its workspace.
@@ -231,7 +237,10 @@ impl Dopri5 {
                 .evaluate_stage(system, t, &self.z, &self.zd, &mut kv[s], s == last)?;
             *work += 1;
         }
-        let tol = self.control.tolerance * state.amplitude.max(self.control.amplitude_floor);
+        let mut tol = self.control.tolerance * state.amplitude.max(self.control.amplitude_floor);
+        if let Some(c) = self.control.per_unit_step {
+            tol *= (c * h / system.error_time_scale()).min(1.0);
+        }
         let mut err: f64 = 0.0;
         for a in 0..k {
             let mut ez = 0.0;
@@ -361,5 +370,67 @@ impl Integrator for Dopri5 {
 
     fn consistent_outputs(&self) -> bool {
         true
+    }
+
+    /// On minimal coordinates in closed form (where a complete evaluation gives the whole
+    /// state from the independent coordinates without a Newton iteration).
+    fn dense_output(&self) -> bool {
+        self.closed_form
+    }
+
+    fn step_ahead(
+        &mut self,
+        system: &dyn DaeSystem,
+        state: &DaeState,
+        ahead: &mut StepAhead,
+    ) -> Result<usize, StepError> {
+        ahead.end.clone_from(state);
+        // No communication point to land on: the step is the state's proposal (or less after
+        // rejections).
+        let work = self.step(system, &mut ahead.end, f64::INFINITY)?;
+        ahead.t0 = state.t;
+        ahead.z0.copy_from_slice(&self.z0);
+        ahead.zd0.copy_from_slice(&self.zd0);
+        ahead.zdd0.copy_from_slice(&self.kv[0]);
+        ahead.held = true;
+        Ok(work)
+    }
+
+    /// Quintic Hermite interpolation ([`hermite5`]) of `z` and `z'` from both ends of the held
+    /// step, whose accelerations are the method's first and last stages; then one complete
+    /// evaluation at `(t, z, z')`.
+    fn interpolate(
+        &mut self,
+        system: &dyn DaeSystem,
+        ahead: &StepAhead,
+        t: f64,
+        out: &mut DaeState,
+    ) -> Result<usize, StepFailure> {
+        let end = &ahead.end;
+        let h = end.t - ahead.t0;
+        let s = ((t - ahead.t0) / h).clamp(0.0, 1.0);
+        for (a, &i) in self.rhs.independent.iter().enumerate() {
+            let (z, zd) = hermite5(
+                s,
+                h,
+                ahead.z0[a],
+                ahead.zd0[a],
+                ahead.zdd0[a],
+                end.q[i],
+                end.v[i],
+                end.qdd[i],
+            );
+            self.z[a] = z;
+            self.zd[a] = zd;
+        }
+        // The end's dependent positions choose the assembly branch and the frame angle's turn.
+        self.rhs.q.copy_from_slice(&end.q);
+        let (z, zd, zdd) = (&self.z, &self.zd, &mut self.kv[6]);
+        self.rhs.evaluate_stage(system, t, z, zd, zdd, true)?;
+        self.rhs.multipliers();
+        let r = &self.rhs;
+        out.accept(t, &r.q, &r.v, &r.qdd, &r.qdd, &r.lambda);
+        out.step_hint = end.step_hint;
+        Ok(1)
     }
 }

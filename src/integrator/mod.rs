@@ -33,7 +33,7 @@ pub use generalized_alpha::GeneralizedAlpha;
 pub use partitioned::PartitionedRhs;
 pub use runge_kutta::ExplicitRk4;
 pub use small_lu::SmallLu;
-pub use state::DaeState;
+pub use state::{hermite5, DaeState, StepAhead};
 pub use system::{DaeSystem, GeneralPath};
 
 /// A step size rounded down to the grid `2^(k/8)` (eight steps per octave): adaptive step
@@ -86,6 +86,40 @@ pub trait Integrator: Send {
     /// exactly `h`.
     fn is_adaptive(&self) -> bool {
         false
+    }
+
+    /// Whether the method has dense output: [`Integrator::step_ahead`] and
+    /// [`Integrator::interpolate`] (then the driver may take steps past a communication point
+    /// and give the state there by interpolation, so that the internal step does not depend
+    /// on the communication step).
+    fn dense_output(&self) -> bool {
+        false
+    }
+
+    /// One accepted step of the method's own size from `state` (not cut at a communication
+    /// point): the step's start goes into `ahead` (`t0`, `z0`, `zd0`, `zdd0`), its end into
+    /// `ahead.end`, and `ahead.held` is set. `state` is untouched. Returns the work done.
+    fn step_ahead(
+        &mut self,
+        _system: &dyn DaeSystem,
+        _state: &DaeState,
+        _ahead: &mut StepAhead,
+    ) -> Result<usize, StepError> {
+        unreachable!("step_ahead of an integrator without dense output")
+    }
+
+    /// The state at `t` inside the held step of `ahead` into `out`: the independent
+    /// coordinates and rates by interpolation, the dependent ones, the accelerations and the
+    /// multipliers by one complete evaluation (so they are consistent with each other).
+    /// Returns the work done.
+    fn interpolate(
+        &mut self,
+        _system: &dyn DaeSystem,
+        _ahead: &StepAhead,
+        _t: f64,
+        _out: &mut DaeState,
+    ) -> Result<usize, StepFailure> {
+        unreachable!("interpolate of an integrator without dense output")
     }
 
     /// Whether an accepted step leaves the state's velocities on the velocity constraints and

@@ -35,6 +35,12 @@ pub trait DaeSystem {
     fn solve_dependent_positions(&self, _t: f64, _q: &mut [f64]) -> bool {
         false
     }
+    /// The duration over which the stated accuracy of an error-controlled run accumulates
+    /// local errors, s (one period of the motion that drives the system); infinite when the
+    /// system names none (then each step's error is held to the local tolerance alone).
+    fn error_time_scale(&self) -> f64 {
+        f64::INFINITY
+    }
     /// Whether [`DaeSystem::reduced_rhs`] has a closed form for this system.
     fn has_reduced_rhs(&self) -> bool {
         false

@@ -71,6 +71,9 @@ impl SliderCrankDae<'_> {
     }
 }
 
+/// Crank speed below which [`DaeSystem::error_time_scale`] stays at `2 pi / 10 s`, rad/s.
+pub const ERROR_TIME_SCALE_MIN_SPEED: f64 = 10.0;
+
 impl DaeSystem for SliderCrankDae<'_> {
     fn n_coordinates(&self) -> usize {
         self.nr() + 1
@@ -200,6 +203,13 @@ impl DaeSystem for SliderCrankDae<'_> {
 
     fn has_reduced_rhs(&self) -> bool {
         self.rod.ffr_kernel().is_some()
+    }
+
+    /// One crank revolution at the crank speed of the law in force, `2 pi / |omega|`, the
+    /// speed floored at [`ERROR_TIME_SCALE_MIN_SPEED`] (standstill and slow turning accumulate
+    /// errors over at most that long).
+    fn error_time_scale(&self) -> f64 {
+        std::f64::consts::TAU / self.crank.input.speed.abs().max(ERROR_TIME_SCALE_MIN_SPEED)
     }
 
     /// The FFR rod's closed form on minimal coordinates ([`super::minimal`]).

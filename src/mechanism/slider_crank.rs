@@ -13,7 +13,7 @@ use crate::integrator::dopri5::{DORMAND_PRINCE, RK4_FSAL};
 use crate::integrator::generalized_alpha::AlphaErrorControl;
 use crate::integrator::{
     ConstrainedSolve, DaeState, DaeSystem, Dopri5, ErrorControl, ExplicitRk4, GeneralizedAlpha,
-    Integrator,
+    Integrator, StepAhead,
 };
 use crate::rod::RodBody;
 
@@ -24,8 +24,16 @@ use crate::rod::RodBody;
 pub const LOCAL_TOLERANCE_FACTOR: f64 = 0.01;
 
 /// The same for the embedded RK4(3) pair that `auto` takes on the closed-form minimal
-/// coordinates (calibrated the same way).
+/// coordinates (calibrated the same way), at most: it is also held to
+/// [`ERROR_PER_UNIT_STEP_RK4`].
 pub const LOCAL_TOLERANCE_FACTOR_RK4: f64 = 0.03;
+
+/// Error per unit step of the RK4(3) pair ([`ErrorControl::per_unit_step`]): the local
+/// tolerance of a step `h` is at most `solver.tolerance c h / T` with `T` one crank
+/// revolution. Without it (error per step alone) a rod whose accuracy needs many small steps
+/// per revolution (an undamped stiff fourth mode: 1160 steps in one revolution) collected
+/// 6.8 times the stated tolerance (tests/error_control.rs, `explore_case` with CASE=19).
+pub const ERROR_PER_UNIT_STEP_RK4: f64 = 2.5;
 
 /// The same for the adaptive generalized-alpha method (second order: its global error goes
 /// with the local tolerance to the power 2/3).
@@ -57,6 +65,8 @@ pub struct Mechanism {
     pub(super) output_solve: Option<OutputSolve>,
     /// The state before the communication step in progress.
     pub(super) backup: DaeState,
+    /// The held step ahead before the communication step (restored with `backup`).
+    pub(super) backup_ahead: StepAhead,
 }
 
 /// The saddle-point solve of the outputs and the start, with the projected velocities.
@@ -156,10 +166,14 @@ impl Mechanism {
                 // documentation of `crate::integrator::dopri5`: four evaluations a step and
                 // 2.8 times the stable step on the stiff mode); `dopri5` as asked.
                 let minimal = spec.solver.method == SolverMethod::Auto && probe.has_reduced_rhs();
-                let (tableau, factor) = if minimal {
-                    (&RK4_FSAL, LOCAL_TOLERANCE_FACTOR_RK4)
+                let (tableau, factor, per_unit_step) = if minimal {
+                    (
+                        &RK4_FSAL,
+                        LOCAL_TOLERANCE_FACTOR_RK4,
+                        Some(ERROR_PER_UNIT_STEP_RK4 / LOCAL_TOLERANCE_FACTOR_RK4),
+                    )
                 } else {
-                    (&DORMAND_PRINCE, LOCAL_TOLERANCE_FACTOR)
+                    (&DORMAND_PRINCE, LOCAL_TOLERANCE_FACTOR, None)
                 };
                 let control = ErrorControl {
                     tolerance: spec.solver.tolerance * factor,
@@ -168,6 +182,7 @@ impl Mechanism {
                     rate_weights: omega.iter().map(|w| w.max(1.0)).collect(),
                     initial_step: spec.solver.step,
                     max_rejections: 40,
+                    per_unit_step,
                 };
                 (
                     Box::new(Dopri5::with_tableau(
@@ -202,6 +217,16 @@ impl Mechanism {
             }
         };
         let m = probe.n_constraints();
+        let backup = DaeState {
+            t: 0.0,
+            q: vec![0.0; n],
+            v: vec![0.0; n],
+            qdd: vec![0.0; n],
+            acc: vec![0.0; n],
+            lambda: vec![0.0; m],
+            ..Default::default()
+        };
+        let k = rod.elastic_coordinates().map_or(0, |e| e.count());
         Ok(Mechanism {
             spec: spec.clone(),
             crank_length: spec.crank.length,
@@ -210,15 +235,8 @@ impl Mechanism {
             max_halvings: spec.solver.max_halvings,
             integrator,
             output_solve: Some(OutputSolve::new(n)),
-            backup: DaeState {
-                t: 0.0,
-                q: vec![0.0; n],
-                v: vec![0.0; n],
-                qdd: vec![0.0; n],
-                acc: vec![0.0; n],
-                lambda: vec![0.0; m],
-                ..Default::default()
-            },
+            backup_ahead: StepAhead::sized(k, &backup),
+            backup,
             rod,
         })
     }

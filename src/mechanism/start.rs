@@ -9,7 +9,7 @@ use super::slider_crank::{Mechanism, OutputSolve};
 use super::spec::StartDeflection;
 use super::state::MechanismState;
 use crate::error::ModelError;
-use crate::integrator::{DaeState, DaeSystem};
+use crate::integrator::{DaeState, DaeSystem, StepAhead};
 
 impl Mechanism {
     /// Consistent start: undeformed rod on the crank at angle `input.angle`, rigid velocities
@@ -59,6 +59,8 @@ impl Mechanism {
             slider_force,
             ..Default::default()
         };
+        let k = self.rod.elastic_coordinates().map_or(0, |e| e.count());
+        state.ahead = StepAhead::sized(k, &state.dae);
         let mut work = OutputSolve::new(n);
         if self.spec.start.deflection == StartDeflection::QuasiStatic {
             self.quasi_static_start(&mut state, &mut work)?;

@@ -2,7 +2,7 @@
 
 use super::crank::CrankInput;
 use super::outputs::Outputs;
-use crate::integrator::DaeState;
+use crate::integrator::{DaeState, StepAhead};
 
 /// Counters of the integrator, cumulative since the start.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
@@ -39,6 +39,9 @@ pub struct MechanismState {
     pub warnings: Vec<String>,
     /// The large-deflection warning was already given.
     pub large_deflection_warned: bool,
+    /// An internal step past `time` whose interpolant gave the state at `time` (dense output
+    /// on a communication grid finer than the internal step; nothing held otherwise).
+    pub ahead: StepAhead,
 }
 
 impl MechanismState {
@@ -100,13 +103,60 @@ impl MechanismState {
             out.extend_from_slice(&c.to_le_bytes());
         }
         out.push(self.large_deflection_warned as u8);
+        let a = &self.ahead;
+        out.push(a.held as u8);
+        if a.held {
+            let mut put = |x: f64| out.extend_from_slice(&x.to_le_bytes());
+            put(a.t0);
+            put(a.end.t);
+            put(a.end.step_hint);
+            put(a.end.amplitude);
+            for v in [
+                &a.z0,
+                &a.zd0,
+                &a.zdd0,
+                &a.end.q,
+                &a.end.v,
+                &a.end.qdd,
+                &a.end.acc,
+                &a.end.lambda,
+            ] {
+                for &x in v.iter() {
+                    put(x);
+                }
+            }
+        }
     }
 
     /// Read what [`Self::write_bytes`] wrote, into a state of the same dimensions.
     pub fn read_bytes(&mut self, bytes: &[u8]) -> Result<(), String> {
         let n = self.dae.q.len();
         let m = self.dae.lambda.len();
-        let expected = 8 * (26 + 4 * n + m) + 8 * 3 + 1;
+        let base = 8 * (26 + 4 * n + m) + 8 * 3 + 1;
+        let k = self.ahead.z0.len();
+        let ahead_len = 8 * (4 + 3 * k + 4 * n + m);
+        let held = match bytes.get(base) {
+            Some(0) => false,
+            Some(1) if k > 0 => true,
+            Some(b) => {
+                return Err(format!(
+                    "the held-step flag is {b}, allowed 0{}",
+                    if k > 0 {
+                        " or 1"
+                    } else {
+                        " (this model has no dense output)"
+                    }
+                ))
+            }
+            None => {
+                return Err(format!(
+                "{} bytes of state, this model needs at least {} (truncated or from another model)",
+                bytes.len(),
+                base + 1
+            ))
+            }
+        };
+        let expected = base + 1 + if held { ahead_len } else { 0 };
         if bytes.len() != expected {
             return Err(format!(
                 "{} bytes of state, this model needs {expected} (truncated or from another model)",
@@ -158,7 +208,7 @@ impl MechanismState {
         s.bending_moment_mid = get();
         s.stress_max = get();
         s.stress_max_position = get();
-        let mut at = expected - 25;
+        let mut at = base - 25;
         let mut count = || {
             let c = u64::from_le_bytes(bytes[at..at + 8].try_into().unwrap());
             at += 8;
@@ -167,7 +217,7 @@ impl MechanismState {
         self.stats.steps = count();
         self.stats.newton_iterations = count();
         self.stats.halvings = count();
-        self.large_deflection_warned = match bytes[expected - 1] {
+        self.large_deflection_warned = match bytes[base - 1] {
             0 => false,
             1 => true,
             b => {
@@ -176,6 +226,34 @@ impl MechanismState {
                 ))
             }
         };
+        self.ahead.held = held;
+        if held {
+            let mut at = base + 1;
+            let mut get = || {
+                let x = f64::from_le_bytes(bytes[at..at + 8].try_into().unwrap());
+                at += 8;
+                x
+            };
+            let a = &mut self.ahead;
+            a.t0 = get();
+            a.end.t = get();
+            a.end.step_hint = get();
+            a.end.amplitude = get();
+            for v in [
+                &mut a.z0,
+                &mut a.zd0,
+                &mut a.zdd0,
+                &mut a.end.q,
+                &mut a.end.v,
+                &mut a.end.qdd,
+                &mut a.end.acc,
+                &mut a.end.lambda,
+            ] {
+                for x in v.iter_mut() {
+                    *x = get();
+                }
+            }
+        }
         self.validate()?;
         self.warnings.clear();
         Ok(())
@@ -245,6 +323,38 @@ impl MechanismState {
                 "the integrator time {} s differs from the time {} s (they are equal in every saved state)",
                 d.t, self.time
             ));
+        }
+        let a = &self.ahead;
+        if a.held {
+            let values = [a.t0, a.end.t, a.end.step_hint, a.end.amplitude];
+            if let Some(x) = values
+                .iter()
+                .chain(&a.z0)
+                .chain(&a.zd0)
+                .chain(&a.zdd0)
+                .chain(&a.end.q)
+                .chain(&a.end.v)
+                .chain(&a.end.qdd)
+                .chain(&a.end.acc)
+                .chain(&a.end.lambda)
+                .find(|x| !x.is_finite())
+            {
+                return Err(format!(
+                    "a value of the held internal step is {x}, allowed a finite value"
+                ));
+            }
+            if !(a.t0 <= self.time && self.time < a.end.t) {
+                return Err(format!(
+                    "the held internal step [{}, {}] s does not contain the time {} s (it starts at or before it and ends after it)",
+                    a.t0, a.end.t, self.time
+                ));
+            }
+            if a.end.step_hint < 0.0 || a.end.amplitude < 0.0 {
+                return Err(format!(
+                    "the held step's proposal {:e} s or amplitude {:e} is negative, allowed >= 0",
+                    a.end.step_hint, a.end.amplitude
+                ));
+            }
         }
         if self.input_time > self.time {
             return Err(format!(

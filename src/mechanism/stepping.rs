@@ -27,6 +27,7 @@ impl Mechanism {
         let t_start = state.time;
         self.check_work(t_start, h)?;
         self.backup.clone_from(&state.dae);
+        self.backup_ahead.clone_from(&state.ahead);
         self.integrator.forget_between_steps();
         let backup_stats = state.stats;
         let t_end = t_start + h;
@@ -44,8 +45,11 @@ impl Mechanism {
                 let stale = !unchanged_law && self.restart_consistently(state)?;
                 if !stale && self.slider_force_consistent(state) {
                     self.integrator.reuse_first_stage();
+                } else {
+                    // New inputs: a step held ahead was taken under the old ones.
+                    state.ahead.held = false;
                 }
-                return self.adaptive_steps(state, t_end);
+                return self.adaptive_steps(state, t_end, h);
             }
             for k in 0..n_sub {
                 let target = if k + 1 == n_sub {
@@ -59,6 +63,7 @@ impl Mechanism {
         })();
         let restore = |mech: &Mechanism, state: &mut MechanismState| {
             state.dae.clone_from(&mech.backup);
+            state.ahead.clone_from(&mech.backup_ahead);
             state.time = t_start;
             state.stats = backup_stats;
         };
@@ -258,20 +263,69 @@ impl Mechanism {
         residual.abs() <= 1e-12 * scale.max(1e-300)
     }
 
-    /// Accepted steps of an adaptive integrator until `t_end` (the last one lands on it).
+    /// Accepted steps of an adaptive integrator until `t_end`: the last one lands on it, or,
+    /// with dense output on a communication grid finer than the internal step (`h_comm`
+    /// below [`DENSE_GRID_FRACTION`] of the step proposal), reaches past it and the state at
+    /// `t_end` is its interpolant ([`crate::integrator::StepAhead`]); the next communication
+    /// steps inside the held step cost an interpolation and one evaluation each, so the
+    /// internal step follows the error control, not the communication step.
     fn adaptive_steps(
         &mut self,
         state: &mut MechanismState,
         t_end: f64,
+        h_comm: f64,
     ) -> Result<(), (f64, f64, String)> {
         let mut taken = 0u64;
+        let dense = self.integrator.dense_output() && !state.ahead.z0.is_empty();
         while state.dae.t < t_end {
+            if state.ahead.held {
+                let sys = dae_context(self.rod.as_ref(), &self.spec, state);
+                let t1 = state.ahead.end.t;
+                if t_end < t1 - 1e-12 * (t1 - state.ahead.t0) {
+                    let work = self
+                        .integrator
+                        .interpolate(&sys, &state.ahead, t_end, &mut state.dae)
+                        .map_err(|f| (t_end, t1 - state.ahead.t0, f.to_string()))?;
+                    state.stats.newton_iterations += work as u64;
+                    return Ok(());
+                }
+                // The held step ends at or before `t_end`: its end is the state, and its last
+                // stage (the same inputs) the next step's first.
+                let amplitude = state.dae.amplitude;
+                state.dae.clone_from(&state.ahead.end);
+                state.dae.amplitude = amplitude.max(state.dae.amplitude);
+                state.ahead.held = false;
+                self.integrator.reuse_first_stage();
+                if state.dae.t >= t_end - 1e-12 * h_comm {
+                    state.dae.t = t_end;
+                }
+                continue;
+            }
             if taken >= MAX_INTERNAL_STEPS {
                 return Err((state.dae.t, t_end - state.dae.t, TOO_MANY_STEPS.to_string()));
             }
             taken += 1;
             let h_max = t_end - state.dae.t;
             let sys = dae_context(self.rod.as_ref(), &self.spec, state);
+            if dense
+                && state.dae.step_hint > 0.0
+                && h_comm < DENSE_GRID_FRACTION * state.dae.step_hint
+            {
+                match self
+                    .integrator
+                    .step_ahead(&sys, &state.dae, &mut state.ahead)
+                {
+                    Ok(work) => {
+                        state.stats.steps += 1;
+                        state.stats.newton_iterations += work as u64;
+                        continue;
+                    }
+                    Err(error) => {
+                        state.stats.newton_iterations += error.work as u64;
+                        return Err((state.dae.t, h_max, error.failure.to_string()));
+                    }
+                }
+            }
             match self.integrator.step(&sys, &mut state.dae, h_max) {
                 Ok(work) => {
                     state.stats.steps += 1;
@@ -350,6 +404,13 @@ impl Mechanism {
         }
     }
 }
+
+/// Dense output takes over where the communication step is below this fraction of the
+/// internal step the error control proposes: a step stretched by up to 25 % lands on a
+/// coarser grid (every accepted step then ends on a communication point, as without dense
+/// output); on a finer one, landing would cut the steps to the communication step, while
+/// an interpolation costs one evaluation instead of a step's four.
+pub const DENSE_GRID_FRACTION: f64 = 0.5;
 
 /// Reason of an adaptive loop stopped by [`MAX_INTERNAL_STEPS`] (turned into `TooMuchWork`).
 const TOO_MANY_STEPS: &str = "too many internal steps";
