@@ -373,9 +373,14 @@ impl Integrator for Dopri5 {
     }
 
     /// On minimal coordinates in closed form (where a complete evaluation gives the whole
-    /// state from the independent coordinates without a Newton iteration).
+    /// state from the independent coordinates without a Newton iteration), with the RK4(3)
+    /// pair, whose stability bounds `|h w|` of every retained mode by 2.8, where the quintic
+    /// interpolant is within 1 % of the mode's amplitude. Dormand-Prince steps longer on the
+    /// stiff modes: interpolated on the automotive rod (8 elements, 6 modes, tolerance 1e-3)
+    /// its midpoint moment was 2.9 % of the peak off the reference instead of 0.11 %, so it
+    /// lands on every communication point.
     fn dense_output(&self) -> bool {
-        self.closed_form
+        self.closed_form && std::ptr::eq(self.tableau, &RK4_FSAL)
     }
 
     fn step_ahead(

@@ -405,12 +405,13 @@ impl Mechanism {
     }
 }
 
-/// Dense output takes over where the communication step is below this fraction of the
-/// internal step the error control proposes: a step stretched by up to 25 % lands on a
-/// coarser grid (every accepted step then ends on a communication point, as without dense
-/// output); on a finer one, landing would cut the steps to the communication step, while
-/// an interpolation costs one evaluation instead of a step's four.
-pub const DENSE_GRID_FRACTION: f64 = 0.5;
+/// Dense output takes over where the communication step `H` is below this fraction of the
+/// internal step `p` the error control proposes. Cost per unit time in evaluations: landing on
+/// every communication point (a step cut to `H`) `4 / H`; stepping past it `4 / p` for the
+/// steps plus `1 / H` for the interpolated states; the second is cheaper for `H < 3 p / 4`.
+/// (Measured on the default scene, two revolutions: 2146 evaluations on a 1e-4 s grid at 0.75,
+/// 2552 at 0.5; 1422 and 1420 on a 3e-4 s grid.)
+pub const DENSE_GRID_FRACTION: f64 = 0.75;
 
 /// Reason of an adaptive loop stopped by [`MAX_INTERNAL_STEPS`] (turned into `TooMuchWork`).
 const TOO_MANY_STEPS: &str = "too many internal steps";
