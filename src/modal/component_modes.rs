@@ -143,6 +143,7 @@ impl ComponentModes {
             }
         };
         let n_full = m.nrows();
+        let mesh_ref = &mesh;
         let all_axial_shares: Vec<f64> = (0..eig.values.len())
             .map(|j| {
                 let x = full_shape(j);
@@ -151,7 +152,7 @@ impl ComponentModes {
                     for c in 0..n_full {
                         let e = x[r] * m[(r, c)] * x[c];
                         total += e;
-                        if r % 3 == 0 && c % 3 == 0 {
+                        if mesh_ref.is_axial_coordinate(r) && mesh_ref.is_axial_coordinate(c) {
                             axial += e;
                         }
                     }
@@ -221,9 +222,12 @@ impl ComponentModes {
             .join(", ")
     }
 
-    /// The rows of `B_r Phi` for element `e` (6 x n_modes).
+    /// The rows of `B_r Phi` for element `e` (the element's coordinates, 6 nodal and any
+    /// interior ones, x n_modes).
     pub fn element_shapes(&self, e: usize) -> nalgebra::DMatrix<f64> {
         let dofs = self.mesh.element_dofs(e);
-        nalgebra::DMatrix::from_fn(6, self.n_modes(), |i, j| self.shapes[(dofs[i], j)])
+        nalgebra::DMatrix::from_fn(dofs.len(), self.n_modes(), |i, j| {
+            self.shapes[(dofs[i], j)]
+        })
     }
 }
