@@ -515,6 +515,84 @@ mod tests {
         assert!(last < 1e-8, "{last}");
     }
 
+    /// The hierarchical element: interior functions vanish at both nodes; the nodal 6 x 6
+    /// blocks are the IIE's; rows are derivatives of each other; rigid motions (nodal, zero
+    /// interior coordinates) carry no strain; for a uniform section the IIE's nodal functions
+    /// (exact homogeneous solutions) are stiffness-orthogonal to the interior ones.
+    #[test]
+    fn hierarchical_element_extends_the_iie() {
+        let (p, t) = uniform();
+        let l = 0.05;
+        let g = p.youngs_modulus / 2.6;
+        let iie = SectionElement::new(&t, 0.0, l, p.youngs_modulus, p.density, Some(g));
+        let el = iie.with_degree(TIMOSHENKO_DEGREE);
+        assert_eq!((el.n_bubbles(), el.width()), (3, 9));
+        for xi in [0.0, 1.0] {
+            assert!(el.shape_full(xi).columns(6, 3).abs().max() < 1e-15);
+            assert!(el.rotation_full(xi).columns(6, 3).abs().max() < 1e-15);
+        }
+        let (k, m) = (el.stiffness_full(), el.mass_full());
+        let kk = k.view((0, 0), (6, 6)) - iie.stiffness();
+        let mm = m.view((0, 0), (6, 6)) - iie.mass();
+        assert!(kk.abs().max() < 1e-12 * k.abs().max(), "{kk}");
+        assert!(mm.abs().max() < 1e-12 * m.abs().max(), "{mm}");
+        assert!((&k - k.transpose()).abs().max() == 0.0);
+        let coupling = k.view((0, 6), (6, 3)).abs().max() / k.abs().max();
+        assert!(coupling < 1e-12, "{coupling}");
+        // Interior block regular (the interior functions are independent).
+        assert!(k.view((6, 6), (3, 3)).into_owned().determinant() > 0.0);
+        let h = 1e-6;
+        for xi in [0.2, 0.55, 0.9] {
+            let fd = |f: &dyn Fn(f64) -> DMatrix<f64>, row: usize| {
+                (f(xi + h).row(row) - f(xi - h).row(row)) / (2.0 * h * l)
+            };
+            let dv = fd(&|x| el.shape_full(x), 1) - el.slope_full(xi);
+            let dpsi = fd(&|x| el.rotation_full(x), 0) - el.curvature_full(xi);
+            assert!(dv.abs().max() < 1e-6, "{dv}");
+            assert!(dpsi.abs().max() < 1e-4 / l, "{dpsi}");
+            let gam = el.slope_full(xi) - el.rotation_full(xi) - el.shear_strain_full(xi);
+            assert!(gam.abs().max() < 1e-12, "{gam}");
+        }
+        let r = BeamElement {
+            length: l,
+            section: p,
+        }
+        .rigid_modes(0.2);
+        let mut rf = DMatrix::zeros(9, 3);
+        rf.view_mut((0, 0), (6, 3)).copy_from(&r);
+        assert!((&k * rf).abs().max() < 1e-6 * k.abs().max());
+    }
+
+    /// The element's space is v in P3, psi in P2: any such pair (here v = x^3, psi = x^2 on
+    /// the element, plus rigid terms) is represented exactly by nodal values and interior
+    /// coordinates, the latter found by least squares on sample points.
+    #[test]
+    fn hierarchical_element_spans_p3_p2() {
+        let (p, t) = uniform();
+        let l = 0.04;
+        let el = SectionElement::new(&t, 0.0, l, p.youngs_modulus, p.density, Some(8e10))
+            .with_degree(3);
+        let v = |x: f64| 0.3 * x * x * x - 0.1 * x + 0.002;
+        let psi = |x: f64| 5.0 * x * x + 0.7 * x - 0.01;
+        // Nodal coordinates from the fields; interior ones by least squares.
+        let xs: Vec<f64> = (0..12).map(|k| k as f64 / 11.0).collect();
+        let nodal = nalgebra::DVector::from_vec(vec![0.0, v(0.0), psi(0.0), 0.0, v(l), psi(l)]);
+        let mut a = DMatrix::zeros(2 * xs.len(), 3);
+        let mut b = nalgebra::DVector::zeros(2 * xs.len());
+        for (i, &xi) in xs.iter().enumerate() {
+            let (s, r) = (el.shape_full(xi), el.rotation_full(xi));
+            let sn = s.columns(0, 6) * &nodal;
+            let rn = r.columns(0, 6) * &nodal;
+            b[2 * i] = v(xi * l) - sn[1];
+            b[2 * i + 1] = psi(xi * l) - rn[0];
+            a.row_mut(2 * i).copy_from(&s.view((1, 6), (1, 3)));
+            a.row_mut(2 * i + 1).copy_from(&r.columns(6, 3));
+        }
+        let c = a.clone().svd(true, true).solve(&b, 1e-14).unwrap();
+        let residual = (&a * c - b).abs().max();
+        assert!(residual < 1e-13, "{residual}");
+    }
+
     /// A linearly tapered element: the mass is the integral of rho A(s) (exact).
     #[test]
     fn tapered_element_mass_is_exact() {
