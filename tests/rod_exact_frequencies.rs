@@ -17,7 +17,9 @@
 //!   table 8-8; Laura, Pombo and Susemihl 1974, J. Sound Vib. 37)
 //!   `1 + cos b cosh b + alpha b (cos b sinh b - sin b cosh b)
 //!    - eta b^3 (cosh b sin b + sinh b cos b) + alpha eta b^4 (1 - cos b cosh b) = 0`;
-//! - the uniform rod through the station-table path against the closed-form path (1e-12).
+//! - the uniform rod through the station-table path against the closed-form path (1e-12);
+//! - statics of the stubby Timoshenko rod under a triangular load against the closed form
+//!   (nodal deflections, and the curvature with the element's interior part).
 //!
 //! Each case prints its verification row (run with `--nocapture`).
 
@@ -614,4 +616,115 @@ fn end_bodies_and_taper_in_the_shape_integrals_and_the_chain() {
         + m_c * l;
     assert!((first / total - def.centre_of_mass()).abs() < 1e-14);
     assert!((chain.total_mass() - def.total_mass()).abs() < 1e-15);
+}
+
+/// Statics of the stubby shear-deformable rod, pinned-pinned under a triangular load
+/// `q(x) = q0 x / L`, against the closed-form Timoshenko solution: `M = E I psi' =
+/// -q0 x (L^2 - x^2) / (6 L)`, `v(x) = q0 x (7 L^4 - 10 L^2 x^2 + 3 x^4) / (360 L E I)
+/// + q0 x (L^2 - x^2) / (6 L G A_s)`. The load varies along every element, so all three
+/// interior coordinates carry part of the solution, among them the `psi` bubble, and the
+/// curvature `psi'` recovered through `RodMesh::curvature` must include them. Measured and
+/// asserted: nodal deflections exact (the nodal functions solve the homogeneous equations, so
+/// the nodal values are those of the exact solution); `E I psi'` (linear per element) equals
+/// the element-wise L2 projection of the exact cubic moment onto linear functions, to round-off;
+/// without the interior part of `psi'` it does not (printed).
+#[test]
+fn stubby_timoshenko_static_triangular_load_against_closed_form() {
+    use flexrod::beam::RodMesh;
+    let (l, e, rho) = (0.1, 2.1e11, 7800.0);
+    let (b, h) = (0.01, 0.02);
+    let (a, i) = (b * h, b * h * h * h / 12.0);
+    let (g, a_s) = (e / 2.6, a / 1.2);
+    let q0 = 1.0e5; // N/m at C
+    let props = RodProperties {
+        length: l,
+        youngs_modulus: e,
+        density: rho,
+        area: a,
+        area_moment: i,
+    };
+    let mut def = RodDefinition::uniform(props);
+    def.table = Some(SectionTable::uniform(l, a, i));
+    def.shear_modulus = Some(g);
+    let v_exact = |x: f64| {
+        q0 * x * (7.0 * l.powi(4) - 10.0 * l * l * x * x + 3.0 * x.powi(4)) / (360.0 * l * e * i)
+            + q0 * x * (l * l - x * x) / (6.0 * l * g * a_s)
+    };
+    let m_exact = |x: f64| -q0 * x * (l * l - x * x) / (6.0 * l);
+    let m_peak = q0 * l * l / (9.0 * 3f64.sqrt());
+    // 3-point Gauss on [0, 1]: exact to degree 5.
+    let r = 0.5 * 0.6f64.sqrt();
+    let gauss = [
+        (0.5 - r, 5.0 / 18.0),
+        (0.5, 8.0 / 18.0),
+        (0.5 + r, 5.0 / 18.0),
+    ];
+    for n in [8usize, 16] {
+        let mesh = RodMesh::from_definition(def.clone(), n, 0.0).unwrap();
+        assert_eq!(mesh.n_bubbles(), 3);
+        let (k, _) = mesh.assemble(MassKind::Consistent);
+        let nc = mesh.n_coordinates();
+        let le = l / n as f64;
+        // Consistent load int q S_v^T dx (degree 4).
+        let mut f = nalgebra::DVector::zeros(nc);
+        for el in 0..n {
+            let dofs = mesh.element_dofs(el);
+            for (xi, w) in gauss {
+                let s = mesh.shape(el, xi);
+                let qx = q0 * (el as f64 + xi) * le / l;
+                for (c, &d) in dofs.iter().enumerate() {
+                    f[d] += qx * s[(1, c)] * w * le;
+                }
+            }
+        }
+        let fixed = [0usize, 1, 3 * n + 1];
+        let free: Vec<usize> = (0..nc).filter(|i| !fixed.contains(i)).collect();
+        let kr = nalgebra::DMatrix::from_fn(free.len(), free.len(), |r, c| k[(free[r], free[c])]);
+        let fr = nalgebra::DVector::from_fn(free.len(), |r, _| f[free[r]]);
+        let xr = kr.cholesky().expect("K_rr definite").solve(&fr);
+        let mut x = nalgebra::DVector::zeros(nc);
+        for (r, &d) in free.iter().enumerate() {
+            x[d] = xr[r];
+        }
+        let v_mid = v_exact(0.5 * l);
+        let nodal = (0..=n)
+            .map(|node| (x[3 * node + 1] - v_exact(node as f64 * le)).abs())
+            .fold(0.0, f64::max)
+            / v_mid;
+        // psi bubbles: the last interior coordinate of each element.
+        let psi_bubble = (0..n)
+            .map(|el| x[3 * (n + 1) + 3 * el + 2].abs())
+            .fold(0.0, f64::max);
+        // E I psi' against the L2 projection of M onto linear functions on each element:
+        // P M = m0 + m1 (2 xi - 1), m0 = mean, m1 = 3 int M (2 xi - 1) dxi.
+        let (mut with, mut without) = (0.0f64, 0.0f64);
+        for el in 0..n {
+            let dofs = mesh.element_dofs(el);
+            let (mut m0, mut m1) = (0.0, 0.0);
+            for (xi, w) in gauss {
+                let mx = m_exact((el as f64 + xi) * le);
+                m0 += w * mx;
+                m1 += 3.0 * w * mx * (2.0 * xi - 1.0);
+            }
+            for xi in [0.0, 0.5, 1.0] {
+                let c = mesh.curvature(el, xi);
+                let (mut full, mut nodal_only) = (0.0, 0.0);
+                for (col, &d) in dofs.iter().enumerate() {
+                    full += c[(0, col)] * x[d];
+                    if col < 6 {
+                        nodal_only += c[(0, col)] * x[d];
+                    }
+                }
+                let projected = m0 + m1 * (2.0 * xi - 1.0);
+                with = with.max((e * i * full - projected).abs() / m_peak);
+                without = without.max((e * i * nodal_only - projected).abs() / m_peak);
+            }
+        }
+        println!(
+            "triangular load, {n} elements: nodal v {nodal:.1e} of v(L/2); largest psi bubble {psi_bubble:.1e} rad; E I psi' against the element-wise L2 projection of the exact moment {with:.1e} of the peak ({without:.1e} without the interior part)"
+        );
+        assert!(nodal < 1e-9, "{nodal}");
+        assert!(psi_bubble > 0.0);
+        assert!(with < 1e-9 && without > 1e3 * with, "{with} {without}");
+    }
 }

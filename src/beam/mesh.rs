@@ -3,7 +3,10 @@
 //! Node `i` (0 = the B end, N = the C end) sits at `x = x_b + i L / N` in the body frame,
 //! `x_b` being the B end's position (0 when the frame sits at B, `-L/2` when it sits at the
 //! middle). Global coordinates: node `i` owns `[3i, 3i+1, 3i+2] = [u, v, slope]` (for the
-//! shear-deformable rod the third is the section rotation `psi`).
+//! shear-deformable rod the third is the section rotation `psi`). A shear-deformable rod's
+//! element has interior coordinates too ([`RodMesh::n_bubbles`] per element, the hierarchical
+//! element of [`SectionElement`]); they follow all nodal coordinates, element by element, so
+//! node indexing, reference conditions, end bodies and rigid modes stay nodal.
 //!
 //! The uniform Euler-Bernoulli rod without end bodies ([`RodDefinition::is_plain`]) uses the
 //! closed-form [`BeamElement`]; every other rod the [`SectionElement`] on the rod's section
@@ -110,7 +113,7 @@ impl RodMesh {
 
     /// Whether global coordinate `i` is an axial displacement `u` (node `i / 3`'s first).
     pub fn is_axial_coordinate(&self, i: usize) -> bool {
-        i < self.n_nodal_coordinates() && i % 3 == 0
+        i < self.n_nodal_coordinates() && i.is_multiple_of(3)
     }
 
     pub fn element_length(&self) -> f64 {

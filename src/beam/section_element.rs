@@ -23,6 +23,24 @@
 //! (`G -> infinity`) they are the Hermite cubics and `psi = v'` (Euler-Bernoulli). For a
 //! varying section `Phi` is formed with the element means of `E I` and `G A_s`.
 //!
+//! # Hierarchical element (the rod's shear-deformable element)
+//! The IIE's shear strain is constant per element, so once shear energy matters its
+//! frequencies converge at second order only. [`SectionElement::with_degree`] adds interior
+//! ("bubble") coordinates after the six nodal ones: with `t = 2 xi - 1` and the integrated
+//! Legendre polynomials `N_k(t) = (P_k(t) - P_{k-2}(t)) / sqrt(2 (2k - 1))`, `k >= 2`, which
+//! vanish at both ends and have `dN_k / dt = sqrt((2k - 1) / 2) P_{k-1}(t)` (Szabo and Babuska,
+//! *Finite Element Analysis*, 1991, ch. 3, the hierarchic p-version shape
+//! functions), degree `p` adds `N_2 .. N_p` on `v` and `N_2 .. N_{p-1}` on `psi` (`2 p - 3`
+//! coordinates). With the IIE's nodal functions (cubic `v`, quadratic `psi`) the element for
+//! `p = 3` spans exactly `v` in P3, `psi` in P2, independent per element and C0 across nodes:
+//! the locking-free `P_{k+1} / P_k` pair (`psi = v'` representable for every cubic `v`; Reddy
+//! 1997, *CMAME* 149), with a linear shear strain and curvature, and fourth-order
+//! frequencies (measured in tests/rod_exact_frequencies.rs). The rod uses `p` =
+//! [`TIMOSHENKO_DEGREE`] = 3. For a uniform section the IIE's nodal functions, which solve the
+//! homogeneous equations, are stiffness-orthogonal to the interior ones (boundary terms of
+//! functions that vanish at the nodes), which keeps the stiffness well conditioned; without
+//! interior coordinates (`p = 0`) the element is the IIE, bit for bit.
+//!
 //! # Matrices
 //! Energies integrated over the element with the properties at each point (exact: the
 //! properties are linear on each piece of [`SectionTable::pieces`], the integrands polynomial
@@ -31,6 +49,10 @@
 //!   only for Timoshenko; for Euler-Bernoulli `psi' = v''`);
 //! - consistent mass `M = int (rho A S^T S + rho I psi^T psi) dx` (rotary inertia only for
 //!   Timoshenko: the Euler-Bernoulli element keeps the convention of [`super::element`]).
+//!
+//! With interior coordinates ([`SectionElement::stiffness_full`], [`SectionElement::mass_full`])
+//! the same integrals; for `p = 3` the highest degree is `rho A v^2` on a linear piece,
+//! 3 + 3 + 1 = 7, still exact with 4 points (6 points, degree 11, for `p = 4`).
 //!
 //! For a uniform section these give the closed forms (Przemieniecki eq. 5.25, 5.31, 11.19; the
 //! IIE stiffness `E I / ((1 + Phi) l^3) [[12, 6l, -12, 6l], [6l, (4 + Phi) l^2, -6l,
@@ -48,7 +70,7 @@ pub const TIMOSHENKO_DEGREE: usize = 3;
 
 /// The integrated Legendre polynomial `N_k` (k >= 2) at `x` in [0, 1] (`xi = 2 x - 1`) and its
 /// derivative `dN_k / d xi`: `N_k = (P_k - P_{k-2}) / sqrt(2 (2k - 1))`,
-/// `dN_k / d xi = sqrt((2k - 1) / 2) P_{k-1}` (Szabo and Babuska 1991, eq. 3.8; zero at both
+/// `dN_k / d xi = sqrt((2k - 1) / 2) P_{k-1}` (Szabo and Babuska 1991, ch. 3, hierarchic shape functions; zero at both
 /// ends).
 pub fn integrated_legendre(k: usize, x: f64) -> (f64, f64) {
     let t = 2.0 * x - 1.0;
@@ -64,6 +86,9 @@ pub fn integrated_legendre(k: usize, x: f64) -> (f64, f64) {
         c / std::f64::consts::SQRT_2 * p[k - 1],
     )
 }
+
+/// `(element column, Legendre index k)` of interior functions.
+type BubbleColumns = Vec<(usize, usize)>;
 
 /// One element `[s0, s0 + length]` of a rod with a section table.
 #[derive(Clone, Copy, Debug)]
@@ -148,7 +173,7 @@ impl<'a> SectionElement<'a> {
     }
 
     /// `(column, k)` of the `v` bubbles and of the `psi` bubbles.
-    fn bubbles(&self) -> (Vec<(usize, usize)>, Vec<(usize, usize)>) {
+    fn bubbles(&self) -> (BubbleColumns, BubbleColumns) {
         if self.degree == 0 {
             return (Vec::new(), Vec::new());
         }
@@ -257,7 +282,10 @@ impl<'a> SectionElement<'a> {
         let (s0, l) = (self.s0, self.length);
         let w = self.width();
         let mut acc = DMatrix::zeros(w, w);
-        for (s, v, wt) in self.table.quadrature_points_of_degree(s0, s0 + l, 2 * self.degree + 1) {
+        for (s, v, wt) in self
+            .table
+            .quadrature_points_of_degree(s0, s0 + l, 2 * self.degree + 1)
+        {
             acc += f((s - s0) / l, v) * wt;
         }
         acc
@@ -570,8 +598,8 @@ mod tests {
     fn hierarchical_element_spans_p3_p2() {
         let (p, t) = uniform();
         let l = 0.04;
-        let el = SectionElement::new(&t, 0.0, l, p.youngs_modulus, p.density, Some(8e10))
-            .with_degree(3);
+        let el =
+            SectionElement::new(&t, 0.0, l, p.youngs_modulus, p.density, Some(8e10)).with_degree(3);
         let v = |x: f64| 0.3 * x * x * x - 0.1 * x + 0.002;
         let psi = |x: f64| 5.0 * x * x + 0.7 * x - 0.01;
         // Nodal coordinates from the fields; interior ones by least squares.

@@ -110,7 +110,9 @@ impl ComponentModes {
                 _ => 0.0,
             };
             match spread > 1e10 {
-                true => generalized_symmetric_eigen_by_stiffness_scaled(&k_rr, &m_rr).unwrap_or(eig),
+                true => {
+                    generalized_symmetric_eigen_by_stiffness_scaled(&k_rr, &m_rr).unwrap_or(eig)
+                }
                 false => eig,
             }
         } else {
@@ -245,8 +247,6 @@ impl ComponentModes {
     /// interior ones, x n_modes).
     pub fn element_shapes(&self, e: usize) -> nalgebra::DMatrix<f64> {
         let dofs = self.mesh.element_dofs(e);
-        nalgebra::DMatrix::from_fn(dofs.len(), self.n_modes(), |i, j| {
-            self.shapes[(dofs[i], j)]
-        })
+        nalgebra::DMatrix::from_fn(dofs.len(), self.n_modes(), |i, j| self.shapes[(dofs[i], j)])
     }
 }

@@ -194,7 +194,9 @@ impl ReferenceConditions {
                         message: "rigid-body mass matrix is singular".into(),
                     })?;
                     let x = Mat::from_fn(3, n - 3, |i, j| {
-                        (0..3).map(|k| rmr_inv[(i, k)] * coupling[(k, j)]).sum::<f64>()
+                        (0..3)
+                            .map(|k| rmr_inv[(i, k)] * coupling[(k, j)])
+                            .sum::<f64>()
                     });
                     b_r = &b_r - &r * x;
                 }

@@ -290,7 +290,11 @@ impl ShapeIntegrals {
             let bubbles = el.n_bubbles() > 0;
             // Integrands up to degree 2 p + 1 (rho A v^2 on a linear piece; mu D^T D with the
             // quadratic mu is 2 (p - 1) + 2): 4-point Gauss per piece for p <= 3.
-            let degree = if bubbles { 2 * mesh.element_degree() + 1 } else { 7 };
+            let degree = if bubbles {
+                2 * mesh.element_degree() + 1
+            } else {
+                7
+            };
             for (s, sec, w) in table.quadrature_points_of_degree(s0, s0 + l, degree) {
                 let xi = (s - s0) / l;
                 let sh = if bubbles {
@@ -364,9 +368,7 @@ impl ShapeIntegrals {
 }
 
 /// A fixed-row matrix as a dynamic one (the same numbers).
-fn dynamic<R: nalgebra::DimName>(
-    m: nalgebra::OMatrix<f64, R, nalgebra::Dyn>,
-) -> DMatrix<f64> {
+fn dynamic<R: nalgebra::DimName>(m: nalgebra::OMatrix<f64, R, nalgebra::Dyn>) -> DMatrix<f64> {
     DMatrix::from_column_slice(m.nrows(), m.ncols(), m.as_slice())
 }
 

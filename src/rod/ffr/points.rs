@@ -76,7 +76,10 @@ impl FfrRod {
             // The closed-form element: fixed-size rows, no allocation.
             let shape = mesh.element().shape(xi);
             let b = 3 * e;
-            add(&|r, i| shape[(r, i)], &[b, b + 1, b + 2, b + 3, b + 4, b + 5]);
+            add(
+                &|r, i| shape[(r, i)],
+                &[b, b + 1, b + 2, b + 3, b + 4, b + 5],
+            );
         } else {
             let shape = mesh.shape(e, xi);
             add(&|r, i| shape[(r, i)], &mesh.element_dofs(e));
