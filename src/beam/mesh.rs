@@ -3,7 +3,10 @@
 //! Node `i` (0 = the B end, N = the C end) sits at `x = x_b + i L / N` in the body frame,
 //! `x_b` being the B end's position (0 when the frame sits at B, `-L/2` when it sits at the
 //! middle). Global coordinates: node `i` owns `[3i, 3i+1, 3i+2] = [u, v, slope]` (for the
-//! shear-deformable rod the third is the section rotation `psi`).
+//! shear-deformable rod the third is the section rotation `psi`). A shear-deformable rod's
+//! element has interior coordinates too ([`RodMesh::n_bubbles`] per element, the hierarchical
+//! element of [`SectionElement`]); they follow all nodal coordinates, element by element, so
+//! node indexing, reference conditions, end bodies and rigid modes stay nodal.
 //!
 //! The uniform Euler-Bernoulli rod without end bodies ([`RodDefinition::is_plain`]) uses the
 //! closed-form [`BeamElement`]; every other rod the [`SectionElement`] on the rod's section
@@ -11,11 +14,12 @@
 //! the end nodes (lumped, rigidly attached at B and C).
 
 use faer::Mat;
+use nalgebra::DMatrix;
 
 use super::definition::RodDefinition;
-use super::element::{BeamElement, ElementMatrix, ShapeMatrix, SlopeRow};
+use super::element::{BeamElement, ElementMatrix};
 use super::section::RodProperties;
-use super::section_element::SectionElement;
+use super::section_element::{SectionElement, TIMOSHENKO_DEGREE};
 use super::section_table::SectionTable;
 use crate::beam::MassKind;
 use crate::error::ModelError;
@@ -77,9 +81,39 @@ impl RodMesh {
         self.n_elements + 1
     }
 
+    /// Interior (bubble) coordinates per element: those of the hierarchical shear-deformable
+    /// element ([`TIMOSHENKO_DEGREE`]), 0 for Euler-Bernoulli rods.
+    pub fn n_bubbles(&self) -> usize {
+        match self.element_degree() {
+            0 => 0,
+            p => 2 * p - 3,
+        }
+    }
+
+    /// Degree of `v` of the hierarchical shear-deformable element ([`TIMOSHENKO_DEGREE`]), 0
+    /// for Euler-Bernoulli rods (no interior coordinates).
+    pub fn element_degree(&self) -> usize {
+        if self.table.is_some() && self.definition.shear_modulus.is_some() {
+            TIMOSHENKO_DEGREE
+        } else {
+            0
+        }
+    }
+
     /// Number of nodal coordinates, 3 (N + 1).
-    pub fn n_coordinates(&self) -> usize {
+    pub fn n_nodal_coordinates(&self) -> usize {
         3 * self.n_nodes()
+    }
+
+    /// Number of coordinates: the nodal ones, 3 (N + 1), then the interior ones of every
+    /// element, `n_b N` ([`Self::n_bubbles`]).
+    pub fn n_coordinates(&self) -> usize {
+        self.n_nodal_coordinates() + self.n_bubbles() * self.n_elements
+    }
+
+    /// Whether global coordinate `i` is an axial displacement `u` (node `i / 3`'s first).
+    pub fn is_axial_coordinate(&self, i: usize) -> bool {
+        i < self.n_nodal_coordinates() && i.is_multiple_of(3)
     }
 
     pub fn element_length(&self) -> f64 {
@@ -102,14 +136,15 @@ impl RodMesh {
     pub fn section_element(&self, e: usize) -> Option<SectionElement<'_>> {
         let table = self.table.as_ref()?;
         let l = self.element_length();
-        Some(SectionElement::new(
+        let el = SectionElement::new(
             table,
             e as f64 * l,
             l,
             self.section.youngs_modulus,
             self.section.density,
             self.definition.shear_modulus,
-        ))
+        );
+        Some(el.with_degree(self.element_degree()))
     }
 
     /// The section table of a rod that is not plain.
@@ -117,27 +152,46 @@ impl RodMesh {
         self.table.as_ref()
     }
 
-    /// Shape matrix of element `e` at `xi`.
-    pub fn shape(&self, e: usize, xi: f64) -> ShapeMatrix {
+    /// Shape matrix of element `e` at `xi` (2 x the element's coordinates,
+    /// [`Self::element_dofs`]): rows `u`, `v`.
+    pub fn shape(&self, e: usize, xi: f64) -> DMatrix<f64> {
         match self.section_element(e) {
-            Some(el) => el.shape(xi),
-            None => self.element().shape(xi),
+            Some(el) => el.shape_full(xi),
+            None => fixed(&self.element().shape(xi)),
         }
     }
 
     /// Slope `dv/dx` row of element `e` at `xi`.
-    pub fn slope(&self, e: usize, xi: f64) -> SlopeRow {
+    pub fn slope(&self, e: usize, xi: f64) -> DMatrix<f64> {
         match self.section_element(e) {
-            Some(el) => el.slope(xi),
-            None => self.element().slope(xi),
+            Some(el) => el.slope_full(xi),
+            None => fixed(&self.element().slope(xi)),
         }
     }
 
     /// Section rotation row of element `e` at `xi` (the slope for Euler-Bernoulli).
-    pub fn rotation(&self, e: usize, xi: f64) -> SlopeRow {
+    pub fn rotation(&self, e: usize, xi: f64) -> DMatrix<f64> {
         match self.section_element(e) {
-            Some(el) => el.rotation(xi),
-            None => self.element().slope(xi),
+            Some(el) => el.rotation_full(xi),
+            None => fixed(&self.element().slope(xi)),
+        }
+    }
+
+    /// Curvature row `psi'` of element `e` at `xi` (`v''` for Euler-Bernoulli), per metre,
+    /// with the interior coordinates' part.
+    pub fn curvature(&self, e: usize, xi: f64) -> DMatrix<f64> {
+        match self.section_element(e) {
+            Some(el) => el.curvature_full(xi),
+            None => {
+                // v'' of the Hermite cubics (the Euler-Bernoulli section element's curvature).
+                let l = self.element_length();
+                let mut c = DMatrix::zeros(1, 6);
+                c[(0, 1)] = (12.0 * xi - 6.0) / (l * l);
+                c[(0, 2)] = (6.0 * xi - 4.0) / l;
+                c[(0, 4)] = (6.0 - 12.0 * xi) / (l * l);
+                c[(0, 5)] = (6.0 * xi - 2.0) / l;
+                c
+            }
         }
     }
 
@@ -146,10 +200,16 @@ impl RodMesh {
         self.x_b + i as f64 * self.element_length()
     }
 
-    /// Global coordinate indices of element `e`.
-    pub fn element_dofs(&self, e: usize) -> [usize; 6] {
+    /// Global coordinate indices of element `e`: its two nodes' `[u, v, psi]`, then its
+    /// interior coordinates (which follow all nodal coordinates, element by element).
+    pub fn element_dofs(&self, e: usize) -> Vec<usize> {
         let b = 3 * e;
+        let nb = self.n_bubbles();
+        let first = self.n_nodal_coordinates() + nb * e;
         [b, b + 1, b + 2, b + 3, b + 4, b + 5]
+            .into_iter()
+            .chain(first..first + nb)
+            .collect()
     }
 
     /// The element and local `xi` holding arc length `s` in [0, L] from the B end.
@@ -169,8 +229,13 @@ impl RodMesh {
             for e in 0..self.n_elements {
                 let el = self.section_element(e).expect("not plain");
                 let dofs = self.element_dofs(e);
-                scatter(&mut k, &el.stiffness(), &dofs);
-                scatter(&mut m, &el.mass(), &dofs);
+                if el.n_bubbles() == 0 {
+                    scatter(&mut k, &el.stiffness(), &dofs);
+                    scatter(&mut m, &el.mass(), &dofs);
+                } else {
+                    scatter_dyn(&mut k, &el.stiffness_full(), &dofs);
+                    scatter_dyn(&mut m, &el.mass_full(), &dofs);
+                }
             }
             let last = 3 * self.n_elements;
             for (base, body) in [
@@ -196,10 +261,15 @@ impl RodMesh {
     }
 
     /// The three rigid-body motions in nodal coordinates (n x 3): x translation,
-    /// y translation, rotation about the body frame's origin.
+    /// y translation, rotation about the body frame's origin (zero on the interior
+    /// coordinates: the nodal functions carry the rigid motions exactly).
     pub fn rigid_modes(&self) -> Mat<f64> {
         let n = self.n_coordinates();
+        let nodal = self.n_nodal_coordinates();
         Mat::from_fn(n, 3, |row, col| {
+            if row >= nodal {
+                return 0.0;
+            }
             let (node, kind) = (row / 3, row % 3);
             match (kind, col) {
                 (0, 0) | (1, 1) | (2, 2) => 1.0,
@@ -210,12 +280,25 @@ impl RodMesh {
     }
 }
 
-fn scatter(global: &mut Mat<f64>, local: &ElementMatrix, dofs: &[usize; 6]) {
+fn scatter(global: &mut Mat<f64>, local: &ElementMatrix, dofs: &[usize]) {
     for (i, &gi) in dofs.iter().enumerate() {
         for (j, &gj) in dofs.iter().enumerate() {
             global[(gi, gj)] += local[(i, j)];
         }
     }
+}
+
+fn scatter_dyn(global: &mut Mat<f64>, local: &DMatrix<f64>, dofs: &[usize]) {
+    for (i, &gi) in dofs.iter().enumerate() {
+        for (j, &gj) in dofs.iter().enumerate() {
+            global[(gi, gj)] += local[(i, j)];
+        }
+    }
+}
+
+/// A fixed-size row block as a dynamic matrix.
+fn fixed<const R: usize>(m: &nalgebra::SMatrix<f64, R, 6>) -> DMatrix<f64> {
+    DMatrix::from_fn(R, 6, |i, j| m[(i, j)])
 }
 
 #[cfg(test)]

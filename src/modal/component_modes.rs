@@ -5,7 +5,10 @@
 
 use faer::Mat;
 
-use super::eigen::{generalized_symmetric_eigen, generalized_symmetric_eigen_by_stiffness};
+use super::eigen::{
+    generalized_symmetric_eigen, generalized_symmetric_eigen_by_stiffness,
+    generalized_symmetric_eigen_by_stiffness_scaled, generalized_symmetric_eigen_scaled,
+};
 use super::reference::ReferenceConditions;
 use super::selection::ModeSelection;
 use crate::beam::MassKind;
@@ -96,7 +99,25 @@ impl ComponentModes {
             ),
             None => (b.transpose() * &k * b, b.transpose() * &m * b),
         };
-        let mut eig = generalized_symmetric_eigen(&k_rr, &m_rr)?;
+        // Rods with interior coordinates: the scaled QR form (modal::eigen, measured there).
+        let mut eig = if mesh.n_bubbles() > 0 {
+            let eig = generalized_symmetric_eigen_scaled(&k_rr, &m_rr)?;
+            // The mass-based form's absolute error is about eps lambda_max: when the spectrum
+            // spans more than 1e10 (a nearly rigid shear modulus) the stiffness-based form
+            // keeps the lowest modes accurate, where the reduced stiffness is definite.
+            let spread = match (eig.values.first(), eig.values.last()) {
+                (Some(&lo), Some(&hi)) => hi / lo.abs().max(f64::MIN_POSITIVE),
+                _ => 0.0,
+            };
+            match spread > 1e10 {
+                true => {
+                    generalized_symmetric_eigen_by_stiffness_scaled(&k_rr, &m_rr).unwrap_or(eig)
+                }
+                false => eig,
+            }
+        } else {
+            generalized_symmetric_eigen(&k_rr, &m_rr)?
+        };
         let indefinite = |eig: &super::eigen::GeneralizedEigen| match eig.values.first() {
             Some(&lowest) => lowest < -1e-9 * eig.values.last().copied().unwrap_or(1.0).abs(),
             None => false,
@@ -143,6 +164,7 @@ impl ComponentModes {
             }
         };
         let n_full = m.nrows();
+        let mesh_ref = &mesh;
         let all_axial_shares: Vec<f64> = (0..eig.values.len())
             .map(|j| {
                 let x = full_shape(j);
@@ -151,7 +173,7 @@ impl ComponentModes {
                     for c in 0..n_full {
                         let e = x[r] * m[(r, c)] * x[c];
                         total += e;
-                        if r % 3 == 0 && c % 3 == 0 {
+                        if mesh_ref.is_axial_coordinate(r) && mesh_ref.is_axial_coordinate(c) {
                             axial += e;
                         }
                     }
@@ -221,9 +243,10 @@ impl ComponentModes {
             .join(", ")
     }
 
-    /// The rows of `B_r Phi` for element `e` (6 x n_modes).
+    /// The rows of `B_r Phi` for element `e` (the element's coordinates, 6 nodal and any
+    /// interior ones, x n_modes).
     pub fn element_shapes(&self, e: usize) -> nalgebra::DMatrix<f64> {
         let dofs = self.mesh.element_dofs(e);
-        nalgebra::DMatrix::from_fn(6, self.n_modes(), |i, j| self.shapes[(dofs[i], j)])
+        nalgebra::DMatrix::from_fn(dofs.len(), self.n_modes(), |i, j| self.shapes[(dofs[i], j)])
     }
 }

@@ -4,7 +4,7 @@
 
 use faer::Mat;
 
-use super::eigen::generalized_symmetric_eigen;
+use super::eigen::{generalized_symmetric_eigen, generalized_symmetric_eigen_scaled};
 use crate::beam::RodMesh;
 use crate::error::ModelError;
 use serde::{Deserialize, Serialize};
@@ -159,7 +159,11 @@ impl ReferenceConditions {
             None => {
                 // Mean axis: the elastic modes of the free-free rod span the M-orthogonal
                 // complement of the rigid-body modes.
-                let eig = generalized_symmetric_eigen(k, m)?;
+                let eig = if mesh.n_bubbles() > 0 {
+                    generalized_symmetric_eigen_scaled(k, m)?
+                } else {
+                    generalized_symmetric_eigen(k, m)?
+                };
                 let scale = eig
                     .values
                     .get(3)
@@ -176,7 +180,26 @@ impl ReferenceConditions {
                         });
                     }
                 }
-                let b_r = eig.vectors.subcols(3, n - 3).to_owned();
+                let mut b_r = eig.vectors.subcols(3, n - 3).to_owned();
+                if mesh.n_bubbles() > 0 {
+                    // Project the rigid motions out once more (M-orthogonally,
+                    // `B_r -= R (R^T M R)^-1 R^T M B_r`): the eigenvectors of the scaled
+                    // solver leave about 1e-11 of linear momentum in the modes.
+                    let r = mesh.rigid_modes();
+                    let mr = m * &r;
+                    let rmr = r.transpose() * &mr;
+                    let coupling = mr.transpose() * &b_r;
+                    let rmr = nalgebra::Matrix3::from_fn(|i, j| rmr[(i, j)]);
+                    let rmr_inv = rmr.try_inverse().ok_or_else(|| ModelError::Numerical {
+                        message: "rigid-body mass matrix is singular".into(),
+                    })?;
+                    let x = Mat::from_fn(3, n - 3, |i, j| {
+                        (0..3)
+                            .map(|k| rmr_inv[(i, k)] * coupling[(k, j)])
+                            .sum::<f64>()
+                    });
+                    b_r = &b_r - &r * x;
+                }
                 Ok(ReferenceBasis {
                     b_r,
                     selection: None,

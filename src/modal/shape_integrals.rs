@@ -287,21 +287,42 @@ impl ShapeIntegrals {
             let t = modes.element_shapes(e);
             let el = mesh.section_element(e).expect("not plain");
             let s0 = e as f64 * l;
-            for (s, sec, w) in table.quadrature_points(s0, s0 + l) {
+            let bubbles = el.n_bubbles() > 0;
+            // Integrands up to degree 2 p + 1 (rho A v^2 on a linear piece; mu D^T D with the
+            // quadratic mu is 2 (p - 1) + 2): 4-point Gauss per piece for p <= 3.
+            let degree = if bubbles {
+                2 * mesh.element_degree() + 1
+            } else {
+                7
+            };
+            for (s, sec, w) in table.quadrature_points_of_degree(s0, s0 + l, degree) {
                 let xi = (s - s0) / l;
-                let sh = el.shape(xi) * &t;
+                let sh = if bubbles {
+                    el.shape_full(xi) * &t
+                } else {
+                    dynamic(el.shape(xi) * &t)
+                };
                 let a = sh.rows(0, 1).into_owned();
                 let b = sh.rows(1, 1).into_owned();
                 add_point(w * rho * sec.area, x_b + s, &a, &b);
                 if def.shear_modulus.is_some() {
-                    let psi = el.rotation(xi) * &t;
+                    let psi = if bubbles {
+                        el.rotation_full(xi) * &t
+                    } else {
+                        dynamic(el.rotation(xi) * &t)
+                    };
                     add_rotary(
                         w * rho * sec.area_moment,
                         &DMatrix::from_fn(1, n, |_, j| psi[(0, j)]),
                     );
                 }
                 // Geometric stiffness: slopes of the element's v interpolation.
-                let d = el.slope(xi) * &t - &chord;
+                let slope = if bubbles {
+                    el.slope_full(xi) * &t
+                } else {
+                    dynamic(el.slope(xi) * &t)
+                };
+                let d = slope - &chord;
                 let dtd = d.transpose() * &d;
                 for (k, gk) in g.iter_mut().enumerate() {
                     *gk += &dtd * (w * s.powi(k as i32));
@@ -344,6 +365,11 @@ impl ShapeIntegrals {
             x_mid: x_b + 0.5 * length,
         }
     }
+}
+
+/// A fixed-row matrix as a dynamic one (the same numbers).
+fn dynamic<R: nalgebra::DimName>(m: nalgebra::OMatrix<f64, R, nalgebra::Dyn>) -> DMatrix<f64> {
+    DMatrix::from_column_slice(m.nrows(), m.ncols(), m.as_slice())
 }
 
 /// `S_hat(s)` (2 x n) at arc length `s` from B.

@@ -59,18 +59,30 @@ impl FfrRod {
         let mesh = &self.modes.mesh;
         let s = s.clamp(0.0, self.length);
         let (e, xi) = mesh.locate(s);
-        let shape = mesh.shape(e, xi);
-        let dofs = mesh.element_dofs(e);
         let mut u = Vector2::new(self.integrals.x_b + s, 0.0);
-        for j in 0..self.n {
-            let (mut sx, mut sy) = (0.0, 0.0);
-            for (i, &d) in dofs.iter().enumerate() {
-                let phi = self.modes.shapes[(d, j)];
-                sx += shape[(0, i)] * phi;
-                sy += shape[(1, i)] * phi;
+        let mut add = |shape: &dyn Fn(usize, usize) -> f64, dofs: &[usize]| {
+            for j in 0..self.n {
+                let (mut sx, mut sy) = (0.0, 0.0);
+                for (i, &d) in dofs.iter().enumerate() {
+                    let phi = self.modes.shapes[(d, j)];
+                    sx += shape(0, i) * phi;
+                    sy += shape(1, i) * phi;
+                }
+                u.x += sx * q[3 + j];
+                u.y += sy * q[3 + j];
             }
-            u.x += sx * q[3 + j];
-            u.y += sy * q[3 + j];
+        };
+        if mesh.is_plain() {
+            // The closed-form element: fixed-size rows, no allocation.
+            let shape = mesh.element().shape(xi);
+            let b = 3 * e;
+            add(
+                &|r, i| shape[(r, i)],
+                &[b, b + 1, b + 2, b + 3, b + 4, b + 5],
+            );
+        } else {
+            let shape = mesh.shape(e, xi);
+            add(&|r, i| shape[(r, i)], &mesh.element_dofs(e));
         }
         u
     }
