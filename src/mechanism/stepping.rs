@@ -43,13 +43,14 @@ impl Mechanism {
                     && state.stats.steps > 0
                     && self.rod.ffr_kernel().is_some();
                 let stale = !unchanged_law && self.restart_consistently(state)?;
-                if !stale && self.slider_force_consistent(state) {
-                    self.integrator.reuse_first_stage();
-                } else {
-                    // New inputs: a step held ahead was taken under the old ones.
+                let new_inputs = stale || !self.slider_force_consistent(state);
+                if new_inputs {
+                    // A step held ahead was taken under the old inputs.
                     state.ahead.held = false;
+                } else {
+                    self.integrator.reuse_first_stage();
                 }
-                return self.adaptive_steps(state, t_end, h);
+                return self.adaptive_steps(state, t_end, h, !new_inputs);
             }
             for k in 0..n_sub {
                 let target = if k + 1 == n_sub {
@@ -268,15 +269,19 @@ impl Mechanism {
     /// below [`DENSE_GRID_FRACTION`] of the step proposal), reaches past it and the state at
     /// `t_end` is its interpolant ([`crate::integrator::StepAhead`]); the next communication
     /// steps inside the held step cost an interpolation and one evaluation each, so the
-    /// internal step follows the error control, not the communication step.
+    /// internal step follows the error control, not the communication step. Not where new
+    /// inputs came at this communication point (`may_step_ahead` false): a master that sets
+    /// them at every point (a gas force, a sampled crank) would drop every held step at the
+    /// next one, so the steps land there as without dense output.
     fn adaptive_steps(
         &mut self,
         state: &mut MechanismState,
         t_end: f64,
         h_comm: f64,
+        may_step_ahead: bool,
     ) -> Result<(), (f64, f64, String)> {
         let mut taken = 0u64;
-        let dense = self.integrator.dense_output() && !state.ahead.z0.is_empty();
+        let dense = may_step_ahead && self.integrator.dense_output() && !state.ahead.z0.is_empty();
         while state.dae.t < t_end {
             if state.ahead.held {
                 let sys = dae_context(self.rod.as_ref(), &self.spec, state);
