@@ -348,3 +348,33 @@ fn internal_steps_do_not_follow_a_fine_communication_grid() {
         sim.stats().steps
     );
 }
+
+/// A held step in a restored state reaches only an integrator with dense output: the flag
+/// set in the bytes of a fixed-step RK4 or an adaptive generalized-alpha run (a stiffened
+/// rod under `auto`) is refused at the restore with a message, not at the next step (it once
+/// panicked there, and a fixed-step run kept the crafted step forever).
+#[test]
+fn a_held_step_is_refused_where_the_integrator_has_no_dense_output() {
+    let mut rk4 = Scene::benchmark();
+    rk4.solver.method = SolverMethod::Rk4;
+    let mut stiff = Scene::benchmark();
+    stiff.rod.youngs_modulus *= 1e4;
+    for scene in [rk4, stiff] {
+        let mut sim = Simulation::new(&scene).unwrap();
+        let input = flexrod::CrankInput {
+            angle: 0.0,
+            speed: 150.0,
+            acceleration: 0.0,
+        };
+        sim.start(0.0, input, 0.0).unwrap();
+        sim.advance(1e-5).unwrap();
+        let mut bytes = sim.snapshot_to_bytes();
+        assert_eq!(*bytes.last().unwrap(), 0, "no step held");
+        *bytes.last_mut().unwrap() = 1;
+        bytes.extend(std::iter::repeat_n(0u8, 8 * 64));
+        let err = sim.restore_from_bytes(&bytes).unwrap_err().to_string();
+        assert!(err.contains("no dense output"), "{err}");
+        // The instance is unchanged and steps on.
+        sim.advance(1e-5).unwrap();
+    }
+}

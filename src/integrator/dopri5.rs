@@ -238,8 +238,13 @@ impl Dopri5 {
             *work += 1;
         }
         let mut tol = self.control.tolerance * state.amplitude.max(self.control.amplitude_floor);
-        if let Some(c) = self.control.per_unit_step {
-            tol *= (c * h / system.error_time_scale()).min(1.0);
+        let period = system.error_time_scale();
+        if let Some(c) = self
+            .control
+            .per_unit_step
+            .filter(|_| period.is_finite() && period > 0.0)
+        {
+            tol *= (c * h / period).min(1.0);
         }
         let mut err: f64 = 0.0;
         for a in 0..k {

@@ -12,6 +12,9 @@ pub enum StepFailure {
     SingularMatrix,
     /// A value became NaN or infinite.
     NonFinite,
+    /// A held step (dense output) reached an integrator that has none (a restored state made
+    /// for another integrator).
+    NoDenseOutput,
 }
 
 impl std::fmt::Display for StepFailure {
@@ -28,6 +31,9 @@ impl std::fmt::Display for StepFailure {
                 write!(f, "the Newton matrix is singular (degenerate configuration)")
             }
             StepFailure::NonFinite => write!(f, "the solution became NaN or infinite"),
+            StepFailure::NoDenseOutput => {
+                write!(f, "a held internal step reached an integrator without dense output")
+            }
         }
     }
 }

@@ -105,7 +105,7 @@ pub trait Integrator: Send {
         _state: &DaeState,
         _ahead: &mut StepAhead,
     ) -> Result<usize, StepError> {
-        unreachable!("step_ahead of an integrator without dense output")
+        Err(StepFailure::NoDenseOutput.after(0))
     }
 
     /// The state at `t` inside the held step of `ahead` into `out`: the independent
@@ -119,7 +119,7 @@ pub trait Integrator: Send {
         _t: f64,
         _out: &mut DaeState,
     ) -> Result<usize, StepFailure> {
-        unreachable!("interpolate of an integrator without dense output")
+        Err(StepFailure::NoDenseOutput)
     }
 
     /// Whether an accepted step leaves the state's velocities on the velocity constraints and

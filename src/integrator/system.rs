@@ -93,6 +93,9 @@ impl DaeSystem for GeneralPath<'_> {
     fn coordinate_scale(&self, i: usize) -> f64 {
         self.0.coordinate_scale(i)
     }
+    fn error_time_scale(&self) -> f64 {
+        self.0.error_time_scale()
+    }
     fn mass(&self, q: &[f64], m: MatMut<'_, f64>) {
         self.0.mass(q, m)
     }

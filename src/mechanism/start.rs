@@ -59,7 +59,7 @@ impl Mechanism {
             slider_force,
             ..Default::default()
         };
-        let k = self.rod.elastic_coordinates().map_or(0, |e| e.count());
+        let k = self.dense_output_width();
         state.ahead = StepAhead::sized(k, &state.dae);
         let mut work = OutputSolve::new(n);
         if self.spec.start.deflection == StartDeflection::QuasiStatic {

@@ -343,6 +343,13 @@ impl MechanismState {
                     "a value of the held internal step is {x}, allowed a finite value"
                 ));
             }
+            let longest = 1.25 * crate::integrator::MAX_ADAPTIVE_STEP;
+            if !(a.end.t - a.t0 > 0.0 && a.end.t - a.t0 <= longest) {
+                return Err(format!(
+                    "the held internal step [{}, {}] s is not between 0 and {longest} s long",
+                    a.t0, a.end.t
+                ));
+            }
             if !(a.t0 <= self.time && self.time < a.end.t) {
                 return Err(format!(
                     "the held internal step [{}, {}] s does not contain the time {} s (it starts at or before it and ends after it)",

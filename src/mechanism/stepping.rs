@@ -283,6 +283,9 @@ impl Mechanism {
         let mut taken = 0u64;
         let dense = may_step_ahead && self.integrator.dense_output() && !state.ahead.z0.is_empty();
         while state.dae.t < t_end {
+            if state.ahead.held && state.ahead.z0.is_empty() {
+                state.ahead.held = false;
+            }
             if state.ahead.held {
                 let sys = dae_context(self.rod.as_ref(), &self.spec, state);
                 let t1 = state.ahead.end.t;
