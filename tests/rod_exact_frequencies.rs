@@ -222,6 +222,26 @@ fn stepped_rod_pinned_pinned_against_transfer_matrix() {
     );
 }
 
+/// The stubby rod of the Timoshenko checks (L / h = 5, steel): `(L, E, rho, A, I, G, A_s)`
+/// and its definition with a section table and the shear modulus.
+fn stubby_rod() -> ([f64; 7], RodDefinition) {
+    let (l, e, rho) = (0.1, 2.1e11, 7800.0);
+    let (b, h) = (0.01, 0.02);
+    let (a, i) = (b * h, b * h * h * h / 12.0);
+    let (g, a_s) = (e / 2.6, a / 1.2);
+    let props = RodProperties {
+        length: l,
+        youngs_modulus: e,
+        density: rho,
+        area: a,
+        area_moment: i,
+    };
+    let mut def = RodDefinition::uniform(props);
+    def.table = Some(SectionTable::uniform(l, a, i));
+    def.shear_modulus = Some(g);
+    ([l, e, rho, a, i, g, a_s], def)
+}
+
 /// A stubby rod, L / h = 5, pinned-pinned, Timoshenko: several percent below
 /// Euler-Bernoulli. The hierarchical element (v in P3, psi in P2: the IIE's nodal functions
 /// plus three integrated-Legendre interior functions per element, docs/real-rods.md) has a
@@ -232,11 +252,8 @@ fn stepped_rod_pinned_pinned_against_transfer_matrix() {
 /// 3.6e-5, 4.2e-4, 1.5e-3 at 32 elements, 1e-4 for all three only at 128.)
 #[test]
 fn stubby_timoshenko_pinned_pinned_against_closed_form() {
-    let (l, e, rho) = (0.1, 2.1e11, 7800.0);
-    let (b, h) = (0.01, 0.02);
-    let (a, i) = (b * h, b * h * h * h / 12.0);
-    let g = e / 2.6;
-    let a_s = a / 1.2;
+    let ([l, e, rho, a, i, g, a_s], def) = stubby_rod();
+    let props = def.properties;
     let exact: Vec<f64> = (1..=3)
         .map(|n| {
             let k = n as f64 * PI / l;
@@ -261,16 +278,6 @@ fn stubby_timoshenko_pinned_pinned_against_closed_form() {
         exact[0] / euler[0] < 0.97,
         "first mode drops by several percent"
     );
-    let props = RodProperties {
-        length: l,
-        youngs_modulus: e,
-        density: rho,
-        area: a,
-        area_moment: i,
-    };
-    let mut def = RodDefinition::uniform(props);
-    def.table = Some(SectionTable::uniform(l, a, i));
-    def.shear_modulus = Some(g);
     let errors = |n: usize| -> Vec<f64> {
         let fe = bending_hz(def.clone(), n, ReferenceConditions::SimplySupported);
         exact.iter().map(|&x| (nearest(&fe, x) - x) / x).collect()
@@ -631,21 +638,8 @@ fn end_bodies_and_taper_in_the_shape_integrals_and_the_chain() {
 #[test]
 fn stubby_timoshenko_static_triangular_load_against_closed_form() {
     use flexrod::beam::RodMesh;
-    let (l, e, rho) = (0.1, 2.1e11, 7800.0);
-    let (b, h) = (0.01, 0.02);
-    let (a, i) = (b * h, b * h * h * h / 12.0);
-    let (g, a_s) = (e / 2.6, a / 1.2);
+    let ([l, e, _, _, i, g, a_s], def) = stubby_rod();
     let q0 = 1.0e5; // N/m at C
-    let props = RodProperties {
-        length: l,
-        youngs_modulus: e,
-        density: rho,
-        area: a,
-        area_moment: i,
-    };
-    let mut def = RodDefinition::uniform(props);
-    def.table = Some(SectionTable::uniform(l, a, i));
-    def.shear_modulus = Some(g);
     let v_exact = |x: f64| {
         q0 * x * (7.0 * l.powi(4) - 10.0 * l * l * x * x + 3.0 * x.powi(4)) / (360.0 * l * e * i)
             + q0 * x * (l * l - x * x) / (6.0 * l * g * a_s)

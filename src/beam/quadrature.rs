@@ -17,42 +17,9 @@ pub const GAUSS4: [(f64, f64); 4] = {
     ]
 };
 
-/// 6-point Gauss-Legendre nodes and weights on [0, 1]: exact for polynomials of degree <= 11
-/// (Abramowitz and Stegun 25.4.30, mapped from [-1, 1]); for the hierarchical
-/// shear-deformable element of `v` degree 4.
-pub const GAUSS6: [(f64, f64); 6] = {
-    const X: [f64; 3] = [
-        0.238_619_186_083_196_9,
-        0.661_209_386_466_264_5,
-        0.932_469_514_203_152,
-    ];
-    const W: [f64; 3] = [
-        0.467_913_934_572_691,
-        0.360_761_573_048_138_6,
-        0.171_324_492_379_170_4,
-    ];
-    [
-        ((1.0 - X[2]) / 2.0, W[2] / 2.0),
-        ((1.0 - X[1]) / 2.0, W[1] / 2.0),
-        ((1.0 - X[0]) / 2.0, W[0] / 2.0),
-        ((1.0 + X[0]) / 2.0, W[0] / 2.0),
-        ((1.0 + X[1]) / 2.0, W[1] / 2.0),
-        ((1.0 + X[2]) / 2.0, W[2] / 2.0),
-    ]
-};
-
 #[cfg(test)]
 mod tests {
-    use super::{GAUSS4, GAUSS6};
-
-    #[test]
-    fn six_points_integrate_degree_eleven_exactly() {
-        for k in 0..=11 {
-            let q: f64 = GAUSS6.iter().map(|(x, w)| w * x.powi(k)).sum();
-            let exact = 1.0 / (k as f64 + 1.0);
-            assert!((q - exact).abs() < 1e-15, "degree {k}: {q} vs {exact}");
-        }
-    }
+    use super::GAUSS4;
 
     #[test]
     fn integrates_degree_seven_exactly() {

@@ -52,7 +52,7 @@
 //!
 //! With interior coordinates ([`SectionElement::stiffness_full`], [`SectionElement::mass_full`])
 //! the same integrals; for `p = 3` the highest degree is `rho A v^2` on a linear piece,
-//! 3 + 3 + 1 = 7, still exact with 4 points (6 points, degree 11, for `p = 4`).
+//! 3 + 3 + 1 = 7, still exact with 4 points.
 //!
 //! For a uniform section these give the closed forms (Przemieniecki eq. 5.25, 5.31, 11.19; the
 //! IIE stiffness `E I / ((1 + Phi) l^3) [[12, 6l, -12, 6l], [6l, (4 + Phi) l^2, -6l,
@@ -141,13 +141,15 @@ impl<'a> SectionElement<'a> {
         }
     }
 
-    /// The hierarchical shear-deformable element of `v` degree `degree` >= 3 (`psi` of degree
-    /// `degree - 1`): the IIE's six nodal functions plus `degree - 1` interior functions of `v`
-    /// and `degree - 2` of `psi` (module documentation). `degree` 0 keeps the element as it is;
-    /// only for the shear-deformable element (an Euler-Bernoulli element ignores it).
+    /// The hierarchical shear-deformable element of `v` degree `degree` =
+    /// [`TIMOSHENKO_DEGREE`] (`psi` of degree `degree - 1`): the IIE's six nodal functions plus
+    /// `degree - 1` interior functions of `v` and `degree - 2` of `psi` (module documentation).
+    /// `degree` 0 keeps the element as it is; only for the shear-deformable element (an
+    /// Euler-Bernoulli element ignores it). Higher degrees would need more quadrature points
+    /// than [`SectionTable::quadrature_points`] has (module documentation, "Matrices").
     pub fn with_degree(mut self, degree: usize) -> SectionElement<'a> {
         assert!(
-            degree == 0 || (3..=4).contains(&degree),
+            degree == 0 || degree == TIMOSHENKO_DEGREE,
             "element degree {degree}"
         );
         if self.shear_modulus.is_some() {
@@ -282,10 +284,7 @@ impl<'a> SectionElement<'a> {
         let (s0, l) = (self.s0, self.length);
         let w = self.width();
         let mut acc = DMatrix::zeros(w, w);
-        for (s, v, wt) in self
-            .table
-            .quadrature_points_of_degree(s0, s0 + l, 2 * self.degree + 1)
-        {
+        for (s, v, wt) in self.table.quadrature_points(s0, s0 + l) {
             acc += f((s - s0) / l, v) * wt;
         }
         acc

@@ -372,31 +372,6 @@ impl SectionTable {
         points
     }
 
-    /// Quadrature points as [`Self::quadrature_points`], exact for polynomials of degree
-    /// `degree` on each piece: the 4-point rule up to degree 7 (the same points), the 6-point
-    /// rule up to degree 11.
-    pub fn quadrature_points_of_degree(
-        &self,
-        a: f64,
-        b: f64,
-        degree: usize,
-    ) -> Vec<(f64, SectionValues, f64)> {
-        if degree <= 7 {
-            return self.quadrature_points(a, b);
-        }
-        assert!(degree <= 11, "quadrature of degree {degree}");
-        let mut points = Vec::new();
-        for (p0, p1) in self.pieces(a, b) {
-            let h = p1 - p0;
-            let i = self.interval(0.5 * (p0 + p1));
-            for (xi, w) in super::quadrature::GAUSS6 {
-                let s = p0 + xi * h;
-                points.push((s, self.interpolate(i, s), w * h));
-            }
-        }
-        points
-    }
-
     /// `(int_s^L A ds', int_s^L A s' ds')`, m^3 and m^4, exactly (trapezoid and Simpson rules
     /// on the linear pieces).
     pub fn tail_integrals(&self, s: f64) -> (f64, f64) {

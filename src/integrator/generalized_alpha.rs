@@ -104,15 +104,7 @@ impl GeneralizedAlpha {
             force: vec![0.0; n],
             phi: vec![0.0; m],
             rhs: vec![0.0; n + m],
-            trial: DaeState {
-                t: 0.0,
-                q: vec![0.0; n],
-                v: vec![0.0; n],
-                qdd: vec![0.0; n],
-                acc: vec![0.0; n],
-                lambda: vec![0.0; m],
-                ..Default::default()
-            },
+            trial: DaeState::zeros(n, m),
             factored_for: None,
             adaptive: None,
         }

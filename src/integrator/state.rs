@@ -19,6 +19,19 @@ pub struct DaeState {
 }
 
 impl DaeState {
+    /// A state of `n` coordinates and `m` multipliers at `t = 0`, all zero (workspace sized
+    /// once, so that later copies into it allocate nothing).
+    pub fn zeros(n: usize, m: usize) -> DaeState {
+        DaeState {
+            q: vec![0.0; n],
+            v: vec![0.0; n],
+            qdd: vec![0.0; n],
+            acc: vec![0.0; n],
+            lambda: vec![0.0; m],
+            ..Default::default()
+        }
+    }
+
     /// Accept a completed step: the state at `t` becomes `(q, v, qdd, acc, lambda)` (no
     /// allocation; the sizes match).
     pub fn accept(

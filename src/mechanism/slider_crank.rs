@@ -223,15 +223,7 @@ impl Mechanism {
             }
         };
         let m = probe.n_constraints();
-        let backup = DaeState {
-            t: 0.0,
-            q: vec![0.0; n],
-            v: vec![0.0; n],
-            qdd: vec![0.0; n],
-            acc: vec![0.0; n],
-            lambda: vec![0.0; m],
-            ..Default::default()
-        };
+        let backup = DaeState::zeros(n, m);
         // The held step of dense output: sized only for an integrator that has it, so that a
         // restored state cannot bring one to another.
         let k = if integrator.dense_output() {
@@ -289,17 +281,5 @@ impl Mechanism {
     pub fn strain_energy(&self, state: &MechanismState) -> f64 {
         self.rod
             .strain_energy(&state.dae.q[..self.rod.n_coordinates()])
-    }
-}
-
-impl Mechanism {
-    /// The number of independent coordinates a held step (dense output) stores: the rod's
-    /// elastic coordinates where the integrator has dense output, else 0 (no held step).
-    pub(super) fn dense_output_width(&self) -> usize {
-        if self.integrator.dense_output() {
-            self.rod.elastic_coordinates().map_or(0, |e| e.count())
-        } else {
-            0
-        }
     }
 }

@@ -47,10 +47,7 @@ impl Mechanism {
                 t: t0,
                 q,
                 v,
-                qdd: vec![0.0; n],
-                acc: vec![0.0; n],
-                lambda: vec![0.0; 4],
-                ..Default::default()
+                ..DaeState::zeros(n, 4)
             },
             input,
             input_time: t0,
@@ -59,8 +56,9 @@ impl Mechanism {
             slider_force,
             ..Default::default()
         };
-        let k = self.dense_output_width();
-        state.ahead = StepAhead::sized(k, &state.dae);
+        // Sized as the mechanism's backup: the rod's elastic coordinates where the integrator
+        // has dense output, none otherwise.
+        state.ahead = StepAhead::sized(self.backup_ahead.z0.len(), &state.dae);
         let mut work = OutputSolve::new(n);
         if self.spec.start.deflection == StartDeflection::QuasiStatic {
             self.quasi_static_start(&mut state, &mut work)?;

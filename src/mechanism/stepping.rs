@@ -281,11 +281,8 @@ impl Mechanism {
         may_step_ahead: bool,
     ) -> Result<(), (f64, f64, String)> {
         let mut taken = 0u64;
-        let dense = may_step_ahead && self.integrator.dense_output() && !state.ahead.z0.is_empty();
+        let dense = may_step_ahead && self.integrator.dense_output();
         while state.dae.t < t_end {
-            if state.ahead.held && state.ahead.z0.is_empty() {
-                state.ahead.held = false;
-            }
             if state.ahead.held {
                 let sys = dae_context(self.rod.as_ref(), &self.spec, state);
                 let t1 = state.ahead.end.t;

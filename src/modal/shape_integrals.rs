@@ -288,14 +288,9 @@ impl ShapeIntegrals {
             let el = mesh.section_element(e).expect("not plain");
             let s0 = e as f64 * l;
             let bubbles = el.n_bubbles() > 0;
-            // Integrands up to degree 2 p + 1 (rho A v^2 on a linear piece; mu D^T D with the
-            // quadratic mu is 2 (p - 1) + 2): 4-point Gauss per piece for p <= 3.
-            let degree = if bubbles {
-                2 * mesh.element_degree() + 1
-            } else {
-                7
-            };
-            for (s, sec, w) in table.quadrature_points_of_degree(s0, s0 + l, degree) {
+            // Integrands up to degree 2 p + 1 = 7 (rho A v^2 on a linear piece; mu D^T D with
+            // the quadratic mu is 2 (p - 1) + 2): exact with 4-point Gauss per piece.
+            for (s, sec, w) in table.quadrature_points(s0, s0 + l) {
                 let xi = (s - s0) / l;
                 let sh = if bubbles {
                     el.shape_full(xi) * &t
