@@ -265,8 +265,8 @@ impl Mechanism {
     }
 
     /// Accepted steps of an adaptive integrator until `t_end`: the last one lands on it, or,
-    /// with dense output on a communication grid finer than the internal step (`h_comm`
-    /// below [`DENSE_GRID_FRACTION`] of the step proposal), reaches past it and the state at
+    /// with dense output where that is cheaper ([`steps_past_is_cheaper`]: a communication grid
+    /// finer than the internal step, or one whose landing step would be short), reaches past it and the state at
     /// `t_end` is its interpolant ([`crate::integrator::StepAhead`]); the next communication
     /// steps inside the held step cost an interpolation and one evaluation each, so the
     /// internal step follows the error control, not the communication step. Not where new
@@ -314,7 +314,7 @@ impl Mechanism {
             let sys = dae_context(self.rod.as_ref(), &self.spec, state);
             if dense
                 && state.dae.step_hint > 0.0
-                && h_comm < DENSE_GRID_FRACTION * state.dae.step_hint
+                && steps_past_is_cheaper(h_comm, state.dae.step_hint)
             {
                 match self
                     .integrator
@@ -410,13 +410,17 @@ impl Mechanism {
     }
 }
 
-/// Dense output takes over where the communication step `H` is below this fraction of the
-/// internal step `p` the error control proposes. Cost per unit time in evaluations: landing on
-/// every communication point (a step cut to `H`) `4 / H`; stepping past it `4 / p` for the
-/// steps plus `1 / H` for the interpolated states; the second is cheaper for `H < 3 p / 4`.
-/// (Measured on the default scene, two revolutions: 2146 evaluations on a 1e-4 s grid at 0.75,
-/// 2552 at 0.5; 1422 and 1420 on a 3e-4 s grid.)
-pub const DENSE_GRID_FRACTION: f64 = 0.75;
+/// Whether stepping past the communication point (dense output) is cheaper than landing on it,
+/// for a communication step `H` and the internal step `p` the error control proposes. Cost of
+/// one communication step in evaluations (four a step): landing takes the steps of size `p`
+/// until the rest is within the 25 % stretch of one, `n = max(1, ceil(H / p - 1/4))` steps;
+/// stepping past it takes `H / p` steps on average plus one evaluation for the interpolated
+/// state. Stepping past wins for `H / p + 1/4 < n`: every grid finer than `3 p / 4`, and coarse
+/// grids whose last landing step would be short (e.g. `H = 1.5 p`: 1.75 steps instead of 2).
+pub fn steps_past_is_cheaper(h_comm: f64, proposal: f64) -> bool {
+    let r = h_comm / proposal;
+    r.is_finite() && r + 0.25 < (r - 0.25).ceil().max(1.0)
+}
 
 /// Reason of an adaptive loop stopped by [`MAX_INTERNAL_STEPS`] (turned into `TooMuchWork`).
 const TOO_MANY_STEPS: &str = "too many internal steps";
