@@ -465,6 +465,28 @@ mod tests {
     use super::*;
     use crate::mechanism::Outputs;
 
+    /// The landing rule of dense output at communication steps `H = r p`: landing costs
+    /// `max(1, ceil(r - 1/4))` steps, stepping past `r + 1/4`.
+    #[test]
+    fn stepping_past_where_it_costs_fewer_evaluations() {
+        let p = 2e-4;
+        for (r, past) in [
+            (0.05, true),
+            (0.74, true),
+            (0.76, false),
+            (1.0, false),
+            (1.25, false),
+            (1.3, true),
+            (1.74, true),
+            (1.76, false),
+            (2.25, false),
+            (2.6, true),
+        ] {
+            assert_eq!(steps_past_is_cheaper(r * p, p), past, "H / p = {r}");
+        }
+        assert!(!steps_past_is_cheaper(1e-4, 0.0));
+    }
+
     /// Issue 14, 1a: a diverged segment chain once returned NaN and 1e254 N with fmi2OK. The
     /// check every accepted step passes refuses both (and non-finite state coordinates).
     #[test]
