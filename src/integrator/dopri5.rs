@@ -20,7 +20,6 @@
 //! rejection, at most h). The step proposal is
 //! part of the state ([`DaeState::step_hint`]), so a restored state replays bit for bit.
 
-use super::exponential::{self, Oscillator, Propagator, IDENTITY};
 use super::failure::{StepError, StepFailure};
 use super::partitioned::PartitionedRhs;
 use super::state::{hermite5, DaeState, StepAhead};
@@ -162,26 +161,6 @@ pub struct Dopri5 {
     /// The first stage must be evaluated (the inputs may have changed at this communication
     /// point), not taken from the state's accelerations.
     fresh: bool,
-    /// The exponential (Lawson) form ([`Dopri5::exponential`]): each independent coordinate's
-    /// split-off oscillator.
-    oscillators: Option<Vec<Oscillator>>,
-    /// Per coordinate, its propagators `E(0)`, `E(h/2)`, `E(h)` of the current try.
-    propagators: Vec<[Propagator; 3]>,
-    /// Stage remainders `n = z'' + w^2 z + c z'` of the exponential form (k each).
-    remainders: [Vec<f64>; 7],
-}
-
-/// The index of `c h` in a coordinate's propagators `E(0), E(h/2), E(h)` (the exponential form
-/// takes tableaux whose nodes and node differences are 0, 1/2 or 1).
-#[inline(always)]
-fn node_index(c: f64) -> usize {
-    if c == 0.0 {
-        0
-    } else if c == 0.5 {
-        1
-    } else {
-        2
-    }
 }
 
 impl Dopri5 {
@@ -215,31 +194,7 @@ impl Dopri5 {
             z: vec![0.0; k],
             zd: vec![0.0; k],
             fresh: true,
-            oscillators: None,
-            propagators: vec![[IDENTITY; 3]; k],
-            remainders: std::array::from_fn(|_| vec![0.0; k]),
         }
-    }
-
-    /// The exponential (Lawson) form of the same tableau: each independent coordinate `a`
-    /// has the linear oscillator `oscillators[a]` split off and taken exactly
-    /// ([`super::exponential`]); the tableau integrates the transformed system
-    /// `v' = E(-t) N(t, E(t) v)`, `y = E(t) v`, over each step (`t` from the step's start). With
-    /// `y = (z, z')` and `N = (0, n)`, `n = z'' + w^2 z + c z'`, a stage is
-    /// `Y_s = E(c_s h) y_0 + h sum_j a_sj E((c_s - c_j) h) N_j` and the error estimate
-    /// `h sum_j e_j E((1 - c_j) h) N_j`. A mode's free vibration then costs no steps: the step
-    /// follows only how fast the remainder (the coupling to the rigid motion, the
-    /// stiffening, the forcing) changes along the exact modal flow. Needs nodes in
-    /// {0, 1/2, 1} ([`RK4_FSAL`]).
-    pub fn exponential(mut self, oscillators: Vec<Oscillator>) -> Dopri5 {
-        assert_eq!(oscillators.len(), self.k);
-        assert!(self
-            .tableau
-            .c
-            .iter()
-            .all(|&c| c == 0.0 || c == 0.5 || c == 1.0));
-        self.oscillators = Some(oscillators);
-        self
     }
 
     /// `err^(-1/p)`, `p` the order of the estimate (two square roots for p = 4).
@@ -260,9 +215,6 @@ impl Dopri5 {
         h: f64,
         work: &mut usize,
     ) -> Result<f64, StepFailure> {
-        if self.oscillators.is_some() {
-            return self.attempt_exponential(system, state, h, work);
-        }
         let k = self.k;
         let tab = self.tableau;
         let last = tab.stages - 1;
@@ -290,25 +242,6 @@ impl Dopri5 {
                 .evaluate_stage(system, t, &self.z, &self.zd, &mut kv[s], s == last)?;
             *work += 1;
         }
-        let tol = self.local_tolerance(system, state, h);
-        let mut err: f64 = 0.0;
-        for a in 0..k {
-            let mut ez = 0.0;
-            let mut ev = 0.0;
-            for (s, &w) in tab.e.iter().enumerate() {
-                ez += w * self.kz[s][a];
-                ev += w * self.kv[s][a];
-            }
-            err = err.max(self.error_ratio(a, tol, h * ez, h * ev));
-        }
-        if !err.is_finite() {
-            return Err(StepFailure::NonFinite);
-        }
-        Ok(err)
-    }
-
-    /// The local tolerance of a step of size h (error per unit step where set).
-    fn local_tolerance(&self, system: &dyn DaeSystem, state: &DaeState, h: f64) -> f64 {
         let mut tol = self.control.tolerance * state.amplitude.max(self.control.amplitude_floor);
         let period = system.error_time_scale();
         if let Some(c) = self
@@ -318,78 +251,17 @@ impl Dopri5 {
         {
             tol *= (c * h / period).min(1.0);
         }
-        tol
-    }
-
-    /// The error norm's term of coordinate `a` for the local errors `(ez, ev)` of `z`, `z'`.
-    #[inline(always)]
-    fn error_ratio(&self, a: usize, tol: f64, ez: f64, ev: f64) -> f64 {
-        let sc_z = tol * self.control.scales[a];
-        let sc_v = self.control.rate_weights[a] * sc_z;
-        (ez.abs() / sc_z).max(ev.abs() / sc_v)
-    }
-
-    /// [`Dopri5::attempt`] in the exponential form ([`Dopri5::exponential`]).
-    fn attempt_exponential(
-        &mut self,
-        system: &dyn DaeSystem,
-        state: &DaeState,
-        h: f64,
-        work: &mut usize,
-    ) -> Result<f64, StepFailure> {
-        let k = self.k;
-        let tab = self.tableau;
-        let last = tab.stages - 1;
-        let Some(osc) = self.oscillators.as_ref() else {
-            return Err(StepFailure::NoDenseOutput);
-        };
-        for a in 0..k {
-            let half = osc[a].propagator(0.5 * h);
-            self.propagators[a] = [IDENTITY, half, exponential::compose(&half, &half)];
-            self.remainders[0][a] = osc[a].remainder(self.z0[a], self.zd0[a], self.kv[0][a]);
-        }
-        self.rhs.q.copy_from_slice(&self.q0);
-        for s in 1..tab.stages {
-            let c_s = tab.c[s];
-            for a in 0..k {
-                let e = &self.propagators[a];
-                let (mut z, mut zd) =
-                    exponential::apply(&e[node_index(c_s)], self.z0[a], self.zd0[a]);
-                for (j, &w) in tab.a[s].iter().enumerate() {
-                    if w != 0.0 {
-                        let ej = &e[node_index(c_s - tab.c[j])];
-                        let n = h * w * self.remainders[j][a];
-                        z += ej[1] * n;
-                        zd += ej[3] * n;
-                    }
-                }
-                self.z[a] = z;
-                self.zd[a] = zd;
-            }
-            let t = if s == last {
-                state.t + h
-            } else {
-                state.t + c_s * h
-            };
-            self.rhs
-                .evaluate_stage(system, t, &self.z, &self.zd, &mut self.kv[s], s == last)?;
-            *work += 1;
-            for a in 0..k {
-                self.remainders[s][a] = osc[a].remainder(self.z[a], self.zd[a], self.kv[s][a]);
-            }
-        }
-        let tol = self.local_tolerance(system, state, h);
         let mut err: f64 = 0.0;
         for a in 0..k {
-            let (mut ez, mut ev) = (0.0, 0.0);
-            for (j, &w) in tab.e.iter().enumerate() {
-                if w != 0.0 {
-                    let ej = &self.propagators[a][node_index(1.0 - tab.c[j])];
-                    ez += w * ej[1] * self.remainders[j][a];
-                    ev += w * ej[3] * self.remainders[j][a];
-                }
+            let mut ez = 0.0;
+            let mut ev = 0.0;
+            for (s, &w) in tab.e.iter().enumerate() {
+                ez += w * self.kz[s][a];
+                ev += w * self.kv[s][a];
             }
-            err = err.max(self.error_ratio(a, tol, h * ez, h * ev));
+            let sc_z = tol * self.control.scales[a];
+            let sc_v = self.control.rate_weights[a] * sc_z;
+            err = err.max((h * ez).abs() / sc_z).max((h * ev).abs() / sc_v);
         }
         if !err.is_finite() {
             return Err(StepFailure::NonFinite);
@@ -423,19 +295,6 @@ impl Integrator for Dopri5 {
                 return Err(failure.after(1));
             }
             work += 1;
-        }
-        if std::env::var_os("FLEXROD_FROZEN").is_some() {
-            if let Some(osc) = self.oscillators.as_mut() {
-                let mut lin = [0.0; 16];
-                let k = osc.len();
-                if system.modal_linearization(state.t, &state.q, &state.v, &mut lin[..2 * k]) {
-                    for (a, o) in osc.iter_mut().enumerate() {
-                        o.omega2 = lin[2 * a];
-                        o.damping = lin[2 * a + 1];
-                    }
-                }
-                work += 1;
-            }
         }
         let proposal = if state.step_hint > 0.0 {
             state.step_hint
@@ -504,13 +363,7 @@ impl Integrator for Dopri5 {
     }
 
     fn name(&self) -> &'static str {
-        if self.oscillators.is_some() {
-            if self.closed_form {
-                "exponential Runge-Kutta 4(3) (Lawson, modal oscillators exact) on minimal coordinates (closed form)"
-            } else {
-                "exponential Runge-Kutta 4(3) (Lawson, modal oscillators exact) on independent coordinates (general partitioned evaluation)"
-            }
-        } else if self.closed_form {
+        if self.closed_form {
             self.tableau.name_minimal
         } else {
             self.tableau.name_general
@@ -537,9 +390,7 @@ impl Integrator for Dopri5 {
     /// its midpoint moment was 2.9 % of the peak off the reference instead of 0.11 %, so it
     /// lands on every communication point.
     fn dense_output(&self) -> bool {
-        std::env::var_os("FLEXROD_NODENSE").is_none()
-            && self.closed_form
-            && self.tableau.dense_output
+        self.closed_form && self.tableau.dense_output
     }
 
     fn step_ahead(
@@ -573,77 +424,19 @@ impl Integrator for Dopri5 {
         let end = &ahead.end;
         let h = end.t - ahead.t0;
         let s = ((t - ahead.t0) / h).clamp(0.0, 1.0);
-        if let Some(osc) = self
-            .oscillators
-            .as_ref()
-            .filter(|_| std::env::var_os("FLEXROD_Q5").is_none())
-        {
-            // Cubic Hermite interpolation of the transformed variables `v(tau) = E(-tau) y`
-            // (`v' = E(-tau) N`) between the ends, then `y = E(tau) v`: the modal oscillation
-            // exact, the slowly varying part to third order.
-            if std::env::var_os("FLEXROD_ETD").is_some() {
-                // Exponential (ETD) interpolant: y(tau) = E(tau) y0 + int_0^tau E(tau - u) N(u) du
-                // with n(u) the quadratic through n0, the stages' midpoint (N2 + N3) / 2 and
-                // n1, integrated exactly: the step responses P_k to u^k of the oscillator.
-                for (a, &i) in self.rhs.independent.iter().enumerate() {
-                    let o = &osc[a];
-                    let n0 = o.remainder(ahead.z0[a], ahead.zd0[a], ahead.zdd0[a]);
-                    let n1 = o.remainder(end.q[i], end.v[i], end.qdd[i]);
-                    let nm = 0.5 * (self.remainders[1][a] + self.remainders[2][a]);
-                    let beta = 2.0 * (n1 - 2.0 * nm + n0) / (h * h);
-                    let alpha = (4.0 * nm - 3.0 * n0 - n1) / h;
-                    let tau = s * h;
-                    let e = o.propagator(tau);
-                    let (w2, c) = (o.omega2, o.damping);
-                    let (p0, p1, p2) = if w2 * tau * tau < 1e-4 {
-                        (0.5 * tau * tau, tau * tau * tau / 6.0, tau.powi(4) / 12.0)
-                    } else {
-                        let w4 = w2 * w2;
-                        let p0 = (1.0 - e[0]) / w2;
-                        let p1 = tau / w2 - c / w4 + e[0] * c / w4 - e[1] / w2;
-                        let (aa, bb) = (-2.0 * c / w4, -2.0 / w4 + 2.0 * c * c / (w4 * w2));
-                        let zp = tau * tau / w2 + aa * tau + bb;
-                        let p2 = zp - (e[0] * bb + e[1] * aa);
-                        (p0, p1, p2)
-                    };
-                    let (z, zd) = exponential::apply(&e, ahead.z0[a], ahead.zd0[a]);
-                    self.z[a] = z + n0 * p0 + alpha * p1 + beta * p2;
-                    self.zd[a] = zd + n0 * e[1] + alpha * p0 + 2.0 * beta * p1;
-                }
-            } else {
-                let (h00, h10) = (
-                    (1.0 + 2.0 * s) * (1.0 - s) * (1.0 - s),
-                    s * (1.0 - s) * (1.0 - s),
-                );
-                let (h01, h11) = (s * s * (3.0 - 2.0 * s), s * s * (s - 1.0));
-                for (a, &i) in self.rhs.independent.iter().enumerate() {
-                    let back = osc[a].propagator(-h);
-                    let n0 = osc[a].remainder(ahead.z0[a], ahead.zd0[a], ahead.zdd0[a]);
-                    let n1 = osc[a].remainder(end.q[i], end.v[i], end.qdd[i]);
-                    let (z1, zd1) = exponential::apply(&back, end.q[i], end.v[i]);
-                    let (nz1, nv1) = (back[1] * n1, back[3] * n1);
-                    let vz = h00 * ahead.z0[a] + h01 * z1 + h * h11 * nz1;
-                    let vv = h00 * ahead.zd0[a] + h * h10 * n0 + h01 * zd1 + h * h11 * nv1;
-                    let (z, zd) = exponential::apply(&osc[a].propagator(s * h), vz, vv);
-                    self.z[a] = z;
-                    self.zd[a] = zd;
-                }
-            }
-        } else {
-            for (a, &i) in self.rhs.independent.iter().enumerate() {
-                let (z, zd) = hermite5(
-                    s,
-                    h,
-                    ahead.z0[a],
-                    ahead.zd0[a],
-                    ahead.zdd0[a],
-                    end.q[i],
-                    end.v[i],
-                    end.qdd[i],
-                );
-                self.z[a] = z;
-                self.zd[a] = zd;
-            }
+        for (a, &i) in self.rhs.independent.iter().enumerate() {
+            let (z, zd) = hermite5(
+                s,
+                h,
+                ahead.z0[a],
+                ahead.zd0[a],
+                ahead.zdd0[a],
+                end.q[i],
+                end.v[i],
+                end.qdd[i],
+            );
+            self.z[a] = z;
+            self.zd[a] = zd;
         }
         // The end's dependent positions choose the assembly branch and the frame angle's turn.
         self.rhs.q.copy_from_slice(&end.q);

@@ -45,12 +45,6 @@ pub trait DaeSystem {
     fn has_reduced_rhs(&self) -> bool {
         false
     }
-    /// The linear part of each independent coordinate's equation at `(t, q, v)`: into `out`
-    /// `(w_a^2, c_a)` pairs with `z_a'' ~ -w_a^2 z_a - c_a z_a' + ...` (the diagonal of the
-    /// reduced stiffness and damping over the reduced mass). `false` where the system has none.
-    fn modal_linearization(&self, _t: f64, _q: &[f64], _v: &[f64], _out: &mut [f64]) -> bool {
-        false
-    }
     /// For a partitioned integration, the whole right-hand side in closed form (minimal
     /// coordinates): with the independent coordinates already in `q` and `v` (and the
     /// dependent positions of the last evaluation in `q`, which pick the assembly branch),

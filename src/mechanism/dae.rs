@@ -222,30 +222,7 @@ impl DaeSystem for SliderCrankDae<'_> {
         lambda: Option<&mut [f64]>,
     ) -> Option<Result<(), crate::integrator::StepFailure>> {
         let kernel = self.rod.ffr_kernel()?;
-        Some(self.minimal_rhs(kernel, t, q, v, qdd, lambda, None))
-    }
-
-    fn modal_linearization(&self, t: f64, q: &[f64], v: &[f64], out: &mut [f64]) -> bool {
-        let Some(kernel) = self.rod.ffr_kernel() else {
-            return false;
-        };
-        let n = q.len();
-        if n > 16 {
-            return false;
-        }
-        let (mut qs, mut vs, mut qdd) = ([0.0; 16], [0.0; 16], [0.0; 16]);
-        qs[..n].copy_from_slice(q);
-        vs[..n].copy_from_slice(v);
-        self.minimal_rhs(
-            kernel,
-            t,
-            &mut qs[..n],
-            &mut vs[..n],
-            &mut qdd[..n],
-            None,
-            Some(out),
-        )
-        .is_ok()
+        Some(self.minimal_rhs(kernel, t, q, v, qdd, lambda))
     }
 
     fn add_tangent(

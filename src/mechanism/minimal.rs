@@ -88,7 +88,6 @@ impl SliderCrankDae<'_> {
         v: &mut [f64],
         qdd: &mut [f64],
         lambda: Option<&mut [f64]>,
-        linear: Option<&mut [f64]>,
     ) -> Result<(), StepFailure> {
         let (pin, pin_v, pin_a) = self.pin_at(t);
         let inputs = Inputs {
@@ -102,14 +101,14 @@ impl SliderCrankDae<'_> {
         };
         let k = kernel;
         match kernel.n {
-            1 => evaluate::<1>(k, &inputs, q, v, qdd, lambda, linear),
-            2 => evaluate::<2>(k, &inputs, q, v, qdd, lambda, linear),
-            3 => evaluate::<3>(k, &inputs, q, v, qdd, lambda, linear),
-            4 => evaluate::<4>(k, &inputs, q, v, qdd, lambda, linear),
-            5 => evaluate::<5>(k, &inputs, q, v, qdd, lambda, linear),
-            6 => evaluate::<6>(k, &inputs, q, v, qdd, lambda, linear),
-            7 => evaluate::<7>(k, &inputs, q, v, qdd, lambda, linear),
-            8 => evaluate::<8>(k, &inputs, q, v, qdd, lambda, linear),
+            1 => evaluate::<1>(k, &inputs, q, v, qdd, lambda),
+            2 => evaluate::<2>(k, &inputs, q, v, qdd, lambda),
+            3 => evaluate::<3>(k, &inputs, q, v, qdd, lambda),
+            4 => evaluate::<4>(k, &inputs, q, v, qdd, lambda),
+            5 => evaluate::<5>(k, &inputs, q, v, qdd, lambda),
+            6 => evaluate::<6>(k, &inputs, q, v, qdd, lambda),
+            7 => evaluate::<7>(k, &inputs, q, v, qdd, lambda),
+            8 => evaluate::<8>(k, &inputs, q, v, qdd, lambda),
             _ => Err(StepFailure::SingularMatrix),
         }
     }
@@ -162,7 +161,6 @@ fn evaluate<const N: usize>(
     v: &mut [f64],
     qdd: &mut [f64],
     lambda: Option<&mut [f64]>,
-    linear: Option<&mut [f64]>,
 ) -> Result<(), StepFailure> {
     let ns = 3 + N;
     let p: [f64; N] = std::array::from_fn(|j| q[3 + j]);
@@ -346,15 +344,6 @@ fn evaluate<const N: usize>(
             reduced[i][j] = e;
         }
         rhs[i] = t_r[0][i] * r_r[0] + t_r[1][i] * r_r[1] + g_phi[i] * r_phi + r_p[i] + t_x[i] * r_s;
-    }
-    if let Some(lin) = linear {
-        for a in 0..N {
-            let m_aa = reduced[a][a];
-            let k_eff =
-                k.stiffness[a] - w2 * k.m_uu_gv[a][a] + k.g_a[a][a] * (c * b_r[0] + s * b_r[1]);
-            lin[2 * a] = k_eff / m_aa;
-            lin[2 * a + 1] = k.damping[a] / m_aa;
-        }
     }
     solve(&mut reduced, &mut rhs)?;
     let zdd = rhs;

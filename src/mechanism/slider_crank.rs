@@ -10,7 +10,6 @@ use super::spec::{MechanismSpec, SolverMethod};
 use super::state::MechanismState;
 use crate::error::ModelError;
 use crate::integrator::dopri5::{DORMAND_PRINCE, RK4_FSAL};
-use crate::integrator::exponential::Oscillator;
 use crate::integrator::generalized_alpha::AlphaErrorControl;
 use crate::integrator::{
     ConstrainedSolve, DaeState, DaeSystem, Dopri5, ErrorControl, ExplicitRk4, GeneralizedAlpha,
@@ -191,19 +190,15 @@ impl Mechanism {
                     max_rejections: 40,
                     per_unit_step,
                 };
-                let mut pair = Dopri5::with_tableau(&probe, elastic.collect(), control, tableau);
-                if minimal && std::env::var_os("FLEXROD_NO_LAWSON").is_none() {
-                    if let Some(kernel) = rod.ffr_kernel() {
-                        let oscillators = (0..kernel.n)
-                            .map(|i| Oscillator {
-                                omega2: kernel.stiffness[i] / kernel.m_ff[i][i],
-                                damping: kernel.damping[i] / kernel.m_ff[i][i],
-                            })
-                            .collect();
-                        pair = pair.exponential(oscillators);
-                    }
-                }
-                (Box::new(pair), f64::INFINITY)
+                (
+                    Box::new(Dopri5::with_tableau(
+                        &probe,
+                        elastic.collect(),
+                        control,
+                        tableau,
+                    )),
+                    f64::INFINITY,
+                )
             }
             SolverMethod::Rk4 => (
                 Box::new(ExplicitRk4::new(&probe)),
