@@ -310,6 +310,20 @@ fn internal_steps_do_not_follow_a_fine_communication_grid() {
             fine.stats.steps
         );
     }
+    // Grids coarser than the step: held steps where the rest of a communication step would
+    // end in a short landing step (`steps_past_is_cheaper`).
+    for (dt, per) in [(6e-4, 2), (9e-4, 3)] {
+        let wide = run(&scene, 150.0, dt, duration);
+        let mut worst: f64 = 0.0;
+        for (w, c) in wide.outputs.iter().zip(coarse.outputs.iter().step_by(per)) {
+            worst = worst.max((w.deflection_rel - c.deflection_rel).abs() / peak);
+        }
+        rows += &format!(
+            "| {dt:e} s | {} | {} | {worst:.1e} |\n",
+            wide.stats.steps, wide.stats.newton_iterations
+        );
+        assert!(worst < scene.solver.tolerance, "{dt}: {worst:e}");
+    }
     common::check_generated("dense-output", &rows);
     // Snapshot with a step held ahead, serialized and restored into a fresh instance.
     let mut sim = Simulation::new(&scene).unwrap();

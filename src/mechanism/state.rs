@@ -40,7 +40,8 @@ pub struct MechanismState {
     /// The large-deflection warning was already given.
     pub large_deflection_warned: bool,
     /// An internal step past `time` whose interpolant gave the state at `time` (dense output
-    /// on a communication grid finer than the internal step; nothing held otherwise).
+    /// where stepping past the communication point is cheaper than landing on it; nothing held
+    /// otherwise).
     pub ahead: StepAhead,
 }
 
