@@ -190,13 +190,7 @@ fn stepped_rod_pinned_pinned_against_transfer_matrix() {
         .iter()
         .map(|w| w / (2.0 * PI))
         .collect();
-    let props = RodProperties {
-        length: l,
-        youngs_modulus: e,
-        density: rho,
-        area: a1,
-        area_moment: i1,
-    };
+    let props = properties(l, e, rho, a1, i1);
     let n = 32;
     let table = SectionTable::new(
         l,
@@ -222,6 +216,24 @@ fn stepped_rod_pinned_pinned_against_transfer_matrix() {
     );
 }
 
+/// Uniform rod properties: length m, Young's modulus Pa, density kg/m^3, area m^2, area
+/// moment m^4.
+fn properties(
+    length: f64,
+    youngs_modulus: f64,
+    density: f64,
+    area: f64,
+    area_moment: f64,
+) -> RodProperties {
+    RodProperties {
+        length,
+        youngs_modulus,
+        density,
+        area,
+        area_moment,
+    }
+}
+
 /// The stubby rod of the Timoshenko checks (L / h = 5, steel): `(L, E, rho, A, I, G, A_s)`
 /// and its definition with a section table and the shear modulus.
 fn stubby_rod() -> ([f64; 7], RodDefinition) {
@@ -229,13 +241,7 @@ fn stubby_rod() -> ([f64; 7], RodDefinition) {
     let (b, h) = (0.01, 0.02);
     let (a, i) = (b * h, b * h * h * h / 12.0);
     let (g, a_s) = (e / 2.6, a / 1.2);
-    let props = RodProperties {
-        length: l,
-        youngs_modulus: e,
-        density: rho,
-        area: a,
-        area_moment: i,
-    };
+    let props = properties(l, e, rho, a, i);
     let mut def = RodDefinition::uniform(props);
     def.table = Some(SectionTable::uniform(l, a, i));
     def.shear_modulus = Some(g);
@@ -334,13 +340,7 @@ fn stubby_timoshenko_pinned_pinned_against_closed_form() {
 fn timoshenko_with_rigid_shear_is_the_rayleigh_beam() {
     let (l, e, rho) = (0.1, 2.1e11, 7800.0);
     let (a, i) = (2e-4, 6.0e-9);
-    let props = RodProperties {
-        length: l,
-        youngs_modulus: e,
-        density: rho,
-        area: a,
-        area_moment: i,
-    };
+    let props = properties(l, e, rho, a, i);
     let mut def = RodDefinition::uniform(props);
     def.shear_modulus = Some(e * 1e9);
     let fe = bending_hz(def, 32, ReferenceConditions::SimplySupported);

@@ -265,8 +265,8 @@ impl Mechanism {
     }
 
     /// Accepted steps of an adaptive integrator until `t_end`: the last one lands on it, or,
-    /// with dense output where that is cheaper ([`steps_past_is_cheaper`]: a communication grid
-    /// finer than the internal step, or one whose landing step would be short), reaches past it and the state at
+    /// with dense output where that is cheaper ([`steps_past_is_cheaper`], decided before each
+    /// internal step on what is left of the communication step), reaches past it and the state at
     /// `t_end` is its interpolant ([`crate::integrator::StepAhead`]); the next communication
     /// steps inside the held step cost an interpolation and one evaluation each, so the
     /// internal step follows the error control, not the communication step. Not where new
