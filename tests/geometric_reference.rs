@@ -27,7 +27,7 @@ fn stiffened_modes_match_the_geometrically_exact_peak() {
     use SolverMethod::{GeneralizedAlpha as Ga, Rk4};
     let cases = [
         (
-            "default scene: FFR stiffened, 8 el, 3 modes, auto (RK4(3) on minimal coordinates, tolerance 1e-3)",
+            "default scene: FFR stiffened, 8 el, 3 modes, auto (exponential RK4(3), ETDRK4, on minimal coordinates, tolerance 1e-3)",
             Scene::benchmark(),
             1e-4,
             true,

@@ -195,10 +195,26 @@ fn runs_equal_the_constraint_based_formulation_at_a_converged_step() {
     }
 }
 
-/// `auto` reports its choice: the closed form on the FFR rod, the general path otherwise.
+/// `auto` reports its choice: the closed form on the FFR rod (the exponential form where the
+/// modes leave the pins in place, the classic pair where they move them, as the automotive
+/// rod's axial modes move the piston), the general path otherwise.
 #[test]
 fn auto_reports_the_path_it_takes() {
     let sim = Simulation::new(&Scene::benchmark()).unwrap();
+    assert_eq!(
+        sim.mechanism().integrator_name().0,
+        "exponential Runge-Kutta 4(3) (ETDRK4, modal oscillators exact) on minimal coordinates (closed form)"
+    );
+    let text = std::fs::read_to_string("scenes/automotive_rod.toml").unwrap();
+    let automotive = Scene::from_toml_str(&text, "scenes/automotive_rod.toml").unwrap();
+    let sim = Simulation::new(&automotive).unwrap();
+    assert_eq!(
+        sim.mechanism().integrator_name().0,
+        "Runge-Kutta 4(3) on minimal coordinates (closed form)"
+    );
+    let mut classic = Scene::benchmark();
+    classic.solver.method = flexrod::scene::SolverMethod::Rk43;
+    let sim = Simulation::new(&classic).unwrap();
     assert_eq!(
         sim.mechanism().integrator_name().0,
         "Runge-Kutta 4(3) on minimal coordinates (closed form)"

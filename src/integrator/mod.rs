@@ -17,6 +17,7 @@
 pub mod constrained;
 pub mod dense_lu;
 pub mod dopri5;
+pub mod exponential;
 pub mod failure;
 pub mod generalized_alpha;
 pub mod partitioned;

@@ -94,6 +94,9 @@ pub struct StepAhead {
     pub z0: Vec<f64>,
     pub zd0: Vec<f64>,
     pub zdd0: Vec<f64>,
+    /// The exponential integrator's remainder `z'' + w^2 z + c z'` at the step's middle (k;
+    /// zero for the other integrators), for its interpolant.
+    pub nmid: Vec<f64>,
     /// The state at the end of the held step, `end.t > t0`.
     pub end: DaeState,
 }
@@ -107,6 +110,7 @@ impl StepAhead {
             z0: vec![0.0; k],
             zd0: vec![0.0; k],
             zdd0: vec![0.0; k],
+            nmid: vec![0.0; k],
             end: like.clone(),
         }
     }
@@ -120,6 +124,7 @@ impl Clone for StepAhead {
             z0: self.z0.clone(),
             zd0: self.zd0.clone(),
             zdd0: self.zdd0.clone(),
+            nmid: self.nmid.clone(),
             end: self.end.clone(),
         }
     }
@@ -135,6 +140,7 @@ impl Clone for StepAhead {
         self.z0.clone_from(&source.z0);
         self.zd0.clone_from(&source.zd0);
         self.zdd0.clone_from(&source.zdd0);
+        self.nmid.clone_from(&source.nmid);
         self.end.clone_from(&source.end);
     }
 }
@@ -149,6 +155,7 @@ impl PartialEq for StepAhead {
                     && self.z0 == other.z0
                     && self.zd0 == other.zd0
                     && self.zdd0 == other.zdd0
+                    && self.nmid == other.nmid
                     && self.end == other.end))
     }
 }

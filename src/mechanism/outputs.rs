@@ -55,7 +55,7 @@ impl Mechanism {
     /// positions alone; no allocation. N < 2 writes zeros.
     pub fn deflection_shape(&self, state: &MechanismState, out: &mut [f64]) {
         let q = &state.dae.q;
-        let [rb, rc, mid] = self.rod.points(q);
+        let [rb, rc, _] = self.rod.points(q);
         let chord = rc - rb;
         let length = chord.norm();
         let n = out.len();
@@ -64,12 +64,14 @@ impl Mechanism {
             if n < 2 || i == 0 || i + 1 == n || length == 0.0 {
                 continue;
             }
-            let r = if 2 * i + 1 == n {
-                mid
-            } else {
-                self.rod
-                    .point_at(i as f64 * self.rod.length() / (n - 1) as f64, q)
-            };
+            if 2 * i + 1 == n {
+                // The output's own evaluation, so that the two agree to the last bit.
+                *v = self.rod.mid_deflection(q);
+                continue;
+            }
+            let r = self
+                .rod
+                .point_at(i as f64 * self.rod.length() / (n - 1) as f64, q);
             let d = r - rb;
             *v = (chord.x * d.y - chord.y * d.x) / length;
         }
@@ -128,10 +130,7 @@ impl Mechanism {
         let lambda = &work.solve.lambda;
         let nr = self.rod.n_coordinates();
         let q = &state.dae.q;
-        let [rb, rc, rm] = self.rod.points(q);
-        let chord = rc - rb;
-        let d = rm - rb;
-        let deflection = (chord.x * d.y - chord.y * d.x) / chord.norm();
+        let deflection = self.rod.mid_deflection(q);
         let fb = [lambda[0], lambda[1]];
         let fc = [lambda[2], lambda[3]];
         let (pin, _, _) = self.crank_law(state).pin(state.time);

@@ -81,9 +81,15 @@ pub enum SolverMethod {
     /// FFR rod's modal coordinates; frame and slider follow from the constraints): the
     /// internal step is chosen by `solver.tolerance`, independent of the communication step.
     Dopri5,
-    /// RK4 if the scene's step is within its stability limit (`2 pi f_max h <= 2.5`), else
-    /// generalized-alpha: the explicit path where it is stable, the implicit one when the rod is
-    /// made stiff (more modes, the segment chain, a stiffer material).
+    /// The classic RK4 with an embedded third-order estimate and the same error control on the
+    /// mechanism's own degrees of freedom (what `auto` takes where the exponential form does not
+    /// apply).
+    Rk43,
+    /// Error-controlled and on the mechanism's own degrees of freedom where the retained modes
+    /// allow an explicit step (`2.5 / w_max >= 5e-6 s`): the exponential ETDRK4(3) form with
+    /// the modal oscillators exact where the modes leave the pins in place (simply supported
+    /// bending modes), else [`SolverMethod::Rk43`]; error-controlled generalized-alpha when the
+    /// rod is made stiff (many or very stiff modes) and for the segment chain.
     Auto,
 }
 

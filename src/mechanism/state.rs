@@ -116,6 +116,7 @@ impl MechanismState {
                 &a.z0,
                 &a.zd0,
                 &a.zdd0,
+                &a.nmid,
                 &a.end.q,
                 &a.end.v,
                 &a.end.qdd,
@@ -135,7 +136,7 @@ impl MechanismState {
         let m = self.dae.lambda.len();
         let base = 8 * (26 + 4 * n + m) + 8 * 3 + 1;
         let k = self.ahead.z0.len();
-        let ahead_len = 8 * (4 + 3 * k + 4 * n + m);
+        let ahead_len = 8 * (4 + 4 * k + 4 * n + m);
         let held = match bytes.get(base) {
             Some(0) => false,
             Some(1) if k > 0 => true,
@@ -244,6 +245,7 @@ impl MechanismState {
                 &mut a.z0,
                 &mut a.zd0,
                 &mut a.zdd0,
+                &mut a.nmid,
                 &mut a.end.q,
                 &mut a.end.v,
                 &mut a.end.qdd,
@@ -333,6 +335,7 @@ impl MechanismState {
                 .chain(&a.z0)
                 .chain(&a.zd0)
                 .chain(&a.zdd0)
+                .chain(&a.nmid)
                 .chain(&a.end.q)
                 .chain(&a.end.v)
                 .chain(&a.end.qdd)

@@ -39,9 +39,9 @@ impl Mechanism {
                 // The closed form on minimal coordinates keeps the constraints exactly: a crank
                 // law set before the last step's end (no new input since) is the law that
                 // step ended on, and the state is consistent with it without a check.
-                let unchanged_law = state.input_time < state.dae.t
-                    && state.stats.steps > 0
-                    && self.rod.ffr_kernel().is_some();
+                let unchanged_law = state.stats.steps > 0
+                    && self.rod.ffr_kernel().is_some()
+                    && (state.input_time < state.dae.t || input_continues_law(state));
                 let stale = !unchanged_law && self.restart_consistently(state)?;
                 let new_inputs = stale || !self.slider_force_consistent(state);
                 if new_inputs {
@@ -408,6 +408,29 @@ impl Mechanism {
             }),
         }
     }
+}
+
+/// Whether the input set at this communication point is the crank law the state followed,
+/// continued: the angle to its round-off (the noise [`Mechanism::restart_consistently`]
+/// allows, 4 ulps of the larger angle), the speed and acceleration to 1e-14 and 1e-12
+/// relative (a master that sets the angle and speed of one smooth motion at every point,
+/// e.g. `omega t`). Then a state that keeps the constraints exactly (minimal coordinates)
+/// is consistent with it as it was, without computing the pin's motion.
+fn input_continues_law(state: &MechanismState) -> bool {
+    if state.input_time != state.dae.t {
+        return false;
+    }
+    let previous = CrankLaw {
+        length: 0.0,
+        t_k: state.previous_input_time,
+        input: state.previous_input,
+    };
+    let (angle, speed, acceleration) = previous.kinematics(state.input_time);
+    let new = state.input;
+    let angle_noise = 4.0 * f64::EPSILON * new.angle.abs().max(state.previous_input.angle.abs());
+    (new.angle - angle).abs() <= angle_noise
+        && (new.speed - speed).abs() <= 1e-14 * (1.0 + speed.abs())
+        && (new.acceleration - acceleration).abs() <= 1e-12 * (1.0 + acceleration.abs())
 }
 
 /// Whether stepping past the communication point (dense output) is cheaper than landing on it,

@@ -92,6 +92,14 @@ pub trait RodBody: Send {
             self.point(RodPoint::Mid, q),
         ]
     }
+
+    /// The midpoint deflection `v_mid` (m): the transverse distance of the material midpoint
+    /// from the chord B -> C, positive to the left of B -> C (docs/physics.md, "Output
+    /// definitions"); from [`RodBody::points`] unless the model has it cheaper (a floating
+    /// frame: in the body frame, where the distance is the same and no rotation is needed).
+    fn mid_deflection(&self, q: &[f64]) -> f64 {
+        chord_distance(self.points(q))
+    }
     /// Jacobian `d r_p / d q` (2 x n) into `out`.
     fn point_jacobian(&self, p: RodPoint, q: &[f64], out: MatMut<'_, f64>);
     /// `(d/dt J_p) q'`: the velocity-product part of the point's acceleration.
@@ -126,4 +134,17 @@ pub trait RodBody: Send {
     fn highest_frequency_hz(&self) -> f64 {
         self.frequencies_hz().iter().cloned().fold(0.0, f64::max)
     }
+}
+
+/// The signed distance of `points[2]` from the line `points[0] -> points[1]`, positive to its
+/// left (0 for coincident ends).
+pub fn chord_distance(points: [Vector2<f64>; 3]) -> f64 {
+    let [b, c, mid] = points;
+    let chord = c - b;
+    let length = chord.norm();
+    if length == 0.0 {
+        return 0.0;
+    }
+    let d = mid - b;
+    (chord.x * d.y - chord.y * d.x) / length
 }

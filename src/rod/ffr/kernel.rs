@@ -84,6 +84,23 @@ fn row(n: usize, f: impl Fn(usize) -> f64) -> Row {
 }
 
 impl FfrKernel {
+    /// How far the retained modes move the pins B and C in the body frame, per unit
+    /// deflection: `max_j max(|S_B e_j|, |S_C e_j|) sqrt(m)` (dimensionless; a deflection `d`
+    /// is a modal amplitude of about `d sqrt(m)` at unit modal mass). Zero (to round-off) for
+    /// the modes of the pinned rod (simply supported bending modes): then the modal
+    /// coordinates are the mechanism's own linear oscillators at the undeformed configuration
+    /// (the reduced mass `T^T M T` is `M_ff` there, docs/physics.md "Minimal coordinates"),
+    /// whatever the crank angle and the slider mass.
+    pub fn pin_mobility(&self) -> f64 {
+        let mut largest: f64 = 0.0;
+        for j in 0..self.n {
+            for rows in [&self.s_b, &self.s_c] {
+                largest = largest.max(rows[0][j].hypot(rows[1][j]));
+            }
+        }
+        largest * self.mass.sqrt()
+    }
+
     /// The kernel of `rod`, or `None` if it has no modes or more than [`MAX_MODES`].
     pub fn new(rod: &FfrRod) -> Option<FfrKernel> {
         let n = rod.n_modes();

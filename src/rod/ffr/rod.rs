@@ -318,6 +318,14 @@ impl RodBody for FfrRod {
         [RodPoint::B, RodPoint::C, RodPoint::Mid].map(|p| r + rotate(c, s, self.ubar(p, q)))
     }
 
+    /// In the body frame (`ubar` of B, C and the midpoint): the distance from the chord does
+    /// not change with the frame's rotation.
+    fn mid_deflection(&self, q: &[f64]) -> f64 {
+        crate::rod::body::chord_distance(
+            [RodPoint::B, RodPoint::C, RodPoint::Mid].map(|p| self.ubar(p, q)),
+        )
+    }
+
     fn point_jacobian(&self, p: RodPoint, q: &[f64], mut out: MatMut<'_, f64>) {
         let (c, s) = rot(q[2]);
         out[(0, 0)] = 1.0;
