@@ -1,7 +1,8 @@
 //! Issue 12 (speed): the numbers of the README's speed fragment, measured in process on this
 //! machine (medians of repeats; the machine's load shows in them, compare rows of one run):
-//! - two revolutions of the default scene at 150 rad/s, outputs every 3e-4 s (`auto`: RK4(3)
-//!   on the closed-form minimal coordinates), and the same with `solver.method = "dopri5"`;
+//! - two revolutions of the default scene at 150 rad/s, outputs every 3e-4 s (`auto`: the
+//!   exponential RK4(3), ETDRK4, on the closed-form minimal coordinates), and the same with
+//!   `solver.method = "rk43"` (the classic pair, `auto` before) and `"dopri5"`;
 //! - one right-hand side on the modal coordinates: the closed form (an intermediate stage, and a
 //!   last stage with the frame angle and the multipliers) against the general partitioned
 //!   evaluation it replaces;
@@ -160,6 +161,9 @@ fn main() {
     let mut dopri = Scene::benchmark();
     dopri.solver.method = SolverMethod::Dopri5;
     let (ms_dp, steps_dp, rhs_dp, _) = two_revolutions(&dopri);
+    let mut classic = Scene::benchmark();
+    classic.solver.method = SolverMethod::Rk43;
+    let (ms_c, steps_c, rhs_c, _) = two_revolutions(&classic);
     let [rhs_stage, rhs_last, rhs_general] = right_hand_sides();
     let [step, step_inputs] = do_step();
     let simulated = 4.0 * std::f64::consts::PI / W;
@@ -167,7 +171,8 @@ fn main() {
         "<!-- written by `FLEXROD_BLESS=1 cargo run --release --example speed`: rerun it, do not edit -->
 | measured in process (medians; `cargo run --release --example speed`) | value |
 |---|---|
-| two revolutions at 150 rad/s, default scene (`auto`: RK4(3) on minimal coordinates, tolerance 1e-3), outputs every 3e-4 s | {ms:.3} ms ({:.0} x real time); {steps} steps, {rhs} right-hand sides; peak v_mid/L {peak:.4e} |
+| two revolutions at 150 rad/s, default scene (`auto`: exponential RK4(3), ETDRK4, on minimal coordinates, tolerance 1e-3), outputs every 3e-4 s | {ms:.3} ms ({:.0} x real time); {steps} steps, {rhs} right-hand sides; peak v_mid/L {peak:.4e} |
+| the same with `solver.method = \"rk43\"` (the classic RK4(3) pair, `auto` before) | {ms_c:.3} ms; {steps_c} steps, {rhs_c} right-hand sides |
 | the same with `solver.method = \"dopri5\"` (Dormand-Prince on minimal coordinates) | {ms_dp:.3} ms; {steps_dp} steps, {rhs_dp} right-hand sides |
 | one right-hand side on minimal coordinates: intermediate stage / last stage (frame angle, multipliers) | {rhs_stage:.0} ns / {rhs_last:.0} ns |
 | one right-hand side by the general partitioned evaluation (the previous one) | {rhs_general:.0} ns |
