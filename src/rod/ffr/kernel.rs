@@ -63,7 +63,16 @@ pub struct FfrKernel {
     pub damping: Row,
     /// Axial stiffening on (foreshortening at C, stiffening terms).
     pub stiffening: bool,
+    /// The modes leave the pins in place: [`FfrKernel::pin_mobility`] at most
+    /// [`PINNED_MOBILITY`], and then `s_b`, `s_c` are set to zero (their round-off), so the
+    /// closed form leaves their terms out.
+    pub pinned: bool,
 }
+
+/// [`FfrKernel::pin_mobility`] below which the pin rows are round-off of exact zeros (the
+/// constrained degrees of freedom of the reduced eigenproblem are exactly zero; a bending
+/// mode's axial displacement at C is zero but for the eigensolver's round-off, about 1e-16).
+pub const PINNED_MOBILITY: f64 = 1e-12;
 
 fn square(n: usize, f: impl Fn(usize, usize) -> f64) -> Square {
     let mut s = [[0.0; MAX_MODES]; MAX_MODES];
@@ -101,6 +110,17 @@ impl FfrKernel {
         largest * self.mass.sqrt()
     }
 
+    /// Set [`FfrKernel::pinned`] (and the pin rows to zero) where the modes leave the pins in
+    /// place.
+    fn with_pins_checked(mut self) -> FfrKernel {
+        if self.pin_mobility() <= PINNED_MOBILITY {
+            self.pinned = true;
+            self.s_b = [[0.0; MAX_MODES]; 2];
+            self.s_c = [[0.0; MAX_MODES]; 2];
+        }
+        self
+    }
+
     /// The kernel of `rod`, or `None` if it has no modes or more than [`MAX_MODES`].
     pub fn new(rod: &FfrRod) -> Option<FfrKernel> {
         let n = rod.n_modes();
@@ -124,36 +144,40 @@ impl FfrKernel {
             }
         };
         let two = |m: &nalgebra::DMatrix<f64>| [row(n, |j| m[(0, j)]), row(n, |j| m[(1, j)])];
-        Some(FfrKernel {
-            n,
-            mass: ig.mass,
-            i1: [ig.i1.x, ig.i1.y],
-            i2: two(&ig.i2),
-            i3: ig.i3,
-            i4: row(n, |j| ig.i4[j]),
-            i5: row(n, |j| ig.i5[j]),
-            i_rot: row(n, |j| ig.i_rot[j]),
-            m_ff: square(n, |i, j| ig.m_ff[(i, j)]),
-            m_uu: square(n, |i, j| ig.m_uu[(i, j)]),
-            m_uu_gv: square(n, |i, j| ig.m_uu[(i, j)] - g_v(i, j)),
-            s_tilde: square(n, |i, j| ig.s_tilde[(i, j)]),
-            g_a: square(n, |i, j| {
-                if stiff {
-                    rod.coupling_scale * rod.acceleration_stiffness[(i, j)]
-                } else {
-                    0.0
-                }
-            }),
-            g0: square(n, |i, j| if stiff { ig.g[0][(i, j)] } else { 0.0 }),
-            x_b: ig.x_b,
-            x_c: ig.x_c,
-            x_mid: ig.x_mid,
-            s_b: two(&ig.s_b),
-            s_c: two(&ig.s_c),
-            s_mid: two(&ig.s_mid),
-            stiffness: row(n, |j| rod.stiffness[j]),
-            damping: row(n, |j| rod.damping[j]),
-            stiffening: stiff,
-        })
+        Some(
+            FfrKernel {
+                n,
+                mass: ig.mass,
+                i1: [ig.i1.x, ig.i1.y],
+                i2: two(&ig.i2),
+                i3: ig.i3,
+                i4: row(n, |j| ig.i4[j]),
+                i5: row(n, |j| ig.i5[j]),
+                i_rot: row(n, |j| ig.i_rot[j]),
+                m_ff: square(n, |i, j| ig.m_ff[(i, j)]),
+                m_uu: square(n, |i, j| ig.m_uu[(i, j)]),
+                m_uu_gv: square(n, |i, j| ig.m_uu[(i, j)] - g_v(i, j)),
+                s_tilde: square(n, |i, j| ig.s_tilde[(i, j)]),
+                g_a: square(n, |i, j| {
+                    if stiff {
+                        rod.coupling_scale * rod.acceleration_stiffness[(i, j)]
+                    } else {
+                        0.0
+                    }
+                }),
+                g0: square(n, |i, j| if stiff { ig.g[0][(i, j)] } else { 0.0 }),
+                x_b: ig.x_b,
+                x_c: ig.x_c,
+                x_mid: ig.x_mid,
+                s_b: two(&ig.s_b),
+                s_c: two(&ig.s_c),
+                s_mid: two(&ig.s_mid),
+                stiffness: row(n, |j| rod.stiffness[j]),
+                damping: row(n, |j| rod.damping[j]),
+                stiffening: stiff,
+                pinned: false,
+            }
+            .with_pins_checked(),
+        )
     }
 }
