@@ -135,7 +135,11 @@ fn wrap(x: f64) -> f64 {
 }
 
 /// Solve `a x = b` (n x n) by Gaussian elimination with partial pivoting; `b` becomes `x`.
+/// The pivots' reciprocals are kept, so that the back substitution multiplies (one division
+/// per column instead of two in the dependent chain).
+#[inline(always)]
 fn solve<const N: usize>(a: &mut [[f64; N]; N], b: &mut [f64; N]) -> Result<(), StepFailure> {
+    let mut inv = [0.0; N];
     for col in 0..N {
         let mut piv = col;
         for r in col + 1..N {
@@ -148,9 +152,9 @@ fn solve<const N: usize>(a: &mut [[f64; N]; N], b: &mut [f64; N]) -> Result<(), 
         }
         a.swap(col, piv);
         b.swap(col, piv);
-        let inv = 1.0 / a[col][col];
+        inv[col] = 1.0 / a[col][col];
         for r in col + 1..N {
-            let f = a[r][col] * inv;
+            let f = a[r][col] * inv[col];
             for c in col + 1..N {
                 a[r][c] -= f * a[col][c];
             }
@@ -162,7 +166,7 @@ fn solve<const N: usize>(a: &mut [[f64; N]; N], b: &mut [f64; N]) -> Result<(), 
         for c in col + 1..N {
             s -= a[col][c] * b[c];
         }
-        b[col] = s / a[col][col];
+        b[col] = s * inv[col];
     }
     Ok(())
 }
