@@ -34,6 +34,7 @@ pub mod modal;
 pub mod rod;
 pub mod scene;
 pub mod simulation;
+pub mod trig;
 
 pub use error::ModelError;
 pub use mechanism::Outputs;

@@ -1,7 +1,7 @@
 //! The library's layers are one-way: each top-level module of `src/` uses only modules of a
 //! lower layer (and itself). The layers, bottom up:
 //!
-//! 0. `error`, `hash`: typed errors, FNV hashes;
+//! 0. `error`, `hash`, `trig`: typed errors, FNV hashes, `sin_cos` of the hot path;
 //! 1. `beam` (the element and the mesh), `integrator` (one-step methods on any `DaeSystem`);
 //! 2. `modal`: reference conditions, eigenproblem, mode selection, shape integrals;
 //! 3. `rod`: the `RodBody` trait, the FFR rod, the segment chain;
@@ -20,6 +20,7 @@ use std::path::{Path, PathBuf};
 const LAYERS: &[(&str, usize)] = &[
     ("error", 0),
     ("hash", 0),
+    ("trig", 0),
     ("beam", 1),
     ("integrator", 1),
     ("modal", 2),

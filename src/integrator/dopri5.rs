@@ -20,7 +20,7 @@
 //! rejection, at most h). The step proposal is
 //! part of the state ([`DaeState::step_hint`]), so a restored state replays bit for bit.
 
-use super::exponential::{self, EtdWeights, Oscillator, PhiFunctions};
+use super::exponential::{self, EtdWeights, Oscillator, Propagator};
 use super::failure::{StepError, StepFailure};
 use super::partitioned::PartitionedRhs;
 use super::state::{hermite5, DaeState, StepAhead};
@@ -174,9 +174,8 @@ struct ExponentialForm {
     /// derived data, so a restored state replays bit for bit).
     weights: Vec<EtdWeights>,
     weights_h: f64,
-    /// `E(h)` and `phi_k(hA) e2` of the held step `interpolation_h` (the end of the
-    /// interpolant).
-    full: Vec<PhiFunctions>,
+    /// `E(h)` of the held step `interpolation_h` (the end of the interpolant).
+    full: Vec<Propagator>,
     interpolation_h: f64,
     /// Stage remainders `n = z'' + w^2 z + c z'`: start, a, b, c, end.
     remainders: [Vec<f64>; 5],
@@ -250,7 +249,7 @@ impl Dopri5 {
         self.exponential = Some(ExponentialForm {
             weights: vec![EtdWeights::default(); k],
             weights_h: f64::NAN,
-            full: vec![PhiFunctions::default(); k],
+            full: vec![[0.0; 4]; k],
             interpolation_h: f64::NAN,
             remainders: std::array::from_fn(|_| vec![0.0; k]),
             stage_a: vec![(0.0, 0.0); k],
@@ -386,6 +385,7 @@ impl Dopri5 {
             }
             form.weights_h = h;
         }
+        let weights = &form.weights;
         for a in 0..k {
             form.remainders[0][a] =
                 form.oscillators[a].remainder(self.z0[a], self.zd0[a], self.kv[0][a]);
@@ -393,7 +393,7 @@ impl Dopri5 {
         self.rhs.q.copy_from_slice(&self.q0);
         for s in 1..5 {
             for a in 0..k {
-                let w = &form.weights[a];
+                let w = &weights[a];
                 let n = &form.remainders;
                 let (z, zd) = match s {
                     1 | 2 => {
@@ -437,7 +437,7 @@ impl Dopri5 {
         let mut err: f64 = 0.0;
         for a in 0..k {
             let d = h * (form.remainders[3][a] - form.remainders[4][a]);
-            let f3 = form.weights[a].f[2];
+            let f3 = weights[a].f[2];
             err = err.max(self.error_ratio(a, tol, f3[0] * d, f3[1] * d));
         }
         if !err.is_finite() {
@@ -605,9 +605,9 @@ impl Integrator for Dopri5 {
     /// Quintic Hermite interpolation ([`hermite5`]) of `z` and `z'` from both ends of the held
     /// step, whose accelerations are the method's first and last stages; in the exponential
     /// form the oscillator's exact response over `tau = t - t0` to the remainder taken as the
-    /// quadratic through its values at the step's start, middle ([`StepAhead::nmid`]) and end,
-    /// `y(tau) = E(tau) y0 + tau phi_1 n0 + tau^2 phi_2 n' + 2 tau^3 phi_3 n''/2`, plus
-    /// `tau / h` times its miss of the step's end (a local error), so that it ends on the
+    /// quadratic through its values at the step's start, middle ([`StepAhead::nmid`]) and end
+    /// ([`Oscillator::quadratic_response`]: `E(tau)` and the polynomial particular solution),
+    /// plus `tau / h` times its miss of the step's end (a local error), so that it ends on the
     /// step's solution. Then one complete evaluation at `(t, z, z')`.
     fn interpolate(
         &mut self,
@@ -621,12 +621,13 @@ impl Integrator for Dopri5 {
         let s = ((t - ahead.t0) / h).clamp(0.0, 1.0);
         if let Some(form) = self.exponential.as_mut() {
             if form.interpolation_h != h {
-                for (p, osc) in form.full.iter_mut().zip(&form.oscillators) {
-                    *p = osc.phi_functions(h);
+                for (e, osc) in form.full.iter_mut().zip(&form.oscillators) {
+                    *e = osc.propagator(h);
                 }
                 form.interpolation_h = h;
             }
             let tau = s * h;
+            let inv_h = 1.0 / h;
             for (a, &i) in self.rhs.independent.iter().enumerate() {
                 let osc = &form.oscillators[a];
                 let (z0, zd0) = (ahead.z0[a], ahead.zd0[a]);
@@ -634,18 +635,14 @@ impl Integrator for Dopri5 {
                 let n1 = osc.remainder(end.q[i], end.v[i], end.qdd[i]);
                 let nm = ahead.nmid[a];
                 // n(u) = n0 + alpha u + beta u^2 through (0, n0), (h/2, nm), (h, n1).
-                let alpha = (4.0 * nm - 3.0 * n0 - n1) / h;
-                let beta = 2.0 * (n1 - 2.0 * nm + n0) / (h * h);
-                let response = |p: &PhiFunctions, tau: f64| {
-                    let (zf, zdf) = exponential::apply(&p.e, z0, zd0);
-                    let (zn, zdn) = p.forced(tau, n0, alpha, beta);
-                    (zf + zn, zdf + zdn)
-                };
-                let (z1, zd1) = response(&form.full[a], h);
+                let alpha = (4.0 * nm - 3.0 * n0 - n1) * inv_h;
+                let beta = 2.0 * (n1 - 2.0 * nm + n0) * inv_h * inv_h;
+                let n = [n0, alpha, beta];
+                let (z1, zd1) = osc.quadratic_response(&form.full[a], h, (z0, zd0), n);
                 let (z, zd) = if s == 1.0 {
                     (z1, zd1)
                 } else {
-                    response(&osc.phi_functions(tau), tau)
+                    osc.quadratic_response(&osc.propagator(tau), tau, (z0, zd0), n)
                 };
                 self.z[a] = z + s * (end.q[i] - z1);
                 self.zd[a] = zd + s * (end.v[i] - zd1);

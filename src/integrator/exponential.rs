@@ -23,6 +23,11 @@ pub struct Oscillator {
     pub omega2: f64,
     /// Viscous coefficient `c = 2 zeta w`, 1/s (>= 0).
     pub damping: f64,
+    /// `|wd|`, `wd^2 = w^2 - c^2 / 4`, its reciprocal and `1 / w^2` (computed once: the
+    /// propagator and the particular solution are evaluated at every interpolated point).
+    wd: f64,
+    inv_wd: f64,
+    inv_omega2: f64,
 }
 
 /// The 2 x 2 propagator of `(z, z')` over a time `tau`: `[zz, zv, vz, vv]`, so that
@@ -53,6 +58,19 @@ impl PhiFunctions {
 }
 
 impl Oscillator {
+    /// The oscillator `z'' = -omega2 z - damping z'`.
+    pub fn new(omega2: f64, damping: f64) -> Oscillator {
+        let x = 0.5 * damping;
+        let wd = (omega2 - x * x).abs().sqrt();
+        Oscillator {
+            omega2,
+            damping,
+            wd,
+            inv_wd: 1.0 / wd,
+            inv_omega2: 1.0 / omega2,
+        }
+    }
+
     /// The remainder `n = z'' + w^2 z + c z'` of an acceleration `z''` at `(z, z')`.
     #[inline(always)]
     pub fn remainder(&self, z: f64, zd: f64, zdd: f64) -> f64 {
@@ -63,14 +81,16 @@ impl Oscillator {
     pub fn propagator(&self, tau: f64) -> Propagator {
         let x = 0.5 * self.damping;
         let wd2 = self.omega2 - x * x;
+        let wd = self.wd;
         let (cc, ss) = if wd2 > 0.0 {
-            let wd = wd2.sqrt();
-            let (s, c) = (wd * tau).sin_cos();
-            (c, s / wd)
+            let (s, c) = crate::trig::sin_cos(wd * tau);
+            (c, s * self.inv_wd)
         } else if wd2 < 0.0 {
-            let wd = (-wd2).sqrt();
             let (e_plus, e_minus) = ((wd * tau).exp(), (-wd * tau).exp());
-            (0.5 * (e_plus + e_minus), 0.5 * (e_plus - e_minus) / wd)
+            (
+                0.5 * (e_plus + e_minus),
+                0.5 * (e_plus - e_minus) * self.inv_wd,
+            )
         } else {
             (1.0, tau)
         };
@@ -81,6 +101,31 @@ impl Oscillator {
             -decay * self.omega2 * ss,
             decay * (cc - x * ss),
         ]
+    }
+
+    /// The exact motion over `tau` from `y0 = (z0, z0')` under the remainder
+    /// `n(u) = n0 + n1 u + n2 u^2`, given `e = E(tau)`: with the polynomial particular solution
+    /// `P(u) = p0 + p1 u + p2 u^2` of `P'' + c P' + w^2 P = n` (`p2 = n2 / w^2`,
+    /// `p1 = (n1 - 2 c p2) / w^2`, `p0 = (n0 - c p1 - 2 p2) / w^2`),
+    /// `y(tau) = E(tau) (y0 - (P(0), P'(0))) + (P(tau), P'(tau))` (the same as
+    /// `E(tau) y0 + tau phi_1 n0 + tau^2 phi_2 n1 + 2 tau^3 phi_3 n2`, without the phi
+    /// functions; its absolute error is round-off of `|P| ~ |n| / w^2`, the quasi-static
+    /// response).
+    #[inline]
+    pub fn quadratic_response(
+        &self,
+        e: &Propagator,
+        tau: f64,
+        y0: (f64, f64),
+        n: [f64; 3],
+    ) -> (f64, f64) {
+        let inv = self.inv_omega2;
+        let c = self.damping;
+        let p2 = n[2] * inv;
+        let p1 = (n[1] - 2.0 * c * p2) * inv;
+        let p0 = (n[0] - c * p1 - 2.0 * p2) * inv;
+        let (zh, vh) = apply(e, y0.0 - p0, y0.1 - p1);
+        (zh + p0 + (p1 + p2 * tau) * tau, vh + p1 + 2.0 * p2 * tau)
     }
 
     /// `E(tau)` and `phi_1..3(tau A) e2` for `tau >= 0`. Where `tau A` is small
@@ -220,13 +265,14 @@ mod tests {
         (z, v)
     }
 
-    /// The propagator is the free motion; the phi functions are the exact response to a
+    /// The propagator is the free motion; the phi functions (and the particular solution of
+    /// [`Oscillator::quadratic_response`]) are the exact response to a
     /// quadratic remainder, on both sides of the switch between the series and the recurrence
     /// (w tau from 0.05 to 8), under-, critically and over-damped.
     #[test]
     fn phi_functions_are_the_forced_response() {
         for (omega2, damping) in CASES {
-            let osc = Oscillator { omega2, damping };
+            let osc = Oscillator::new(omega2, damping);
             let w = omega2.sqrt();
             for wt in [0.05, 0.49, 0.51, 1.2, 8.0] {
                 let tau = wt / w;
@@ -237,6 +283,11 @@ mod tests {
                 let (zn, vn) = p.forced(tau, n0, n1, n2);
                 let (z, v) = (zf + zn, vf + vn);
                 let (zr, vr) = fine(&osc, tau, y0, |u| n0 + n1 * u + n2 * u * u);
+                let (zq, vq) = osc.quadratic_response(&p.e, tau, y0, [n0, n1, n2]);
+                assert!(
+                    (zq - zr).abs() < 1e-9 / omega2 && (vq - vr).abs() < 1e-9 * w / omega2,
+                    "{omega2} {damping} {wt}: quadratic response ({zq}, {vq}) vs ({zr}, {vr})"
+                );
                 let scale = 1.0 / omega2;
                 assert!(
                     (z - zr).abs() < 1e-9 * scale,
@@ -254,10 +305,7 @@ mod tests {
     /// (1/6, 2 x 1/6, 1/6 on the velocity row).
     #[test]
     fn etd_weights_tend_to_rk4() {
-        let osc = Oscillator {
-            omega2: 1e-6,
-            damping: 0.0,
-        };
+        let osc = Oscillator::new(1e-6, 0.0);
         let w = EtdWeights::new(&osc, 1e-3);
         assert!((w.f[0][1] - 1.0 / 6.0).abs() < 1e-12);
         assert!((w.f[1][1] - 1.0 / 6.0).abs() < 1e-12);

@@ -43,7 +43,7 @@ impl CrankLaw {
     /// Position, velocity and acceleration of the crank pin B (global, m, m/s, m/s^2).
     pub fn pin(&self, t: f64) -> (Vector2<f64>, Vector2<f64>, Vector2<f64>) {
         let (th, w, al) = self.kinematics(t);
-        let (c, s) = (th.cos(), th.sin());
+        let (s, c) = crate::trig::sin_cos(th);
         let r = self.length;
         let pos = Vector2::new(r * c, r * s);
         let tangent = Vector2::new(-r * s, r * c);

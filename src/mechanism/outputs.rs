@@ -42,6 +42,7 @@ impl Outputs {
     }
 }
 
+use super::crank::CrankLaw;
 use super::slider_crank::{Mechanism, OutputSolve};
 use super::state::MechanismState;
 use crate::error::ModelError;
@@ -121,29 +122,31 @@ impl Mechanism {
         // After a step of an integrator that leaves the state consistent (velocities on the
         // constraints, multipliers from the same solve), the outputs need no solve of their own.
         let reuse = self.integrator.consistent_outputs() && state.stats.steps > 0;
-        if reuse {
-            work.v.copy_from_slice(&state.dae.v);
-            work.solve.lambda.copy_from_slice(&state.dae.lambda);
-        } else {
+        if !reuse {
             self.consistent_accelerations(work, state, true)?;
         }
-        let lambda = &work.solve.lambda;
+        // Velocities, accelerations and multipliers: the state's own, or the solve's.
+        let (v, qdd, lambda) = if reuse {
+            (&state.dae.v, &state.dae.qdd, &state.dae.lambda)
+        } else {
+            (&work.v, &work.solve.qdd, &work.solve.lambda)
+        };
         let nr = self.rod.n_coordinates();
         let q = &state.dae.q;
         let deflection = self.rod.mid_deflection(q);
         let fb = [lambda[0], lambda[1]];
         let fc = [lambda[2], lambda[3]];
-        let (pin, _, _) = self.crank_law(state).pin(state.time);
+        let law = CrankLaw {
+            length: self.crank_length,
+            t_k: state.input_time,
+            input: state.input,
+        };
+        let (pin, _, _) = law.pin(state.time);
         let torque = -(pin.x * fb[1] - pin.y * fb[0]);
         let section = if self.spec.section_loads {
-            let qdd = if reuse {
-                &state.dae.qdd
-            } else {
-                &work.solve.qdd
-            };
             self.rod.section_loads(
                 &q[..nr],
-                &work.v[..nr],
+                &v[..nr],
                 &qdd[..nr],
                 nalgebra::Vector2::from(self.spec.mechanism.gravity),
                 -nalgebra::Vector2::new(fc[0], fc[1]),
@@ -158,7 +161,7 @@ impl Mechanism {
             pin_c_force: fc,
             crank_torque: torque,
             slider_position: q[nr],
-            slider_velocity: work.v[nr],
+            slider_velocity: v[nr],
             section,
         })
     }

@@ -210,9 +210,11 @@ impl Mechanism {
                     .filter(|k| minimal && k.pin_mobility() <= EXPONENTIAL_MAX_PIN_MOBILITY)
                 {
                     let oscillators = (0..kernel.n)
-                        .map(|i| Oscillator {
-                            omega2: kernel.stiffness[i] / kernel.m_ff[i][i],
-                            damping: kernel.damping[i] / kernel.m_ff[i][i],
+                        .map(|i| {
+                            Oscillator::new(
+                                kernel.stiffness[i] / kernel.m_ff[i][i],
+                                kernel.damping[i] / kernel.m_ff[i][i],
+                            )
                         })
                         .collect();
                     pair = pair.exponential(oscillators);
