@@ -41,7 +41,10 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     if x.is_nan() || x.abs() > LIMIT {
         return x.sin_cos();
     }
-    let k = (x * FRAC_2_PI).round();
+    // The nearest integer by the 1.5 2^52 shift (round half to even; `f64::round` is a call
+    // into libm on the baseline x86-64 target).
+    const SHIFT: f64 = 6_755_399_441_055_744.0;
+    let k = (x * FRAC_2_PI + SHIFT) - SHIFT;
     let r = ((x - k * PIO2_1) - k * PIO2_2) - k * PIO2_3;
     let z = r * r;
     let s = r + r * z * (S1 + z * (S2 + z * (S3 + z * (S4 + z * (S5 + z * S6)))));

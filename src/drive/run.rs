@@ -68,8 +68,10 @@ pub fn run(
     record.inputs.push(drive.at(t0));
     record.outputs.push(simulation.outputs());
     for pair in times.windows(2) {
-        let (t_k, t_next) = (pair[0], pair[1]);
-        simulation.set_input(drive.at(t_k))?;
+        let t_next = pair[1];
+        // The input at t_k, recorded at the end of the previous step (or the start).
+        let input = *record.inputs.last().expect("the start is recorded");
+        simulation.set_input(input)?;
         simulation.advance(t_next - simulation.time())?;
         for w in simulation.take_warnings() {
             record.warnings.push((t_next, w));

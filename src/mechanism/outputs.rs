@@ -114,34 +114,49 @@ impl Mechanism {
     /// Outputs at the state's time (docs/physics.md, "Outputs"), from the index-1 solve at
     /// the state with its velocities projected on the constraints, so that the joint forces
     /// are consistent with the state to round-off.
+    /// Whether the state is consistent as it stands: after a step of an integrator that leaves
+    /// it so (velocities on the constraints, multipliers from the same solve), the outputs need
+    /// no solve of their own ([`Mechanism::compute_outputs`] without workspace).
+    pub(super) fn state_is_consistent(&self, state: &MechanismState) -> bool {
+        self.integrator.consistent_outputs() && state.stats.steps > 0
+    }
+
+    /// With `work` `None` the state must be consistent ([`Mechanism::state_is_consistent`]).
     pub(super) fn compute_outputs(
         &self,
-        work: &mut OutputSolve,
+        work: Option<&mut OutputSolve>,
         state: &MechanismState,
     ) -> Result<Outputs, ModelError> {
-        // After a step of an integrator that leaves the state consistent (velocities on the
-        // constraints, multipliers from the same solve), the outputs need no solve of their own.
-        let reuse = self.integrator.consistent_outputs() && state.stats.steps > 0;
-        if !reuse {
-            self.consistent_accelerations(work, state, true)?;
-        }
+        let reuse = self.state_is_consistent(state);
         // Velocities, accelerations and multipliers: the state's own, or the solve's.
-        let (v, qdd, lambda) = if reuse {
-            (&state.dae.v, &state.dae.qdd, &state.dae.lambda)
-        } else {
-            (&work.v, &work.solve.qdd, &work.solve.lambda)
+        let (v, qdd, lambda) = match work {
+            Some(work) if !reuse => {
+                self.consistent_accelerations(work, state, true)?;
+                (&work.v, &work.solve.qdd, &work.solve.lambda)
+            }
+            _ => (&state.dae.v, &state.dae.qdd, &state.dae.lambda),
         };
         let nr = self.rod.n_coordinates();
         let q = &state.dae.q;
         let deflection = self.rod.mid_deflection(q);
         let fb = [lambda[0], lambda[1]];
         let fc = [lambda[2], lambda[3]];
-        let law = CrankLaw {
-            length: self.crank_length,
-            t_k: state.input_time,
-            input: state.input,
+        // The crank pin: where the modes leave the pins in place and the body frame's origin is
+        // B, the closed form puts the frame's origin on the pin (`R = P - A u_B`, `u_B = 0`),
+        // so a state it computed holds the pin itself; else from the crank law.
+        let pin = match self.rod.ffr_kernel() {
+            Some(k) if reuse && k.pinned && k.x_b == 0.0 && self.integrator.dense_output() => {
+                nalgebra::Vector2::new(q[0], q[1])
+            }
+            _ => {
+                let law = CrankLaw {
+                    length: self.crank_length,
+                    t_k: state.input_time,
+                    input: state.input,
+                };
+                law.pin(state.time).0
+            }
         };
-        let (pin, _, _) = law.pin(state.time);
         let torque = -(pin.x * fb[1] - pin.y * fb[0]);
         let section = if self.spec.section_loads {
             self.rod.section_loads(

@@ -67,7 +67,7 @@ impl Mechanism {
         state.dae.qdd.copy_from_slice(&work.solve.qdd);
         state.dae.lambda.copy_from_slice(&work.solve.lambda);
         state.dae.acc.copy_from_slice(&state.dae.qdd);
-        state.outputs = self.compute_outputs(&mut work, &state)?;
+        state.outputs = self.compute_outputs(Some(&mut work), &state)?;
         // The initial outputs obey the bound of every accepted step (a heavy slider at the
         // fastest crank can ask for forces no model stands behind).
         for (name, x) in state.outputs.named() {

@@ -31,9 +31,7 @@ impl Mechanism {
         self.integrator.forget_between_steps();
         let backup_stats = state.stats;
         let t_end = t_start + h;
-        let n_sub_f = ((h / self.max_step) * (1.0 - 1e-12)).ceil().max(1.0);
         let adaptive = self.integrator.is_adaptive();
-        let n_sub = n_sub_f as usize;
         let result = (|| {
             if adaptive {
                 // The closed form on minimal coordinates keeps the constraints exactly: a crank
@@ -52,6 +50,7 @@ impl Mechanism {
                 }
                 return self.adaptive_steps(state, t_end, h, !new_inputs);
             }
+            let n_sub = ((h / self.max_step) * (1.0 - 1e-12)).ceil().max(1.0) as usize;
             for k in 0..n_sub {
                 let target = if k + 1 == n_sub {
                     t_end
@@ -72,14 +71,18 @@ impl Mechanism {
             Ok(()) => {
                 state.time = t_end;
                 state.dae.t = t_end;
-                let mut work = self
-                    .output_solve
-                    .take()
-                    .unwrap_or_else(|| OutputSolve::new(self.rod.n_coordinates() + 1));
-                let outputs = self
-                    .compute_outputs(&mut work, state)
-                    .and_then(|o| check_finite(state, &o, t_start, h).map(|()| o));
-                self.output_solve = Some(work);
+                let outputs = if self.state_is_consistent(state) {
+                    self.compute_outputs(None, state)
+                } else {
+                    let mut work = self
+                        .output_solve
+                        .take()
+                        .unwrap_or_else(|| OutputSolve::new(self.rod.n_coordinates() + 1));
+                    let outputs = self.compute_outputs(Some(&mut work), state);
+                    self.output_solve = Some(work);
+                    outputs
+                }
+                .and_then(|o| check_finite(state, &o, t_start, h).map(|()| o));
                 match outputs {
                     Ok(o) => match self.check_large_deflection(state, &o) {
                         Ok(()) => {
