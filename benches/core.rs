@@ -69,8 +69,16 @@ fn revolutions(c: &mut Criterion) {
     );
     two_revolutions(
         c,
-        "2 revolutions at 150 rad/s, default scene: auto (RK4(3) on minimal coordinates, tolerance 1e-3), 8 el, 3 modes, outputs every 3e-4",
+        "2 revolutions at 150 rad/s, default scene: auto (exponential RK4(3), ETDRK4, on minimal coordinates, tolerance 1e-3), 8 el, 3 modes, outputs every 3e-4",
         Scene::benchmark(),
+        3e-4,
+    );
+    let mut classic = Scene::benchmark();
+    classic.solver.method = SolverMethod::Rk43;
+    two_revolutions(
+        c,
+        "2 revolutions at 150 rad/s, rk43 (the classic RK4(3) pair on minimal coordinates, auto before), tolerance 1e-3, outputs every 3e-4",
+        classic,
         3e-4,
     );
     let mut dopri = Scene::benchmark();

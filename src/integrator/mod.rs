@@ -37,10 +37,6 @@ pub use small_lu::SmallLu;
 pub use state::{hermite5, DaeState, StepAhead};
 pub use system::{DaeSystem, GeneralPath};
 
-/// A step size rounded down to the grid `2^(k/8)` (eight steps per octave): adaptive step
-/// choices then do not follow round-off-level differences in the error estimate, so the same
-/// run driven by different importers (communication points computed in other ways, Newton
-/// iterations stopping one iteration apart) takes the same steps.
 /// Largest internal step the error-controlled integrators propose, s (a step may be stretched by
 /// 25 % to land on the communication point). It makes the work of a communication step
 /// bounded from below by `h / (1.25 MAX_ADAPTIVE_STEP)` steps, so a step beyond the work limit
@@ -48,11 +44,35 @@ pub use system::{DaeSystem, GeneralPath};
 /// overflow. At 300 rad/s it is 3 rad of crank: accuracy bounds the step long before it.
 pub const MAX_ADAPTIVE_STEP: f64 = 1e-2;
 
+/// A step size rounded down to the grid `2^(k/8)` (eight steps per octave): adaptive step
+/// choices then do not follow round-off-level differences in the error estimate, so the same
+/// run driven by different importers (communication points computed in other ways, Newton
+/// iterations stopping one iteration apart) takes the same steps.
 pub fn quantize_step(h: f64) -> f64 {
-    if !(h.is_finite() && h > 0.0) {
-        return h;
+    if !(h.is_finite() && h >= f64::MIN_POSITIVE) {
+        return if h > 0.0 && h.is_finite() {
+            ((h.log2() * 8.0).floor() / 8.0).exp2()
+        } else {
+            h
+        };
     }
-    ((h.log2() * 8.0).floor() / 8.0).exp2()
+    // h = m 2^e with m in [1, 2) from the bits (no libm call on the stepping path); the
+    // largest level 2^(j/8) <= m.
+    const LEVELS: [f64; 8] = [
+        1.0,
+        1.090_507_732_665_257_7,
+        1.189_207_115_002_721,
+        1.296_839_554_651_009_6,
+        std::f64::consts::SQRT_2,
+        1.542_210_825_407_940_7,
+        1.681_792_830_507_429,
+        1.834_008_086_409_342_4,
+    ];
+    let bits = h.to_bits();
+    let exponent = bits & (0x7ff << 52);
+    let m = f64::from_bits((bits & !(0x7ff << 52)) | (0x3ff << 52));
+    let j = LEVELS.iter().rposition(|&l| l <= m).unwrap_or(0);
+    f64::from_bits(LEVELS[j].to_bits() - (0x3ff << 52) + exponent)
 }
 
 /// A one-step method for a [`DaeSystem`].
@@ -128,5 +148,26 @@ pub trait Integrator: Send {
     /// solve of their own.
     fn consistent_outputs(&self) -> bool {
         false
+    }
+}
+
+#[cfg(test)]
+mod quantize_tests {
+    /// The bit form is the grid `2^(k/8)` rounded down, as `exp2(floor(8 log2 h) / 8)`.
+    #[test]
+    fn quantize_step_is_the_eighth_octave_grid() {
+        let mut h = 1e-9;
+        while h < 10.0 {
+            let q = super::quantize_step(h);
+            let reference = ((h.log2() * 8.0).floor() / 8.0).exp2();
+            assert!(
+                q <= h && (q - reference).abs() <= 2.0 * f64::EPSILON * q,
+                "{h}: {q} vs {reference}"
+            );
+            h *= 1.0137;
+        }
+        assert_eq!(super::quantize_step(0.0), 0.0);
+        assert!(super::quantize_step(f64::NAN).is_nan());
+        assert_eq!(super::quantize_step(1.0), 1.0);
     }
 }
