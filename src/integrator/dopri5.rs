@@ -5,7 +5,10 @@
 //! Wanner, *Solving ODEs I*, 2nd ed., table II.5.2 and section II.4), and the classic RK4 with
 //! an embedded third-order estimate ([`RK4_FSAL`]), which `auto` takes on the FFR
 //! slider-crank: its step is bounded by the stiffest retained mode, where RK4 is stable to
-//! 2.8 times the Dormand-Prince step with four evaluations instead of six.
+//! 2.8 times the Dormand-Prince step with four evaluations instead of six. Where the modes leave
+//! the pins in place `auto` takes its exponential form ([`Dopri5::exponential`]: ETDRK4 with
+//! each mode's oscillator exact, [`super::exponential`]), whose steps no mode's frequency
+//! bounds.
 //!
 //! One step of size h: the stages (the last one at `t + h` on the new solution, reused as the
 //! first stage of the next step: "first same as last"), the higher-order solution propagated

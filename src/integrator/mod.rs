@@ -5,9 +5,10 @@
 //!   of the generalized-alpha scheme for constrained mechanical systems", Multibody System
 //!   Dynamics 18), with the scaled Newton iteration of Bottasso, Dopico and Trainelli (2008);
 //! - [`ExplicitRk4`]: classic Runge-Kutta on the index-1 form with coordinate projection;
-//! - [`Dopri5`]: the Dormand-Prince 5(4) pair with error control on the independent
-//!   coordinates of a partitioned system ([`PartitionedRhs`]: the mechanism's own degrees of
-//!   freedom), with small dense kernels ([`SmallLu`]);
+//! - [`Dopri5`]: the Dormand-Prince 5(4) and RK4(3) pairs with error control on the
+//!   independent coordinates of a partitioned system ([`PartitionedRhs`]: the mechanism's own
+//!   degrees of freedom), with small dense kernels ([`SmallLu`]); the RK4(3) pair also in
+//!   exponential form, ETDRK4 with the modal oscillators exact ([`exponential`]);
 //! - [`ConstrainedSolve`]: the saddle-point solve both use, and the joint-force solve of the
 //!   outputs: accelerations and multipliers, projections on the constraints;
 //! - [`DenseLu`]: the dense factorization behind it, on buffers sized once.
