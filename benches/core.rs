@@ -73,22 +73,20 @@ fn revolutions(c: &mut Criterion) {
         Scene::benchmark(),
         3e-4,
     );
-    let mut classic = Scene::benchmark();
-    classic.solver.method = SolverMethod::Rk43;
-    two_revolutions(
-        c,
-        "2 revolutions at 150 rad/s, rk43 (the classic RK4(3) pair on minimal coordinates, auto before), tolerance 1e-3, outputs every 3e-4",
-        classic,
-        3e-4,
-    );
-    let mut dopri = Scene::benchmark();
-    dopri.solver.method = SolverMethod::Dopri5;
-    two_revolutions(
-        c,
-        "2 revolutions at 150 rad/s, Dormand-Prince on minimal coordinates, tolerance 1e-3, outputs every 3e-4",
-        dopri,
-        3e-4,
-    );
+    for (name, method) in [
+        (
+            "2 revolutions at 150 rad/s, rk43 (the classic RK4(3) pair on minimal coordinates, auto before), tolerance 1e-3, outputs every 3e-4",
+            SolverMethod::Rk43,
+        ),
+        (
+            "2 revolutions at 150 rad/s, Dormand-Prince on minimal coordinates, tolerance 1e-3, outputs every 3e-4",
+            SolverMethod::Dopri5,
+        ),
+    ] {
+        let mut scene = Scene::benchmark();
+        scene.solver.method = method;
+        two_revolutions(c, name, scene, 3e-4);
+    }
     two_revolutions(
         c,
         "2 revolutions at 150 rad/s, RK4, 8 el, 3 modes, h 3e-4 (the previous default), outputs every 3e-4",

@@ -99,32 +99,33 @@ impl SliderCrankDae<'_> {
             slider_force: self.slider_force,
             gravity: self.gravity,
         };
-        let k = kernel;
         if kernel.pinned {
-            match kernel.n {
-                1 => evaluate::<1, true>(k, &inputs, q, v, qdd, lambda),
-                2 => evaluate::<2, true>(k, &inputs, q, v, qdd, lambda),
-                3 => evaluate::<3, true>(k, &inputs, q, v, qdd, lambda),
-                4 => evaluate::<4, true>(k, &inputs, q, v, qdd, lambda),
-                5 => evaluate::<5, true>(k, &inputs, q, v, qdd, lambda),
-                6 => evaluate::<6, true>(k, &inputs, q, v, qdd, lambda),
-                7 => evaluate::<7, true>(k, &inputs, q, v, qdd, lambda),
-                8 => evaluate::<8, true>(k, &inputs, q, v, qdd, lambda),
-                _ => Err(StepFailure::SingularMatrix),
-            }
+            evaluate_modes::<true>(kernel, &inputs, q, v, qdd, lambda)
         } else {
-            match kernel.n {
-                1 => evaluate::<1, false>(k, &inputs, q, v, qdd, lambda),
-                2 => evaluate::<2, false>(k, &inputs, q, v, qdd, lambda),
-                3 => evaluate::<3, false>(k, &inputs, q, v, qdd, lambda),
-                4 => evaluate::<4, false>(k, &inputs, q, v, qdd, lambda),
-                5 => evaluate::<5, false>(k, &inputs, q, v, qdd, lambda),
-                6 => evaluate::<6, false>(k, &inputs, q, v, qdd, lambda),
-                7 => evaluate::<7, false>(k, &inputs, q, v, qdd, lambda),
-                8 => evaluate::<8, false>(k, &inputs, q, v, qdd, lambda),
-                _ => Err(StepFailure::SingularMatrix),
-            }
+            evaluate_modes::<false>(kernel, &inputs, q, v, qdd, lambda)
         }
+    }
+}
+
+/// [`evaluate`] instantiated for the kernel's mode count.
+fn evaluate_modes<const PINNED: bool>(
+    k: &FfrKernel,
+    inputs: &Inputs,
+    q: &mut [f64],
+    v: &mut [f64],
+    qdd: &mut [f64],
+    lambda: Option<&mut [f64]>,
+) -> Result<(), StepFailure> {
+    match k.n {
+        1 => evaluate::<1, PINNED>(k, inputs, q, v, qdd, lambda),
+        2 => evaluate::<2, PINNED>(k, inputs, q, v, qdd, lambda),
+        3 => evaluate::<3, PINNED>(k, inputs, q, v, qdd, lambda),
+        4 => evaluate::<4, PINNED>(k, inputs, q, v, qdd, lambda),
+        5 => evaluate::<5, PINNED>(k, inputs, q, v, qdd, lambda),
+        6 => evaluate::<6, PINNED>(k, inputs, q, v, qdd, lambda),
+        7 => evaluate::<7, PINNED>(k, inputs, q, v, qdd, lambda),
+        8 => evaluate::<8, PINNED>(k, inputs, q, v, qdd, lambda),
+        _ => Err(StepFailure::SingularMatrix),
     }
 }
 
