@@ -275,11 +275,6 @@ impl Dopri5 {
         }
     }
 
-    /// Whether the exponential form is taken.
-    pub fn is_exponential(&self) -> bool {
-        self.exponential.is_some()
-    }
-
     /// `err^(-1/p)`, `p` the order of the estimate (two square roots for p = 4).
     fn root(&self, err: f64) -> f64 {
         if self.tableau.estimate_order == 4.0 {

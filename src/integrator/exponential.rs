@@ -42,21 +42,6 @@ pub struct PhiFunctions {
     pub phi: [[f64; 2]; 3],
 }
 
-impl PhiFunctions {
-    /// The response of `(z, z')` over `tau` from rest to the remainder
-    /// `n(u) = n0 + n1 u + n2 u^2` (u from 0 to tau):
-    /// `tau phi_1 n0 + tau^2 phi_2 n1 + 2 tau^3 phi_3 n2`.
-    #[inline]
-    pub fn forced(&self, tau: f64, n0: f64, n1: f64, n2: f64) -> (f64, f64) {
-        let (a, b, c) = (tau * n0, tau * tau * n1, 2.0 * tau * tau * tau * n2);
-        let p = &self.phi;
-        (
-            a * p[0][0] + b * p[1][0] + c * p[2][0],
-            a * p[0][1] + b * p[1][1] + c * p[2][1],
-        )
-    }
-}
-
 impl Oscillator {
     /// The oscillator `z'' = -omega2 z - damping z'`.
     pub fn new(omega2: f64, damping: f64) -> Oscillator {
@@ -239,6 +224,17 @@ impl EtdWeights {
 mod tests {
     use super::*;
 
+    /// The response from rest over `tau` to `n(u) = n0 + n1 u + n2 u^2` by the phi functions:
+    /// `tau phi_1 n0 + tau^2 phi_2 n1 + 2 tau^3 phi_3 n2`.
+    fn forced(p: &PhiFunctions, tau: f64, n0: f64, n1: f64, n2: f64) -> (f64, f64) {
+        let (a, b, c) = (tau * n0, tau * tau * n1, 2.0 * tau * tau * tau * n2);
+        let p = &p.phi;
+        (
+            a * p[0][0] + b * p[1][0] + c * p[2][0],
+            a * p[0][1] + b * p[1][1] + c * p[2][1],
+        )
+    }
+
     const CASES: [(f64, f64); 5] = [
         (900.0, 0.0),
         (900.0, 6.0),
@@ -280,7 +276,7 @@ mod tests {
                 let (n0, n1, n2) = (3.0, -2.0 / tau, 5.0 / (tau * tau));
                 let y0 = (0.7 / omega2, -0.4 / w);
                 let (zf, vf) = apply(&p.e, y0.0, y0.1);
-                let (zn, vn) = p.forced(tau, n0, n1, n2);
+                let (zn, vn) = forced(&p, tau, n0, n1, n2);
                 let (z, v) = (zf + zn, vf + vn);
                 let (zr, vr) = fine(&osc, tau, y0, |u| n0 + n1 * u + n2 * u * u);
                 let (zq, vq) = osc.quadratic_response(&p.e, tau, y0, [n0, n1, n2]);

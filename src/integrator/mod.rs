@@ -50,12 +50,9 @@ pub const MAX_ADAPTIVE_STEP: f64 = 1e-2;
 /// run driven by different importers (communication points computed in other ways, Newton
 /// iterations stopping one iteration apart) takes the same steps.
 pub fn quantize_step(h: f64) -> f64 {
+    // Zero, negative, non-finite and subnormal (below 2e-308 s: no step) sizes pass through.
     if !(h.is_finite() && h >= f64::MIN_POSITIVE) {
-        return if h > 0.0 && h.is_finite() {
-            ((h.log2() * 8.0).floor() / 8.0).exp2()
-        } else {
-            h
-        };
+        return h;
     }
     // h = m 2^e with m in [1, 2) from the bits (no libm call on the stepping path); the
     // largest level 2^(j/8) <= m.

@@ -111,9 +111,6 @@ impl Mechanism {
         Ok(())
     }
 
-    /// Outputs at the state's time (docs/physics.md, "Outputs"), from the index-1 solve at
-    /// the state with its velocities projected on the constraints, so that the joint forces
-    /// are consistent with the state to round-off.
     /// Whether the state is consistent as it stands: after a step of an integrator that leaves
     /// it so (velocities on the constraints, multipliers from the same solve), the outputs need
     /// no solve of their own ([`Mechanism::compute_outputs`] without workspace).
@@ -121,7 +118,10 @@ impl Mechanism {
         self.integrator.consistent_outputs() && state.stats.steps > 0
     }
 
-    /// With `work` `None` the state must be consistent ([`Mechanism::state_is_consistent`]).
+    /// Outputs at the state's time (docs/physics.md, "Outputs"): of a consistent state
+    /// ([`Mechanism::state_is_consistent`]) as it stands, else from the index-1 solve at the
+    /// state with its velocities projected on the constraints (into `work`, which must then be
+    /// given), so that the joint forces are consistent with the state to round-off.
     pub(super) fn compute_outputs(
         &self,
         work: Option<&mut OutputSolve>,
@@ -141,22 +141,12 @@ impl Mechanism {
         let deflection = self.rod.mid_deflection(q);
         let fb = [lambda[0], lambda[1]];
         let fc = [lambda[2], lambda[3]];
-        // The crank pin: where the modes leave the pins in place and the body frame's origin is
-        // B, the closed form puts the frame's origin on the pin (`R = P - A u_B`, `u_B = 0`),
-        // so a state it computed holds the pin itself; else from the crank law.
-        let pin = match self.rod.ffr_kernel() {
-            Some(k) if reuse && k.pinned && k.x_b == 0.0 && self.integrator.dense_output() => {
-                nalgebra::Vector2::new(q[0], q[1])
-            }
-            _ => {
-                let law = CrankLaw {
-                    length: self.crank_length,
-                    t_k: state.input_time,
-                    input: state.input,
-                };
-                law.pin(state.time).0
-            }
+        let law = CrankLaw {
+            length: self.crank_length,
+            t_k: state.input_time,
+            input: state.input,
         };
+        let (pin, _, _) = law.pin(state.time);
         let torque = -(pin.x * fb[1] - pin.y * fb[0]);
         let section = if self.spec.section_loads {
             self.rod.section_loads(

@@ -192,13 +192,7 @@ impl Mechanism {
         // `|theta|` (2e-13 rad at 1000 rad, a long run), which moves the pin by `r` times that
         // and turns its velocity and acceleration by as much. A law that differs by no more has
         // not changed: restarting on it cost a factorization every step of a long run.
-        let angle_noise = 4.0
-            * f64::EPSILON
-            * state
-                .input
-                .angle
-                .abs()
-                .max(state.previous_input.angle.abs());
+        let angle_noise = angle_noise(state);
         let position_noise = tolerance + self.crank_length * angle_noise;
         let mut work = self
             .output_solve
@@ -413,9 +407,21 @@ impl Mechanism {
     }
 }
 
+/// The round-off a master's crank angle carries (`omega t` has a few ulps of `|theta|`): 4 ulps
+/// of the larger of the new and the previous input angle, rad. A crank law that differs from
+/// the previous one by no more has not changed.
+fn angle_noise(state: &MechanismState) -> f64 {
+    4.0 * f64::EPSILON
+        * state
+            .input
+            .angle
+            .abs()
+            .max(state.previous_input.angle.abs())
+}
+
 /// Whether the input set at this communication point is the crank law the state followed,
-/// continued: the angle to its round-off (the noise [`Mechanism::restart_consistently`]
-/// allows, 4 ulps of the larger angle), the speed and acceleration to 1e-14 and 1e-12
+/// continued: the angle to its round-off ([`angle_noise`], as
+/// [`Mechanism::restart_consistently`] allows), the speed and acceleration to 1e-14 and 1e-12
 /// relative (a master that sets the angle and speed of one smooth motion at every point,
 /// e.g. `omega t`). Then a state that keeps the constraints exactly (minimal coordinates)
 /// is consistent with it as it was, without computing the pin's motion.
@@ -430,8 +436,7 @@ fn input_continues_law(state: &MechanismState) -> bool {
     };
     let (angle, speed, acceleration) = previous.kinematics(state.input_time);
     let new = state.input;
-    let angle_noise = 4.0 * f64::EPSILON * new.angle.abs().max(state.previous_input.angle.abs());
-    (new.angle - angle).abs() <= angle_noise
+    (new.angle - angle).abs() <= angle_noise(state)
         && (new.speed - speed).abs() <= 1e-14 * (1.0 + speed.abs())
         && (new.acceleration - acceleration).abs() <= 1e-12 * (1.0 + acceleration.abs())
 }

@@ -110,26 +110,6 @@ impl FfrKernel {
         largest * self.mass.sqrt()
     }
 
-    /// Body-frame positions of B, C and the midpoint at the modal coordinates `p` (m):
-    /// `ubar = xbar + S_hat p`, at C with the foreshortening `-1/2 p^T G_0 p` along x (`G_0` is
-    /// zero without the axial stiffening), as [`super::FfrRod`]'s `ubar`.
-    pub fn body_points(&self, p: &[f64]) -> [[f64; 2]; 3] {
-        let n = self.n;
-        let dot = |row: &Row| -> f64 { row[..n].iter().zip(&p[..n]).map(|(a, b)| a * b).sum() };
-        let mut shortening = 0.0;
-        for (i, row) in self.g0[..n].iter().enumerate() {
-            shortening += p[i] * dot(row);
-        }
-        [
-            [self.x_b + dot(&self.s_b[0]), dot(&self.s_b[1])],
-            [
-                self.x_c + dot(&self.s_c[0]) - 0.5 * shortening,
-                dot(&self.s_c[1]),
-            ],
-            [self.x_mid + dot(&self.s_mid[0]), dot(&self.s_mid[1])],
-        ]
-    }
-
     /// Set [`FfrKernel::pinned`] (and the pin rows to zero) where the modes leave the pins in
     /// place.
     fn with_pins_checked(mut self) -> FfrKernel {

@@ -321,15 +321,9 @@ impl RodBody for FfrRod {
     /// In the body frame (`ubar` of B, C and the midpoint): the distance from the chord does
     /// not change with the frame's rotation.
     fn mid_deflection(&self, q: &[f64]) -> f64 {
-        match &self.kernel {
-            // The closed form's fixed-size rows (the same sums).
-            Some(k) => crate::rod::body::chord_distance(
-                k.body_points(&q[3..]).map(|[x, y]| Vector2::new(x, y)),
-            ),
-            None => crate::rod::body::chord_distance(
-                [RodPoint::B, RodPoint::C, RodPoint::Mid].map(|p| self.ubar(p, q)),
-            ),
-        }
+        crate::rod::body::chord_distance(
+            [RodPoint::B, RodPoint::C, RodPoint::Mid].map(|p| self.ubar(p, q)),
+        )
     }
 
     fn point_jacobian(&self, p: RodPoint, q: &[f64], mut out: MatMut<'_, f64>) {
