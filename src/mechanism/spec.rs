@@ -85,6 +85,10 @@ pub enum SolverMethod {
     /// mechanism's own degrees of freedom (what `auto` takes where the exponential form does not
     /// apply).
     Rk43,
+    /// The exponential form of the RK4(3) pair (ETDRK4 with each mode's oscillator exact) on
+    /// the FFR rod's closed-form minimal coordinates, also where `auto` would not take it
+    /// (modes that move the pins: there it usually needs more steps than [`SolverMethod::Rk43`]).
+    Exponential,
     /// Error-controlled and on the mechanism's own degrees of freedom where the retained modes
     /// allow an explicit step (`2.5 / w_max >= 5e-6 s`): the exponential ETDRK4(3) form with
     /// the modal oscillators exact where the modes leave the pins in place (simply supported
