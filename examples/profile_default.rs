@@ -10,7 +10,10 @@ fn main() {
     let grid = communication_grid(0.0, 3e-4, 279);
     let law = CrankDrive::Constant { speed: 150.0 };
     let clock = std::time::Instant::now();
-    let repeats = 200;
+    let repeats: usize = std::env::args()
+        .nth(1)
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(200);
     let mut peak = 0.0;
     for _ in 0..repeats {
         let r = drive::run(&mut sim, &law, 0.0, &grid).unwrap();

@@ -215,13 +215,23 @@ fn auto_reports_the_path_it_takes() {
     let mut forced = automotive.clone();
     forced.solver.method = flexrod::scene::SolverMethod::Exponential;
     let sim = Simulation::new(&forced).unwrap();
-    assert!(sim.mechanism().integrator_name().0.starts_with("exponential"));
+    assert!(sim
+        .mechanism()
+        .integrator_name()
+        .0
+        .starts_with("exponential"));
     let mut too_many = Scene::benchmark();
     too_many.rod.modes = 9;
     too_many.rod.elements = 16;
     too_many.solver.method = flexrod::scene::SolverMethod::Exponential;
-    let error = Simulation::new(&too_many).err().expect("refused").to_string();
-    assert!(error.contains("solver.method") && error.contains("1 to 8 modes"), "{error}");
+    let error = Simulation::new(&too_many)
+        .err()
+        .expect("refused")
+        .to_string();
+    assert!(
+        error.contains("solver.method") && error.contains("1 to 8 modes"),
+        "{error}"
+    );
     let mut classic = Scene::benchmark();
     classic.solver.method = flexrod::scene::SolverMethod::Rk43;
     let sim = Simulation::new(&classic).unwrap();

@@ -116,6 +116,20 @@ impl StepAhead {
     }
 }
 
+impl StepAhead {
+    /// A copy of the step `source` holds or held (its buffers, whether or not `held` was
+    /// cleared since), as a held step: the backup of a step about to be overwritten.
+    pub fn save(&mut self, source: &StepAhead) {
+        self.held = true;
+        self.t0 = source.t0;
+        self.z0.clone_from(&source.z0);
+        self.zd0.clone_from(&source.zd0);
+        self.zdd0.clone_from(&source.zdd0);
+        self.nmid.clone_from(&source.nmid);
+        self.end.clone_from(&source.end);
+    }
+}
+
 impl Clone for StepAhead {
     fn clone(&self) -> Self {
         StepAhead {
@@ -132,16 +146,11 @@ impl Clone for StepAhead {
     /// Reuses the buffers (the backup before each communication step); copies nothing but
     /// the flag when no step is held (the rest is then workspace).
     fn clone_from(&mut self, source: &Self) {
-        self.held = source.held;
-        if !source.held {
-            return;
+        if source.held {
+            self.save(source);
+        } else {
+            self.held = false;
         }
-        self.t0 = source.t0;
-        self.z0.clone_from(&source.z0);
-        self.zd0.clone_from(&source.zd0);
-        self.zdd0.clone_from(&source.zdd0);
-        self.nmid.clone_from(&source.nmid);
-        self.end.clone_from(&source.end);
     }
 }
 

@@ -29,24 +29,57 @@ pub struct SliderCrankDae<'a> {
     pub slider_offset: f64,
     /// Gravity, m/s^2, global frame.
     pub gravity: Vector2<f64>,
-    /// The crank pin's motion at the last time the closed form asked for it (stages of a
-    /// Runge-Kutta step share their times); `t = NaN`: none yet.
-    pub pin_cache: Cell<PinAt>,
+    /// The crank pin's motion at the last time and law asked for ([`PinAt::pin`]; stages of a
+    /// Runge-Kutta step share their times, and the outputs ask for the time of the evaluation
+    /// that ended the communication step). Derived data, kept by the mechanism across
+    /// evaluation contexts.
+    pub pin_cache: &'a Cell<PinAt>,
 }
 
-/// The crank pin's position, velocity and acceleration at a time.
+/// The crank pin's position, velocity and acceleration at a time under a crank law (a cache:
+/// [`PinAt::pin`]).
 #[derive(Clone, Copy, Debug)]
 pub struct PinAt {
-    pub t: f64,
-    pub pin: [Vector2<f64>; 3],
+    law: CrankLaw,
+    t: f64,
+    pin: [Vector2<f64>; 3],
 }
 
 impl Default for PinAt {
+    /// Nothing cached (`t = NaN` equals no time).
     fn default() -> PinAt {
         PinAt {
+            law: CrankLaw {
+                length: 0.0,
+                t_k: 0.0,
+                input: Default::default(),
+            },
             t: f64::NAN,
             pin: [Vector2::zeros(); 3],
         }
+    }
+}
+
+impl PinAt {
+    /// [`CrankLaw::pin`] of `law` at `t`, from `cache` when it holds the same law and time
+    /// (bit for bit: the same numbers as without the cache).
+    pub fn pin(
+        cache: &Cell<PinAt>,
+        law: &CrankLaw,
+        t: f64,
+    ) -> (Vector2<f64>, Vector2<f64>, Vector2<f64>) {
+        let cached = cache.get();
+        if cached.t == t && cached.law == *law {
+            let [p, v, a] = cached.pin;
+            return (p, v, a);
+        }
+        let (p, v, a) = law.pin(t);
+        cache.set(PinAt {
+            law: *law,
+            t,
+            pin: [p, v, a],
+        });
+        (p, v, a)
     }
 }
 
@@ -54,16 +87,9 @@ impl SliderCrankDae<'_> {
     /// Pins B and C, two each.
     pub const N_CONSTRAINTS: usize = 4;
 
-    /// [`CrankLaw::pin`] at `t`, from the cache when `t` is the last time asked.
+    /// [`CrankLaw::pin`] of the law in force at `t` ([`PinAt::pin`]).
     pub fn pin_at(&self, t: f64) -> (Vector2<f64>, Vector2<f64>, Vector2<f64>) {
-        let cached = self.pin_cache.get();
-        if cached.t == t {
-            let [p, v, a] = cached.pin;
-            return (p, v, a);
-        }
-        let (p, v, a) = self.crank.pin(t);
-        self.pin_cache.set(PinAt { t, pin: [p, v, a] });
-        (p, v, a)
+        PinAt::pin(self.pin_cache, &self.crank, t)
     }
 
     fn nr(&self) -> usize {

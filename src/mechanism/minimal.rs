@@ -151,8 +151,10 @@ fn solve<const N: usize>(a: &mut [[f64; N]; N], b: &mut [f64; N]) -> Result<(), 
         if a[piv][col] == 0.0 || !a[piv][col].is_finite() {
             return Err(StepFailure::SingularMatrix);
         }
-        a.swap(col, piv);
-        b.swap(col, piv);
+        if piv != col {
+            a.swap(col, piv);
+            b.swap(col, piv);
+        }
         inv[col] = 1.0 / a[col][col];
         for r in col + 1..N {
             let f = a[r][col] * inv[col];

@@ -43,6 +43,7 @@ impl Outputs {
 }
 
 use super::crank::CrankLaw;
+use super::dae::PinAt;
 use super::slider_crank::{Mechanism, OutputSolve};
 use super::state::MechanismState;
 use crate::error::ModelError;
@@ -146,7 +147,7 @@ impl Mechanism {
             t_k: state.input_time,
             input: state.input,
         };
-        let (pin, _, _) = law.pin(state.time);
+        let (pin, _, _) = PinAt::pin(&self.pin_cache, &law, state.time);
         let torque = -(pin.x * fb[1] - pin.y * fb[0]);
         let section = if self.spec.section_loads {
             self.rod.section_loads(

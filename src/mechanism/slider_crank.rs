@@ -2,10 +2,12 @@
 //! solver settings choose. Starting is in [`super::start`], stepping in [`super::stepping`],
 //! the outputs in [`super::outputs`].
 
+use std::cell::Cell;
+
 use nalgebra::Vector2;
 
 use super::crank::{CrankInput, CrankLaw};
-use super::dae::SliderCrankDae;
+use super::dae::{PinAt, SliderCrankDae};
 use super::spec::{MechanismSpec, SolverMethod};
 use super::state::MechanismState;
 use crate::error::ModelError;
@@ -68,8 +70,26 @@ pub struct Mechanism {
     pub(super) output_solve: Option<OutputSolve>,
     /// The state before the communication step in progress.
     pub(super) backup: DaeState,
-    /// The held step ahead before the communication step (restored with `backup`).
+    /// The held step ahead before the communication step (restored with `backup`), saved
+    /// only once something would overwrite it ([`AheadBackup`]).
     pub(super) backup_ahead: StepAhead,
+    pub(super) ahead_backup: AheadBackup,
+    /// The crank pin's motion last computed ([`PinAt::pin`]), shared by the evaluation
+    /// contexts and the outputs.
+    pub(super) pin_cache: Cell<PinAt>,
+}
+
+/// What restores the state's held step ([`StepAhead`]) when a communication step fails: most
+/// communication steps inside a held step only read it, so it is copied only before an
+/// internal step would overwrite it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum AheadBackup {
+    /// No step was held before the communication step (the buffers are workspace).
+    NoneHeld,
+    /// A step was held and its buffers are as they were (only `held` may have changed).
+    Untouched,
+    /// A step was held and is saved in `Mechanism::backup_ahead`.
+    Saved,
 }
 
 /// The saddle-point solve of the outputs and the start, with the projected velocities.
@@ -93,6 +113,7 @@ pub(super) fn dae_context<'a>(
     rod: &'a dyn RodBody,
     spec: &MechanismSpec,
     state: &MechanismState,
+    pin_cache: &'a Cell<PinAt>,
 ) -> SliderCrankDae<'a> {
     SliderCrankDae {
         rod,
@@ -105,7 +126,7 @@ pub(super) fn dae_context<'a>(
         slider_force: state.slider_force,
         slider_offset: spec.mechanism.slider_offset,
         gravity: Vector2::from(spec.mechanism.gravity),
-        pin_cache: Default::default(),
+        pin_cache,
     }
 }
 
@@ -151,6 +172,7 @@ impl Mechanism {
             SolverMethod::Auto => (SolverMethod::GeneralizedAlpha, true),
             m => (m, false),
         };
+        let probe_pins = Cell::default();
         let probe = SliderCrankDae {
             rod: rod.as_ref(),
             crank: CrankLaw {
@@ -162,7 +184,7 @@ impl Mechanism {
             slider_force: 0.0,
             slider_offset: spec.mechanism.slider_offset,
             gravity: Vector2::from(spec.mechanism.gravity),
-            pin_cache: Default::default(),
+            pin_cache: &probe_pins,
         };
         let (integrator, max_step): (Box<dyn Integrator>, f64) = match method {
             SolverMethod::Dopri5 | SolverMethod::Rk43 | SolverMethod::Exponential => {
@@ -268,8 +290,10 @@ impl Mechanism {
             integrator,
             output_solve: Some(OutputSolve::new(n)),
             backup_ahead: StepAhead::sized(k, &backup),
+            ahead_backup: AheadBackup::NoneHeld,
             backup,
             rod,
+            pin_cache: Cell::default(),
         })
     }
 
@@ -289,7 +313,7 @@ impl Mechanism {
 
     /// The DAE of `state` (the crank law in force, the slider force).
     pub fn system(&self, state: &MechanismState) -> SliderCrankDae<'_> {
-        dae_context(self.rod.as_ref(), &self.spec, state)
+        dae_context(self.rod.as_ref(), &self.spec, state, &self.pin_cache)
     }
 
     /// The crank law in force in `state`.

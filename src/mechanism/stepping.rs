@@ -3,7 +3,7 @@
 //! with the state from before the communication step restored.
 
 use super::crank::CrankLaw;
-use super::slider_crank::{dae_context, Mechanism, OutputSolve};
+use super::slider_crank::{dae_context, AheadBackup, Mechanism, OutputSolve};
 use super::state::MechanismState;
 use crate::error::ModelError;
 use crate::integrator::MAX_ADAPTIVE_STEP;
@@ -27,7 +27,11 @@ impl Mechanism {
         let t_start = state.time;
         self.check_work(t_start, h)?;
         self.backup.clone_from(&state.dae);
-        self.backup_ahead.clone_from(&state.ahead);
+        self.ahead_backup = if state.ahead.held {
+            AheadBackup::Untouched
+        } else {
+            AheadBackup::NoneHeld
+        };
         self.integrator.forget_between_steps();
         let backup_stats = state.stats;
         let t_end = t_start + h;
@@ -63,7 +67,11 @@ impl Mechanism {
         })();
         let restore = |mech: &Mechanism, state: &mut MechanismState| {
             state.dae.clone_from(&mech.backup);
-            state.ahead.clone_from(&mech.backup_ahead);
+            match mech.ahead_backup {
+                AheadBackup::NoneHeld => state.ahead.held = false,
+                AheadBackup::Untouched => state.ahead.held = true,
+                AheadBackup::Saved => state.ahead.clone_from(&mech.backup_ahead),
+            }
             state.time = t_start;
             state.stats = backup_stats;
         };
@@ -175,7 +183,7 @@ impl Mechanism {
         state: &mut MechanismState,
     ) -> Result<bool, (f64, f64, String)> {
         let t = state.dae.t;
-        let sys = dae_context(self.rod.as_ref(), &self.spec, state);
+        let sys = dae_context(self.rod.as_ref(), &self.spec, state, &self.pin_cache);
         // The constraint residual of `SliderCrankDae::constraints`, with the pin's motion of
         // the new law computed once for the position and the velocity checks.
         let (pin, v_new, a_new) = sys.crank.pin(t);
@@ -281,7 +289,7 @@ impl Mechanism {
         let dense = may_step_ahead && self.integrator.dense_output();
         while state.dae.t < t_end {
             if state.ahead.held {
-                let sys = dae_context(self.rod.as_ref(), &self.spec, state);
+                let sys = dae_context(self.rod.as_ref(), &self.spec, state, &self.pin_cache);
                 let t1 = state.ahead.end.t;
                 if t_end < t1 - 1e-12 * (t1 - state.ahead.t0) {
                     let work = self
@@ -308,11 +316,16 @@ impl Mechanism {
             }
             taken += 1;
             let h_max = t_end - state.dae.t;
-            let sys = dae_context(self.rod.as_ref(), &self.spec, state);
+            let sys = dae_context(self.rod.as_ref(), &self.spec, state, &self.pin_cache);
             if dense
                 && state.dae.step_hint > 0.0
                 && steps_past_is_cheaper(h_max, state.dae.step_hint.min(MAX_ADAPTIVE_STEP))
             {
+                if self.ahead_backup == AheadBackup::Untouched {
+                    // The step held before this communication step is about to be overwritten.
+                    self.backup_ahead.save(&state.ahead);
+                    self.ahead_backup = AheadBackup::Saved;
+                }
                 match self
                     .integrator
                     .step_ahead(&sys, &state.dae, &mut state.ahead)
@@ -353,7 +366,7 @@ impl Mechanism {
         depth: usize,
     ) -> Result<(), (f64, f64, String)> {
         let h = target - state.dae.t;
-        let sys = dae_context(self.rod.as_ref(), &self.spec, state);
+        let sys = dae_context(self.rod.as_ref(), &self.spec, state, &self.pin_cache);
         match self.integrator.step(&sys, &mut state.dae, h) {
             Ok(work) => {
                 state.dae.t = target;
