@@ -39,10 +39,12 @@ impl FfrRod {
     /// with axial stiffening on, the foreshortening of the chord `-1/2 p^T G_0 p` along x.
     pub(super) fn ubar(&self, p: RodPoint, q: &[f64]) -> Vector2<f64> {
         let (x, s) = self.point_data(p);
+        debug_assert_eq!(s.shape(), (2, self.n));
         let mut u = Vector2::new(x, 0.0);
-        for j in 0..self.n {
-            u.x += s[(0, j)] * q[3 + j];
-            u.y += s[(1, j)] * q[3 + j];
+        // `S_hat` is 2 x n and column-major: mode j's column is (x, y).
+        for (column, &pj) in s.as_slice().chunks_exact(2).zip(&q[3..3 + self.n]) {
+            u.x += column[0] * pj;
+            u.y += column[1] * pj;
         }
         if self.foreshortening(p) {
             u.x -= 0.5 * self.quad(&q[3..], &q[3..]);
