@@ -324,6 +324,22 @@ fn internal_steps_do_not_follow_a_fine_communication_grid() {
         );
         assert!(worst < scene.solver.tolerance, "{dt}: {worst:e}");
     }
+    // One communication step over the whole run: the error control's amplitude follows the
+    // motion inside it (it was updated at communication points only, and this took 863
+    // internal steps).
+    let single = run(&scene, 150.0, duration, duration);
+    let last = |r: &Record| r.outputs.last().unwrap().deflection_rel;
+    let worst = (last(&single) - last(&coarse)).abs() / peak;
+    rows += &format!(
+        "| {duration} s (one step) | {} | {} | {worst:.1e} (at its end) |\n",
+        single.stats.steps, single.stats.newton_iterations
+    );
+    assert!(worst < scene.solver.tolerance, "one step: {worst:e}");
+    assert!(
+        (single.stats.steps as f64) < 1.6 * coarse.stats.steps as f64,
+        "one step: {} steps",
+        single.stats.steps
+    );
     common::check_generated("dense-output", &rows);
     // Snapshot with a step held ahead, serialized and restored into a fresh instance.
     let mut sim = Simulation::new(&scene).unwrap();
