@@ -373,35 +373,74 @@ fn evaluate<const N: usize, const PINNED: bool>(
     }
     let r_s = inp.slider_force + inp.slider_mass * g.x - inp.slider_mass * b_x;
     // M T (row blocks over the modal columns) and the reduced system.
+    // (Not needed by an intermediate stage of the pinned rod, whose reduced system comes from
+    // its scalar form below.)
     let mut mt_r = [[0.0; N]; 2];
     let mut mt_phi = [0.0; N];
     let mut mt_s = [0.0; N];
-    for j in 0..N {
-        mt_r[0][j] = m * t_r[0][j] + arm[0] * g_phi[j] + ai2[0][j];
-        mt_r[1][j] = m * t_r[1][j] + arm[1] * g_phi[j] + ai2[1][j];
-        mt_phi[j] = arm[0] * t_r[0][j] + arm[1] * t_r[1][j] + m_phiphi * g_phi[j] + m_phip[j];
-        mt_s[j] = inp.slider_mass * t_x[j];
+    if !PINNED || lambda.is_some() {
+        for j in 0..N {
+            mt_r[0][j] = m * t_r[0][j] + arm[0] * g_phi[j] + ai2[0][j];
+            mt_r[1][j] = m * t_r[1][j] + arm[1] * g_phi[j] + ai2[1][j];
+            mt_phi[j] = arm[0] * t_r[0][j] + arm[1] * t_r[1][j] + m_phiphi * g_phi[j] + m_phip[j];
+            mt_s[j] = inp.slider_mass * t_x[j];
+        }
     }
     // T^T (M T): the R, phi and slider rows through T, the p rows directly
     // (`M_pR T_R + M_pphi g_phi + M_ff`).
     let slider = inp.slider_mass != 0.0;
     let mut reduced = [[0.0; N]; N];
     let mut rhs = [0.0; N];
-    for i in 0..N {
+    if PINNED {
+        // Every column of T is a multiple of `G_0 p`: `T = tau (G_0 p)^T` with `tau` over the
+        // rows R, phi, x_s (`g_phi = (s / X) G_0 p`, `t_x = (-Y s / X - c) G_0 p`,
+        // `t_R = -a_B g_phi`). So `T^T M T + M_pR T_R + M_pphi g_phi` is `M_ff` plus the
+        // rank-two update `(G_0 p) a^T + b (G_0 p)^T`, with
+        // `a = alpha G_0 p + beta`, `b = beta + gamma G_a p`:
+        // `alpha = tau^T M_DD tau = m |tau_R|^2 + 2 tau_phi (arm . tau_R) + M_phiphi tau_phi^2
+        // + m_s tau_x^2`, `beta = (A I2)^T tau_R + M_pphi tau_phi` and `gamma = (A e_x) . tau_R`
+        // (the stiffening coupling `M_pR = (A I2)^T + c_s (G_a p) (A e_x)^T`, `c_s G_a` the
+        // kernel's `g_a`).
+        let tau_phi = s * inv_x;
+        let tau_r = [-a_b[0] * tau_phi, -a_b[1] * tau_phi];
+        let tau_x = -y * tau_phi - c;
+        let alpha = m * (tau_r[0] * tau_r[0] + tau_r[1] * tau_r[1])
+            + 2.0 * tau_phi * (arm[0] * tau_r[0] + arm[1] * tau_r[1])
+            + m_phiphi * tau_phi * tau_phi
+            + inp.slider_mass * tau_x * tau_x;
+        let gamma = c * tau_r[0] + s * tau_r[1];
+        let mut a = [0.0; N];
+        let mut b = [0.0; N];
         for j in 0..N {
-            let mut e = k.m_ff[i][j]
-                + t_r[0][i] * mt_r[0][j]
-                + t_r[1][i] * mt_r[1][j]
-                + u[0][i] * t_r[0][j]
-                + u[1][i] * t_r[1][j]
-                + g_phi[i] * mt_phi[j]
-                + m_phip[i] * g_phi[j];
-            if slider {
-                e += t_x[i] * mt_s[j];
-            }
-            reduced[i][j] = e;
+            let beta = tau_r[0] * ai2[0][j] + tau_r[1] * ai2[1][j] + tau_phi * m_phip[j];
+            a[j] = alpha * g0p[j] + beta;
+            b[j] = beta + gamma * gap[j];
         }
-        rhs[i] = t_r[0][i] * r_r[0] + t_r[1][i] * r_r[1] + g_phi[i] * r_phi + r_p[i] + t_x[i] * r_s;
+        let r_tau = tau_r[0] * r_r[0] + tau_r[1] * r_r[1] + tau_phi * r_phi + tau_x * r_s;
+        for i in 0..N {
+            for j in 0..N {
+                reduced[i][j] = k.m_ff[i][j] + g0p[i] * a[j] + b[i] * g0p[j];
+            }
+            rhs[i] = g0p[i] * r_tau + r_p[i];
+        }
+    } else {
+        for i in 0..N {
+            for j in 0..N {
+                let mut e = k.m_ff[i][j]
+                    + t_r[0][i] * mt_r[0][j]
+                    + t_r[1][i] * mt_r[1][j]
+                    + u[0][i] * t_r[0][j]
+                    + u[1][i] * t_r[1][j]
+                    + g_phi[i] * mt_phi[j]
+                    + m_phip[i] * g_phi[j];
+                if slider {
+                    e += t_x[i] * mt_s[j];
+                }
+                reduced[i][j] = e;
+            }
+            rhs[i] =
+                t_r[0][i] * r_r[0] + t_r[1][i] * r_r[1] + g_phi[i] * r_phi + r_p[i] + t_x[i] * r_s;
+        }
     }
     solve(&mut reduced, &mut rhs)?;
     let zdd = rhs;
