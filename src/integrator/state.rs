@@ -143,8 +143,8 @@ impl Clone for StepAhead {
         }
     }
 
-    /// Reuses the buffers (the backup before each communication step); copies nothing but
-    /// the flag when no step is held (the rest is then workspace).
+    /// Reuses the buffers ([`StepAhead::save`] where a step is held); copies nothing but the
+    /// flag when none is (the rest is then workspace).
     fn clone_from(&mut self, source: &Self) {
         if source.held {
             self.save(source);

@@ -40,15 +40,18 @@ pub struct SliderCrankDae<'a> {
 /// [`PinAt::pin`]).
 #[derive(Clone, Copy, Debug)]
 pub struct PinAt {
+    /// An entry is held (the default holds none).
+    filled: bool,
     law: CrankLaw,
     t: f64,
     pin: [Vector2<f64>; 3],
 }
 
 impl Default for PinAt {
-    /// Nothing cached (`t = NaN` equals no time).
+    /// Nothing cached.
     fn default() -> PinAt {
         PinAt {
+            filled: false,
             law: CrankLaw {
                 length: 0.0,
                 t_k: 0.0,
@@ -60,21 +63,33 @@ impl Default for PinAt {
     }
 }
 
+/// The two laws are the same numbers bit for bit (a signed zero differs from the other zero,
+/// unlike `==`), so that the cache returns exactly what [`CrankLaw::pin`] would.
+fn same_bits(a: &CrankLaw, b: &CrankLaw) -> bool {
+    let same = |x: f64, y: f64| x.to_bits() == y.to_bits();
+    same(a.length, b.length)
+        && same(a.t_k, b.t_k)
+        && same(a.input.angle, b.input.angle)
+        && same(a.input.speed, b.input.speed)
+        && same(a.input.acceleration, b.input.acceleration)
+}
+
 impl PinAt {
-    /// [`CrankLaw::pin`] of `law` at `t`, from `cache` when it holds the same law and time
-    /// (bit for bit: the same numbers as without the cache).
+    /// [`CrankLaw::pin`] of `law` at `t`, from `cache` when it holds the same law and time bit
+    /// for bit (so the same numbers as without the cache).
     pub fn pin(
         cache: &Cell<PinAt>,
         law: &CrankLaw,
         t: f64,
     ) -> (Vector2<f64>, Vector2<f64>, Vector2<f64>) {
         let cached = cache.get();
-        if cached.t == t && cached.law == *law {
+        if cached.filled && cached.t.to_bits() == t.to_bits() && same_bits(&cached.law, law) {
             let [p, v, a] = cached.pin;
             return (p, v, a);
         }
         let (p, v, a) = law.pin(t);
         cache.set(PinAt {
+            filled: true,
             law: *law,
             t,
             pin: [p, v, a],

@@ -39,7 +39,9 @@ impl FfrRod {
     /// with axial stiffening on, the foreshortening of the chord `-1/2 p^T G_0 p` along x.
     pub(super) fn ubar(&self, p: RodPoint, q: &[f64]) -> Vector2<f64> {
         let (x, s) = self.point_data(p);
-        debug_assert_eq!(s.shape(), (2, self.n));
+        // 2 x n by construction (`modal::point_shape` of the rod's n modes); the zip below
+        // relies on it.
+        debug_assert_eq!(s.shape(), (2, self.n), "S_hat of a point is 2 x n");
         let mut u = Vector2::new(x, 0.0);
         // `S_hat` is 2 x n and column-major: mode j's column is (x, y).
         for (column, &pj) in s.as_slice().chunks_exact(2).zip(&q[3..3 + self.n]) {
