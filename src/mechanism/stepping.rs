@@ -527,7 +527,7 @@ fn check_finite(
         )));
     }
     for (name, x) in named {
-        if !(x.abs() < MAX_OUTPUT_MAGNITUDE) {
+        if !(x.is_finite() && x.abs() < MAX_OUTPUT_MAGNITUDE) {
             return Err(fail(format!(
                 "the integration diverged: output {name} = {x:e} after the step (allowed finite and |value| < {MAX_OUTPUT_MAGNITUDE:e} in SI units)"
             )));
