@@ -5,7 +5,8 @@
 //! communication grid: steps / right-hand sides / pointwise error over the reference's peak of
 //! `v_mid/L`, pin B x, pin B y, pin C y and the crank torque.
 //!
-//! `cargo run --release --example exponential_choice`.
+//! `cargo run --release --example exponential_choice`; with `FLEXROD_BLESS=1` it also writes
+//! `docs/generated/exponential-choice.md` (embedded in the README).
 
 use flexrod::drive::{self, communication_grid, CrankDrive, Record};
 use flexrod::scene::SolverMethod;
@@ -65,8 +66,9 @@ fn main() {
             communication_grid(0.0, 1e-5, 2000),
         ),
     ];
-    println!("| case | rk43 (classic RK4(3)) | exponential (ETDRK4) |");
-    println!("|---|---|---|");
+    let mut text = String::from(
+        "<!-- written by `FLEXROD_BLESS=1 cargo run --release --example exponential_choice`: rerun it, do not edit -->\n| case | rk43 (classic RK4(3)) | exponential (ETDRK4) |\n|---|---|---|\n",
+    );
     for (label, scene, speed, grid) in cases {
         let reference = run(&scene, SolverMethod::Rk43, 1e-8, speed, &grid);
         let cells: Vec<String> = [SolverMethod::Rk43, SolverMethod::Exponential]
@@ -81,7 +83,16 @@ fn main() {
                 )
             })
             .collect();
-        println!("| {label} | {} |", cells.join(" | "));
+        text += &format!("| {label} | {} |\n", cells.join(" | "));
     }
-    println!("(each cell: steps / right-hand sides / pointwise errors of v_mid/L, pin B x, pin B y, pin C y, crank torque over their peaks; tolerance 1e-3, reference rk43 at 1e-8)");
+    text += "(each cell: steps / right-hand sides / pointwise errors of v_mid/L, pin B x, pin B y, pin C y, crank torque over their peaks; tolerance 1e-3, reference rk43 at 1e-8)\n";
+    print!("{text}");
+    if std::env::var_os("FLEXROD_BLESS").is_some() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/docs/generated/exponential-choice.md"
+        );
+        std::fs::write(path, &text).unwrap();
+        println!("wrote {path}");
+    }
 }

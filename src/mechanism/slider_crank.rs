@@ -144,7 +144,7 @@ impl Mechanism {
     /// of other reference conditions) they couple through the constraints and the split-off
     /// oscillators are not the mechanism's: on the automotive rod, whose axial modes carry the
     /// piston, the exponential form takes twice the steps of the classic pair
-    /// (`cargo run --release --example exponential_choice`: 6393 against 3209 for two
+    /// (`cargo run --release --example exponential_choice`: 6388 against 3204 for two
     /// revolutions at 628.3 rad/s).
     pub fn new(spec: &MechanismSpec) -> Result<Mechanism, ModelError> {
         spec.validate()?;
