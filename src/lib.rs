@@ -4,7 +4,8 @@
 //! Layers, bottom up; each uses only the layers below it (checked by `tests/layers.rs`):
 //! 0. [`error`], [`hash`]: typed errors; FNV hashes;
 //! 1. [`beam`]: the planar Euler-Bernoulli element and the straight rod's mesh;
-//!    [`integrator`]: one-step methods (generalized-alpha, RK4) on any [`integrator::DaeSystem`];
+//!    [`integrator`]: one-step methods (generalized-alpha, fixed-step RK4, the adaptive explicit
+//!    Runge-Kutta pairs Dormand-Prince 5(4) and RK4(3), ETDRK4) on any [`integrator::DaeSystem`];
 //! 2. [`modal`]: reference conditions, the eigenproblem, mode selection, shape integrals;
 //! 3. [`rod`]: the [`rod::RodBody`] trait, the FFR rod on component modes, the segment chain;
 //! 4. [`mechanism`]: the slider-crank DAE (prescribed crank, pins, slider), its start,

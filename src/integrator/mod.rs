@@ -1,23 +1,45 @@
-//! One-step integrators for the constrained equations of motion
-//! `M(q) q'' + Phi_q^T lambda = Q(t, q, q')`, `Phi(q, t) = 0` ([`DaeSystem`]):
+//! One-step integrators for the constrained equations of motion of a planar mechanism
+//! ([`DaeSystem`]):
 //!
-//! - [`GeneralizedAlpha`]: implicit, on the index-3 form (Arnold and Bruls 2007, "Convergence
-//!   of the generalized-alpha scheme for constrained mechanical systems", Multibody System
-//!   Dynamics 18), with the scaled Newton iteration of Bottasso, Dopico and Trainelli (2008);
-//! - [`ExplicitRk4`]: classic Runge-Kutta on the index-1 form with coordinate projection;
-//! - [`Dopri5`]: the Dormand-Prince 5(4) and RK4(3) pairs with error control on the
-//!   independent coordinates of a partitioned system ([`PartitionedRhs`]: the mechanism's own
-//!   degrees of freedom), with small dense kernels ([`SmallLu`]); the RK4(3) pair also in
-//!   exponential form, ETDRK4 with the modal oscillators exact ([`exponential`]);
-//! - [`ConstrainedSolve`]: the saddle-point solve both use, and the joint-force solve of the
-//!   outputs: accelerations and multipliers, projections on the constraints;
-//! - [`DenseLu`]: the dense factorization behind it, on buffers sized once.
+//! `M(q) q'' + Phi_q(q)^T lambda = Q(t, q, q')`, `Phi(q, t) = 0`,
 //!
-//! Both integrators implement [`Integrator`], which is all the stepping driver sees.
+//! with `n` coordinates `q`, `m` constraints and their multipliers `lambda`. Each integrator
+//! implements [`Integrator`], which is all the stepping driver sees; which one a scene gets is
+//! chosen in `crate::mechanism` from its solver settings.
+//!
+//! - [`GeneralizedAlpha`] ([`generalized_alpha`]): implicit, on the index-3 form, fixed steps or
+//!   adaptive ones. The method of Chung and Hulbert 1993 ("A time integration algorithm for
+//!   structural dynamics with improved numerical dissipation: the generalized-alpha method",
+//!   J. Appl. Mech. 60) in the DAE form of Arnold and Bruls 2007 ("Convergence of the
+//!   generalized-alpha scheme for constrained mechanical systems", Multibody System Dynamics
+//!   18), with the scaled Newton iteration of Bottasso, Dopico and Trainelli 2008 ("On the
+//!   optimal scaling of index three DAEs in multibody dynamics", Multibody System Dynamics 19)
+//!   and the error estimate of Zienkiewicz and Xie 1991 (Earthquake Eng. Struct. Dyn. 20).
+//! - [`ExplicitRk4`] ([`runge_kutta`]): the classic fourth-order Runge-Kutta method, fixed
+//!   steps, on the index-1 form with coordinate projection (Hairer and Wanner, *Solving ODEs
+//!   II*, section VII.2; Eich-Soellner and Fuhrer, *Numerical Methods in Multibody Dynamics*,
+//!   section 5.3).
+//! - [`AdaptiveRungeKutta`] ([`adaptive_runge_kutta`]): explicit embedded Runge-Kutta pairs
+//!   with error control on the independent coordinates of a partitioned system
+//!   ([`PartitionedRhs`]: Wehage and Haug 1982, the mechanism's own degrees of freedom), one
+//!   integrator parameterized by its [`Tableau`] and form:
+//!   - [`DORMAND_PRINCE`], the 5(4) pair of Dormand and Prince 1980 ("A family of embedded
+//!     Runge-Kutta formulae", J. Comput. Appl. Math. 6);
+//!   - [`RK4_FSAL`], the classic RK4 (Kutta 1901) with an embedded third-order estimate;
+//!   - its exponential form, ETDRK4 (Cox and Matthews 2002, "Exponential time differencing for
+//!     stiff systems", J. Comput. Phys. 176) with the modal oscillators taken exactly
+//!     ([`exponential`]; Hochbruck and Ostermann 2010, "Exponential integrators", Acta
+//!     Numerica 19).
+//!
+//! Shared parts: [`ConstrainedSolve`], the saddle-point solve (accelerations and multipliers,
+//! projections on the constraints, the joint forces of the outputs); [`DenseLu`] and
+//! [`SmallLu`], the dense factorizations behind it and behind the partitioned evaluation, on
+//! buffers sized once; [`DaeState`] and [`StepAhead`], the state and the held step of dense
+//! output.
 
+pub mod adaptive_runge_kutta;
 pub mod constrained;
 pub mod dense_lu;
-pub mod dopri5;
 pub mod exponential;
 pub mod failure;
 pub mod generalized_alpha;
@@ -27,9 +49,11 @@ pub mod small_lu;
 pub mod state;
 pub mod system;
 
+pub use adaptive_runge_kutta::{
+    AdaptiveRungeKutta, ErrorControl, Tableau, DORMAND_PRINCE, RK4_FSAL,
+};
 pub use constrained::ConstrainedSolve;
 pub use dense_lu::DenseLu;
-pub use dopri5::{Dopri5, ErrorControl};
 pub use failure::{StepError, StepFailure};
 pub use generalized_alpha::GeneralizedAlpha;
 pub use partitioned::PartitionedRhs;

@@ -11,12 +11,11 @@ use super::dae::{PinAt, SliderCrankDae};
 use super::spec::{MechanismSpec, SolverMethod};
 use super::state::MechanismState;
 use crate::error::ModelError;
-use crate::integrator::dopri5::{DORMAND_PRINCE, RK4_FSAL};
 use crate::integrator::exponential::Oscillator;
 use crate::integrator::generalized_alpha::AlphaErrorControl;
 use crate::integrator::{
-    ConstrainedSolve, DaeState, DaeSystem, Dopri5, ErrorControl, ExplicitRk4, GeneralizedAlpha,
-    Integrator, StepAhead,
+    AdaptiveRungeKutta, ConstrainedSolve, DaeState, DaeSystem, ErrorControl, ExplicitRk4,
+    GeneralizedAlpha, Integrator, StepAhead, DORMAND_PRINCE, RK4_FSAL,
 };
 use crate::rod::RodBody;
 
@@ -199,7 +198,7 @@ impl Mechanism {
                     });
                 };
                 // `auto` with the closed-form minimal coordinates: the RK4(3) pair (module
-                // documentation of `crate::integrator::dopri5`: four evaluations a step and
+                // documentation of `crate::integrator::adaptive_runge_kutta`: four evaluations a step and
                 // 2.8 times the stable step on the stiff mode); `dopri5` as asked.
                 let rk43 = spec.solver.method != SolverMethod::Dopri5;
                 let minimal = spec.solver.method == SolverMethod::Auto && probe.has_reduced_rhs();
@@ -236,7 +235,7 @@ impl Mechanism {
                         ),
                     });
                 }
-                let mut pair = Dopri5::with_tableau(&probe, elastic.collect(), control, tableau);
+                let mut pair = AdaptiveRungeKutta::new(&probe, elastic.collect(), control, tableau);
                 if let Some(kernel) = rod.ffr_kernel().filter(|k| forced || minimal && k.pinned) {
                     let oscillators = (0..kernel.n)
                         .map(|i| {

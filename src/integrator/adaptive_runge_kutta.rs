@@ -1,14 +1,17 @@
-//! Embedded explicit Runge-Kutta pairs with error control on the mechanism's independent
+//! Explicit adaptive Runge-Kutta integration with error control on the mechanism's independent
 //! coordinates ([`PartitionedRhs`]; minimal coordinates in closed form where the system has
-//! them, [`DaeSystem::reduced_rhs`]): `y = (z, z')`, `y' = (z', z'')`. Two pairs
-//! ([`Tableau`]): the Dormand-Prince 5(4) pair (Dormand and Prince 1980; Hairer, Norsett and
-//! Wanner, *Solving ODEs I*, 2nd ed., table II.5.2 and section II.4), and the classic RK4 with
-//! an embedded third-order estimate ([`RK4_FSAL`]), which `auto` takes on the FFR
-//! slider-crank: its step is bounded by the stiffest retained mode, where RK4 is stable to
-//! 2.8 times the Dormand-Prince step with four evaluations instead of six. Where the modes leave
-//! the pins in place `auto` takes its exponential form ([`Dopri5::exponential`]: ETDRK4 with
-//! each mode's oscillator exact, [`super::exponential`]), whose steps no mode's frequency
-//! bounds.
+//! them, [`DaeSystem::reduced_rhs`]): `y = (z, z')`, `y' = (z', z'')`. One integrator,
+//! [`AdaptiveRungeKutta`], parameterized by its embedded pair ([`Tableau`]) and its form:
+//!
+//! - [`DORMAND_PRINCE`]: the Dormand-Prince 5(4) pair (J. R. Dormand and P. J. Prince, "A family
+//!   of embedded Runge-Kutta formulae", J. Comput. Appl. Math. 6, 1980; Hairer, Norsett and
+//!   Wanner, *Solving ODEs I*, 2nd ed., table II.5.2 and section II.4);
+//! - [`RK4_FSAL`]: the classic RK4 with an embedded third-order estimate, which `auto` takes on
+//!   the FFR slider-crank: its step is bounded by the stiffest retained mode, where RK4 is
+//!   stable to 2.8 times the Dormand-Prince step with four evaluations instead of six;
+//! - the exponential form of the RK4(3) pair ([`AdaptiveRungeKutta::exponential`]): ETDRK4 (Cox
+//!   and Matthews 2002) with each mode's oscillator exact ([`super::exponential`]), whose
+//!   steps no mode's frequency bounds; `auto` takes it where the modes leave the pins in place.
 //!
 //! One step of size h: the stages (the last one at `t + h` on the new solution, reused as the
 //! first stage of the next step: "first same as last"), the higher-order solution propagated
@@ -146,8 +149,9 @@ pub struct ErrorControl {
     pub per_unit_step: Option<f64>,
 }
 
-/// The integrator and its workspace.
-pub struct Dopri5 {
+/// The explicit adaptive Runge-Kutta integrator (module documentation): its pair, its form
+/// (classic or exponential) and its workspace, sized once.
+pub struct AdaptiveRungeKutta {
     tableau: &'static Tableau,
     /// The system evaluates its reduced right-hand side in closed form (for the name).
     closed_form: bool,
@@ -165,7 +169,7 @@ pub struct Dopri5 {
     /// The first stage must be evaluated (the inputs may have changed at this communication
     /// point), not taken from the state's accelerations.
     fresh: bool,
-    /// The exponential form ([`Dopri5::exponential`]), if taken.
+    /// The exponential form ([`AdaptiveRungeKutta::exponential`]), if taken.
     exponential: Option<ExponentialForm>,
 }
 
@@ -200,24 +204,21 @@ pub const EXPONENTIAL_MAX_PHASE: f64 = 1.0;
 const EXPONENTIAL_NAME: &str =
     "exponential Runge-Kutta 4(3) (ETDRK4, modal oscillators exact) on minimal coordinates (closed form)";
 
-impl Dopri5 {
-    pub fn new(system: &dyn DaeSystem, independent: Vec<usize>, control: ErrorControl) -> Dopri5 {
-        Dopri5::with_tableau(system, independent, control, &DORMAND_PRINCE)
-    }
-
-    /// The same error control on another embedded pair.
-    pub fn with_tableau(
+impl AdaptiveRungeKutta {
+    /// The pair `tableau` with the error control `control` on the coordinates `independent`
+    /// of `system` (classic form; [`AdaptiveRungeKutta::exponential`] for the other).
+    pub fn new(
         system: &dyn DaeSystem,
         independent: Vec<usize>,
         control: ErrorControl,
         tableau: &'static Tableau,
-    ) -> Dopri5 {
+    ) -> AdaptiveRungeKutta {
         assert!(tableau.stages <= 7 && tableau.a.len() == tableau.stages);
         let rhs = PartitionedRhs::new(system, independent);
         let k = rhs.k();
         assert_eq!(control.rate_weights.len(), k);
         let stage = || std::array::from_fn(|_| vec![0.0; k]);
-        Dopri5 {
+        AdaptiveRungeKutta {
             tableau,
             closed_form: system.has_reduced_rhs(),
             q0: vec![0.0; system.n_coordinates()],
@@ -245,7 +246,7 @@ impl Dopri5 {
     /// follows how fast the remainder (the coupling to the rigid motion, the stiffening, the
     /// forcing) changes. Dense output by the oscillator's exact response to a quadratic
     /// remainder ([`Integrator::interpolate`]). Only for [`RK4_FSAL`].
-    pub fn exponential(mut self, oscillators: Vec<Oscillator>) -> Dopri5 {
+    pub fn exponential(mut self, oscillators: Vec<Oscillator>) -> AdaptiveRungeKutta {
         assert_eq!(oscillators.len(), self.k);
         assert!(self.tableau.c == RK4_FSAL.c && self.tableau.e == RK4_FSAL.e);
         let k = self.k;
@@ -365,7 +366,7 @@ impl Dopri5 {
         (ez.abs() / sc_z).max(ev.abs() / sc_v)
     }
 
-    /// [`Dopri5::attempt`] in the exponential form ([`Dopri5::exponential`]): the stages of
+    /// [`AdaptiveRungeKutta::attempt`] in the exponential form ([`AdaptiveRungeKutta::exponential`]): the stages of
     /// [`EtdWeights`] at `t + h/2` (a, b), `t + h` (c) and the new solution (first same as
     /// last), the estimate `h f3 (N_c - N_end)`.
     fn attempt_exponential(
@@ -445,7 +446,7 @@ impl Dopri5 {
     }
 }
 
-impl Integrator for Dopri5 {
+impl Integrator for AdaptiveRungeKutta {
     /// Takes one accepted step of at most `h` (the rest of the communication step): the
     /// state's proposal, stretched to `h` when within 25 % of it.
     fn step(
@@ -660,7 +661,7 @@ impl Integrator for Dopri5 {
     }
 }
 
-impl Dopri5 {
+impl AdaptiveRungeKutta {
     /// [`hermite5`] of each independent coordinate at `s` of the held step (of size `h`),
     /// into `self.z`, `self.zd`.
     fn hermite_interpolation(&mut self, ahead: &StepAhead, s: f64, h: f64) {
