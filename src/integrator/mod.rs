@@ -5,7 +5,7 @@
 //!
 //! with `n` coordinates `q`, `m` constraints and their multipliers `lambda`. Each integrator
 //! implements [`Integrator`], which is all the stepping driver sees; which one a scene gets is
-//! chosen in `crate::mechanism` from its solver settings.
+//! chosen from its solver settings by the mechanism (`mechanism::integrator_choice`).
 //!
 //! - [`GeneralizedAlpha`] ([`generalized_alpha`]): implicit, on the index-3 form, fixed steps or
 //!   adaptive ones. The method of Chung and Hulbert 1993 ("A time integration algorithm for

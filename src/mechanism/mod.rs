@@ -3,6 +3,7 @@
 
 pub mod crank;
 pub mod dae;
+pub mod integrator_choice;
 pub mod minimal;
 pub mod outputs;
 pub mod slider_crank;
@@ -12,6 +13,7 @@ pub mod state;
 pub mod stepping;
 
 pub use crank::{CrankInput, CrankLaw};
+pub use integrator_choice::AUTO_EXPLICIT_MIN_STEP;
 pub use outputs::Outputs;
 pub use slider_crank::Mechanism;
 pub use spec::MechanismSpec;

@@ -1,0 +1,469 @@
+//! Which integrator a mechanism gets: [`choose`] decides from the solver settings and the facts
+//! of the mechanism it needs ([`MechanismFacts`]), [`build`] makes the integrator of the
+//! [`IntegratorChoice`].
+//!
+//! - `solver.method = "auto"`: error-controlled steps. On the FFR rod's modal coordinates
+//!   while the explicit stability step `2.5 / |lambda|_max` of the retained modes is at least
+//!   [`AUTO_EXPLICIT_MIN_STEP`]: the exponential form of the RK4(3) pair (ETDRK4, Cox and
+//!   Matthews 2002) where the modes leave the pins in place
+//!   ([`crate::rod::ffr::FfrKernel::pinned`]) on the closed-form minimal coordinates, the
+//!   classic RK4(3) pair elsewhere. Else (the segment chain, many or very stiff modes) the
+//!   adaptive generalized-alpha method.
+//! - `"dopri5"`, `"rk43"`: that pair, classic form, on the modal coordinates; refused without
+//!   them (the segment chain).
+//! - `"exponential"`: the exponential form wherever the closed form exists (an FFR rod of 1 to
+//!   [`crate::rod::ffr::MAX_MODES`] modes), also where `auto` would not take it; refused
+//!   elsewhere.
+//! - `"rk4"`: the fixed-step classic RK4 with projection, its step capped at the stability
+//!   step; `"generalized_alpha"`: fixed steps of `solver.step`.
+//!
+//! Why the exponential form only where the modes leave the pins in place: the modes of the
+//! pinned rod are the mechanism's own linear oscillators (the reduced mass is `M_ff` at the
+//! undeformed configuration, whatever the crank angle and the slider mass). Where the modes
+//! move the pins (axial modes carrying the slider, modes of other reference conditions) they
+//! couple through the constraints and the split-off oscillators are not the mechanism's: on
+//! the automotive rod, whose axial modes carry the piston, the exponential form takes twice
+//! the steps of the classic pair (`cargo run --release --example exponential_choice`: 6388
+//! against 3204 for two revolutions at 628.3 rad/s).
+
+use super::spec::{SolverMethod, SolverSpec};
+use crate::error::ModelError;
+use crate::integrator::exponential::Oscillator;
+use crate::integrator::generalized_alpha::AlphaErrorControl;
+use crate::integrator::{
+    AdaptiveRungeKutta, DaeSystem, ErrorControl, ExplicitRk4, GeneralizedAlpha, Integrator,
+    Tableau, DORMAND_PRINCE, RK4_FSAL,
+};
+use crate::rod::RodBody;
+
+/// Local error tolerance of the adaptive explicit pair per unit of `solver.tolerance`: the
+/// local errors of a run's steps add up, so each step aims below the stated global accuracy
+/// (calibrated by `tests/error_control.rs` over random parameter sets: the global error is
+/// proportional to the local tolerance).
+pub const LOCAL_TOLERANCE_FACTOR: f64 = 0.01;
+
+/// The same for the embedded RK4(3) pair that `auto` takes on the closed-form minimal
+/// coordinates (calibrated the same way), at most: it is also held to
+/// [`ERROR_PER_UNIT_STEP_RK4`].
+pub const LOCAL_TOLERANCE_FACTOR_RK4: f64 = 0.03;
+
+/// Error per unit step of the explicit pairs ([`ErrorControl::per_unit_step`]; RK4(3) and,
+/// with the same constant, Dormand-Prince, whose free-running steps on the automotive rod
+/// otherwise added 0.4 % of the peak deflection at tolerance 1e-3): the local
+/// tolerance of a step `h` is at most `solver.tolerance c h / T` with `T` one crank
+/// revolution. Without it (error per step alone) a rod whose accuracy needs many small steps
+/// per revolution (an undamped stiff fourth mode: 1160 steps in one revolution) collected
+/// 6.8 times the stated tolerance (tests/error_control.rs, `explore_case` with CASE=19).
+pub const ERROR_PER_UNIT_STEP_RK4: f64 = 2.5;
+
+/// The same for the adaptive generalized-alpha method (second order: its global error goes
+/// with the local tolerance to the power 2/3).
+pub const LOCAL_TOLERANCE_FACTOR_IMPLICIT: f64 = 0.0025;
+
+/// Smallest deflection amplitude `|v_mid / L|` the error control refers to (before the motion
+/// has built up, and for rods that hardly deflect).
+pub const AMPLITUDE_FLOOR: f64 = 1e-5;
+
+/// `auto` takes the explicit pair when its stability limit `2.5 / w_max` of the highest
+/// retained mode is at least this step, s (modes up to about 80 kHz). Measured on the
+/// automotive rod (tests/automotive_reference.rs): with 6 to 8 modes (16 to 32 kHz) the
+/// explicit pair is within 0.3 % of the shear beam for deflection, stress and pin forces at
+/// 90 to 130 ms, where the adaptive generalized-alpha method was 0.9 to 1.4 % off, the same
+/// at tolerances 1e-3 and 1e-4.
+pub const AUTO_EXPLICIT_MIN_STEP: f64 = 5e-6;
+
+/// Rejected tries of one step of the error-controlled methods before it counts as failed.
+const MAX_REJECTIONS: usize = 40;
+
+/// What the choice needs to know of the mechanism.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MechanismFacts {
+    /// The number of modal coordinates of the FFR rod; `None` for a rod without them (the
+    /// segment chain).
+    pub modes: Option<usize>,
+    /// Highest retained natural frequency, Hz.
+    pub highest_frequency_hz: f64,
+    /// The rod's modal damping ratio `zeta` (one ratio for every mode).
+    pub damping_ratio: f64,
+    /// The system evaluates its equations on minimal coordinates in closed form
+    /// ([`DaeSystem::has_reduced_rhs`]).
+    pub closed_form: bool,
+    /// The FFR rod's closed form exists ([`RodBody::ffr_kernel`]: 1 to
+    /// [`crate::rod::ffr::MAX_MODES`] modes), and whether its modes leave the pins in place
+    /// ([`crate::rod::ffr::FfrKernel::pinned`]).
+    pub kernel_pinned: Option<bool>,
+}
+
+impl MechanismFacts {
+    /// The facts of `rod` with damping ratio `damping_ratio` in the mechanism `system`.
+    pub fn of(rod: &dyn RodBody, damping_ratio: f64, system: &dyn DaeSystem) -> MechanismFacts {
+        MechanismFacts {
+            modes: rod
+                .elastic_coordinates()
+                .filter(|_| rod.elastic_circular_frequencies().is_some())
+                .map(|e| e.len()),
+            highest_frequency_hz: rod.highest_frequency_hz(),
+            damping_ratio,
+            closed_form: system.has_reduced_rhs(),
+            kernel_pinned: rod.ffr_kernel().map(|k| k.pinned),
+        }
+    }
+
+    /// The explicit stability step, s: RK4 is stable for `|lambda| h < 2.78`, so its step is
+    /// capped at `2.5 / |lambda|_max`, the fastest eigenvalue of the retained modes: `w_max`
+    /// for a damping ratio `zeta <= 1`, and `w_max (zeta + sqrt(zeta^2 - 1))` for an
+    /// overdamped one (modal damping with one ratio, docs/physics.md "Elastic and damping
+    /// forces").
+    pub fn explicit_limit(&self) -> f64 {
+        let zeta = self.damping_ratio;
+        let overdamping = if zeta > 1.0 {
+            zeta + (zeta * zeta - 1.0).sqrt()
+        } else {
+            1.0
+        };
+        2.5 / (2.0 * std::f64::consts::PI * self.highest_frequency_hz * overdamping).max(1e-300)
+    }
+}
+
+/// The embedded pair of the explicit adaptive Runge-Kutta integrator.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pair {
+    /// Dormand-Prince 5(4) ([`DORMAND_PRINCE`]).
+    DormandPrince,
+    /// The classic RK4 with an embedded third-order estimate ([`RK4_FSAL`]).
+    Rk43,
+}
+
+/// The integrator chosen, with its settings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum IntegratorChoice {
+    /// [`AdaptiveRungeKutta`] on the modal coordinates with `pair`; with `exponential` in its
+    /// exponential form (ETDRK4, only with [`Pair::Rk43`]).
+    AdaptiveRungeKutta { pair: Pair, exponential: bool },
+    /// [`ExplicitRk4`] with fixed steps of at most `max_step`, s.
+    ExplicitRk4 { max_step: f64 },
+    /// [`GeneralizedAlpha`]: error-controlled steps with `adaptive`, else fixed steps of
+    /// `solver.step`.
+    GeneralizedAlpha { adaptive: bool },
+}
+
+impl IntegratorChoice {
+    /// The largest internal step of the fixed-step methods, s: the stepping driver splits a
+    /// communication step into equal steps no larger (the error-controlled methods choose
+    /// their own steps and do not use it: unbounded for the explicit pairs, `solver.step` for
+    /// generalized-alpha either way).
+    pub fn max_step(&self, solver: &SolverSpec) -> f64 {
+        match *self {
+            IntegratorChoice::AdaptiveRungeKutta { .. } => f64::INFINITY,
+            IntegratorChoice::ExplicitRk4 { max_step } => max_step,
+            IntegratorChoice::GeneralizedAlpha { .. } => solver.step,
+        }
+    }
+}
+
+/// The integrator for `solver` on a mechanism with `facts` (module documentation), or why
+/// the method asked for does not apply.
+pub fn choose(solver: &SolverSpec, facts: &MechanismFacts) -> Result<IntegratorChoice, ModelError> {
+    let explicit_limit = facts.explicit_limit();
+    let auto = solver.method == SolverMethod::Auto;
+    let method = match solver.method {
+        SolverMethod::Auto if facts.modes.is_some() && explicit_limit >= AUTO_EXPLICIT_MIN_STEP => {
+            SolverMethod::Rk43
+        }
+        SolverMethod::Auto => return Ok(IntegratorChoice::GeneralizedAlpha { adaptive: true }),
+        m => m,
+    };
+    match method {
+        SolverMethod::Dopri5 | SolverMethod::Rk43 | SolverMethod::Exponential => {
+            let Some(modes) = facts.modes else {
+                return Err(ModelError::InvalidParameter {
+                    name: "solver.method",
+                    value: 0.0,
+                    allowed: "generalized_alpha, rk4 or auto with rod.model = segments (dopri5, rk43 and exponential integrate the FFR rod's modal coordinates)".into(),
+                });
+            };
+            let forced = method == SolverMethod::Exponential;
+            if forced && facts.kernel_pinned.is_none() {
+                return Err(ModelError::InvalidParameter {
+                    name: "solver.method",
+                    value: modes as f64,
+                    allowed: format!(
+                        "exponential with an FFR rod of 1 to {} modes (its closed form; this rod has more), or auto, rk43, dopri5",
+                        crate::rod::ffr::MAX_MODES
+                    ),
+                });
+            }
+            if method == SolverMethod::Dopri5 {
+                return Ok(IntegratorChoice::AdaptiveRungeKutta {
+                    pair: Pair::DormandPrince,
+                    exponential: false,
+                });
+            }
+            let minimal = auto && facts.closed_form;
+            let exponential = match facts.kernel_pinned {
+                Some(pinned) => forced || minimal && pinned,
+                None => false,
+            };
+            Ok(IntegratorChoice::AdaptiveRungeKutta {
+                pair: Pair::Rk43,
+                exponential,
+            })
+        }
+        SolverMethod::Rk4 => Ok(IntegratorChoice::ExplicitRk4 {
+            max_step: solver.step.min(explicit_limit),
+        }),
+        SolverMethod::GeneralizedAlpha => {
+            Ok(IntegratorChoice::GeneralizedAlpha { adaptive: false })
+        }
+        SolverMethod::Auto => unreachable!("auto resolved above"),
+    }
+}
+
+/// The integrator of `choice` for `rod` in the mechanism `system`, with the settings of
+/// `solver`.
+pub fn build(
+    choice: IntegratorChoice,
+    solver: &SolverSpec,
+    rod: &dyn RodBody,
+    system: &dyn DaeSystem,
+) -> Box<dyn Integrator> {
+    match choice {
+        IntegratorChoice::AdaptiveRungeKutta { pair, exponential } => {
+            let elastic = rod.elastic_coordinates().expect("modal coordinates");
+            let omega = rod
+                .elastic_circular_frequencies()
+                .expect("modal frequencies");
+            // The RK4(3) pair: four evaluations a step and 2.8 times the stable step on the
+            // stiff mode (module documentation of `crate::integrator::adaptive_runge_kutta`).
+            let (tableau, factor): (&'static Tableau, f64) = match pair {
+                Pair::Rk43 => (&RK4_FSAL, LOCAL_TOLERANCE_FACTOR_RK4),
+                Pair::DormandPrince => (&DORMAND_PRINCE, LOCAL_TOLERANCE_FACTOR),
+            };
+            let control = ErrorControl {
+                tolerance: solver.tolerance * factor,
+                amplitude_floor: AMPLITUDE_FLOOR,
+                scales: elastic.clone().map(|i| rod.coordinate_scale(i)).collect(),
+                rate_weights: omega.iter().map(|w| w.max(1.0)).collect(),
+                initial_step: solver.step,
+                max_rejections: MAX_REJECTIONS,
+                per_unit_step: Some(ERROR_PER_UNIT_STEP_RK4 / factor),
+            };
+            let integrator = AdaptiveRungeKutta::new(system, elastic.collect(), control, tableau);
+            if !exponential {
+                return Box::new(integrator);
+            }
+            let kernel = rod.ffr_kernel().expect("the FFR rod's closed form");
+            let oscillators = (0..kernel.n)
+                .map(|i| {
+                    Oscillator::new(
+                        kernel.stiffness[i] / kernel.m_ff[i][i],
+                        kernel.damping[i] / kernel.m_ff[i][i],
+                    )
+                })
+                .collect();
+            Box::new(integrator.exponential(oscillators))
+        }
+        IntegratorChoice::ExplicitRk4 { .. } => Box::new(ExplicitRk4::new(system)),
+        IntegratorChoice::GeneralizedAlpha { adaptive } => {
+            let mut alpha = GeneralizedAlpha::new(
+                system,
+                solver.rho_inf,
+                solver.newton_tolerance,
+                solver.max_newton_iterations,
+            );
+            if adaptive {
+                alpha.adaptive = Some(AlphaErrorControl {
+                    tolerance: solver.tolerance * LOCAL_TOLERANCE_FACTOR_IMPLICIT,
+                    amplitude_floor: AMPLITUDE_FLOOR,
+                    initial_step: solver.step,
+                    max_rejections: MAX_REJECTIONS,
+                });
+            }
+            Box::new(alpha)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An FFR rod of three modes up to `f_max` Hz, damping ratio 0.02, in closed form.
+    fn ffr(f_max: f64, pinned: bool) -> MechanismFacts {
+        MechanismFacts {
+            modes: Some(3),
+            highest_frequency_hz: f_max,
+            damping_ratio: 0.02,
+            closed_form: true,
+            kernel_pinned: Some(pinned),
+        }
+    }
+
+    /// An FFR rod of more modes than the closed form takes (general partitioned evaluation).
+    fn ffr_general(f_max: f64) -> MechanismFacts {
+        MechanismFacts {
+            modes: Some(crate::rod::ffr::MAX_MODES + 2),
+            closed_form: false,
+            kernel_pinned: None,
+            ..ffr(f_max, false)
+        }
+    }
+
+    /// The segment chain: no modal coordinates.
+    fn segments(f_max: f64) -> MechanismFacts {
+        MechanismFacts {
+            modes: None,
+            closed_form: false,
+            kernel_pinned: None,
+            ..ffr(f_max, false)
+        }
+    }
+
+    fn solver(method: SolverMethod) -> SolverSpec {
+        SolverSpec {
+            method,
+            ..SolverSpec::default()
+        }
+    }
+
+    fn adaptive_rk(pair: Pair, exponential: bool) -> IntegratorChoice {
+        IntegratorChoice::AdaptiveRungeKutta { pair, exponential }
+    }
+
+    /// A frequency whose stability step is just above / below [`AUTO_EXPLICIT_MIN_STEP`].
+    fn f_at_limit(factor: f64) -> f64 {
+        2.5 / (2.0 * std::f64::consts::PI * AUTO_EXPLICIT_MIN_STEP) * factor
+    }
+
+    #[test]
+    fn auto_takes_the_exponential_form_where_the_modes_leave_the_pins() {
+        let choice = choose(&solver(SolverMethod::Auto), &ffr(2000.0, true)).unwrap();
+        assert_eq!(choice, adaptive_rk(Pair::Rk43, true));
+        assert_eq!(choice.max_step(&SolverSpec::default()), f64::INFINITY);
+    }
+
+    #[test]
+    fn auto_takes_the_classic_pair_where_the_modes_move_the_pins_or_without_closed_form() {
+        let auto = solver(SolverMethod::Auto);
+        assert_eq!(
+            choose(&auto, &ffr(2000.0, false)).unwrap(),
+            adaptive_rk(Pair::Rk43, false)
+        );
+        assert_eq!(
+            choose(&auto, &ffr_general(2000.0)).unwrap(),
+            adaptive_rk(Pair::Rk43, false)
+        );
+    }
+
+    /// Up to the stability step [`AUTO_EXPLICIT_MIN_STEP`] the explicit pair, beyond it (and
+    /// for an overdamped rod, whose fastest eigenvalue is above its frequency) adaptive
+    /// generalized-alpha, as for the segment chain.
+    #[test]
+    fn auto_takes_adaptive_generalized_alpha_for_stiff_rods_and_the_segment_chain() {
+        let auto = solver(SolverMethod::Auto);
+        let alpha = IntegratorChoice::GeneralizedAlpha { adaptive: true };
+        assert_eq!(
+            choose(&auto, &ffr(f_at_limit(0.999), true)).unwrap(),
+            adaptive_rk(Pair::Rk43, true)
+        );
+        assert_eq!(choose(&auto, &ffr(f_at_limit(1.001), true)).unwrap(), alpha);
+        let overdamped = MechanismFacts {
+            damping_ratio: 1.5,
+            ..ffr(f_at_limit(0.999), true)
+        };
+        assert!(overdamped.explicit_limit() < AUTO_EXPLICIT_MIN_STEP);
+        assert_eq!(choose(&auto, &overdamped).unwrap(), alpha);
+        assert_eq!(choose(&auto, &segments(100.0)).unwrap(), alpha);
+        assert_eq!(alpha.max_step(&auto), auto.step);
+    }
+
+    /// `dopri5` and `rk43` are the classic pairs wherever there are modal coordinates, also
+    /// where `auto` would take the exponential form or the implicit method.
+    #[test]
+    fn forced_pairs_are_classic() {
+        for facts in [ffr(2000.0, true), ffr(1e6, true), ffr_general(2000.0)] {
+            assert_eq!(
+                choose(&solver(SolverMethod::Dopri5), &facts).unwrap(),
+                adaptive_rk(Pair::DormandPrince, false)
+            );
+            assert_eq!(
+                choose(&solver(SolverMethod::Rk43), &facts).unwrap(),
+                adaptive_rk(Pair::Rk43, false)
+            );
+        }
+    }
+
+    /// `exponential` wherever the closed form exists, pinned or not.
+    #[test]
+    fn forced_exponential_form_where_the_closed_form_exists() {
+        for pinned in [true, false] {
+            assert_eq!(
+                choose(&solver(SolverMethod::Exponential), &ffr(2000.0, pinned)).unwrap(),
+                adaptive_rk(Pair::Rk43, true)
+            );
+        }
+    }
+
+    /// The refusals name the parameter and say what would be allowed.
+    #[test]
+    fn refusals_say_why() {
+        let Err(ModelError::InvalidParameter {
+            name,
+            value,
+            allowed,
+        }) = choose(&solver(SolverMethod::Exponential), &ffr_general(2000.0))
+        else {
+            panic!("exponential without the closed form accepted")
+        };
+        assert_eq!(name, "solver.method");
+        assert_eq!(value, (crate::rod::ffr::MAX_MODES + 2) as f64);
+        assert!(
+            allowed.contains("exponential with an FFR rod of 1 to"),
+            "{allowed}"
+        );
+        for method in [
+            SolverMethod::Dopri5,
+            SolverMethod::Rk43,
+            SolverMethod::Exponential,
+        ] {
+            let Err(ModelError::InvalidParameter { name, allowed, .. }) =
+                choose(&solver(method), &segments(100.0))
+            else {
+                panic!("{method:?} on the segment chain accepted")
+            };
+            assert_eq!(name, "solver.method");
+            assert!(allowed.contains("integrate the FFR rod's modal coordinates"));
+        }
+    }
+
+    /// The fixed-step methods: RK4 capped at its stability step, generalized-alpha at
+    /// `solver.step`, on either rod model.
+    #[test]
+    fn fixed_step_methods() {
+        let rk4 = solver(SolverMethod::Rk4);
+        for facts in [ffr(100.0, true), segments(100.0)] {
+            assert_eq!(
+                choose(&rk4, &facts).unwrap(),
+                IntegratorChoice::ExplicitRk4 { max_step: rk4.step }
+            );
+        }
+        let stiff = ffr(1e5, true);
+        let choice = choose(&rk4, &stiff).unwrap();
+        assert_eq!(
+            choice,
+            IntegratorChoice::ExplicitRk4 {
+                max_step: stiff.explicit_limit()
+            }
+        );
+        assert!(choice.max_step(&rk4) < rk4.step);
+        let alpha = solver(SolverMethod::GeneralizedAlpha);
+        for facts in [ffr(1e5, true), segments(100.0)] {
+            let choice = choose(&alpha, &facts).unwrap();
+            assert_eq!(
+                choice,
+                IntegratorChoice::GeneralizedAlpha { adaptive: false }
+            );
+            assert_eq!(choice.max_step(&alpha), alpha.step);
+        }
+    }
+}
