@@ -1,4 +1,4 @@
-//! Benchmarks (issue 2, 3): preprocessing of a 64-element rod; two revolutions of the benchmark
+//! Benchmarks: preprocessing of a 64-element rod; two revolutions of the benchmark
 //! slider-crank at 150 rad/s with the settings that meet 0.5 % peak-deflection accuracy.
 //! One right-hand side on the minimal coordinates against the general partitioned evaluation.
 //! Run: `cargo bench --bench core`.
@@ -75,7 +75,7 @@ fn revolutions(c: &mut Criterion) {
     );
     for (name, method) in [
         (
-            "2 revolutions at 150 rad/s, rk43 (the classic RK4(3) pair on minimal coordinates, auto before), tolerance 1e-3, outputs every 3e-4",
+            "2 revolutions at 150 rad/s, rk43 (the classic RK4(3) pair on minimal coordinates), tolerance 1e-3, outputs every 3e-4",
             SolverMethod::Rk43,
         ),
         (
@@ -89,7 +89,7 @@ fn revolutions(c: &mut Criterion) {
     }
     two_revolutions(
         c,
-        "2 revolutions at 150 rad/s, RK4, 8 el, 3 modes, h 3e-4 (the previous default), outputs every 3e-4",
+        "2 revolutions at 150 rad/s, RK4 (fixed step, projected), 8 el, 3 modes, h 3e-4, outputs every 3e-4",
         with(SolverMethod::Rk4, 3e-4),
         3e-4,
     );
@@ -146,7 +146,7 @@ fn right_hand_side(c: &mut Criterion) {
     let mut rhs = PartitionedRhs::new(&general, elastic);
     rhs.q.copy_from_slice(&sim.state().dae.q);
     c.bench_function(
-        "right-hand side, general partitioned evaluation (the previous one)",
+        "right-hand side, general partitioned evaluation (no closed form)",
         |b| {
             b.iter(|| {
                 rhs.evaluate(&general, black_box(1e-3), &z, &zd, &mut zdd)

@@ -1,4 +1,4 @@
-//! Issue 12: why `auto` takes the exponential form of the RK4(3) pair on the pinned rod's modes
+//! Why `auto` takes the exponential form of the RK4(3) pair on the pinned rod's modes
 //! and the classic pair where the modes move the pins. For each case, `solver.method = "rk43"`
 //! (the classic pair) against `"exponential"` (ETDRK4, the modal oscillators exact) at
 //! tolerance 1e-3, each against a run of the classic pair at tolerance 1e-8 on the same

@@ -1,11 +1,11 @@
-//! Issue 12 (speed): the numbers of the README's speed fragment, measured in process on this
+//! Speed: the numbers of the README's speed fragment, measured in process on this
 //! machine (medians of repeats; the machine's load shows in them, compare rows of one run):
 //! - two revolutions of the default scene at 150 rad/s, outputs every 3e-4 s (`auto`: the
 //!   exponential RK4(3), ETDRK4, on the closed-form minimal coordinates), and the same with
-//!   `solver.method = "rk43"` (the classic pair, `auto` before) and `"dopri5"`;
+//!   `solver.method = "rk43"` (the classic pair) and `"dopri5"`;
 //! - one right-hand side on the modal coordinates: the closed form (an intermediate stage, and a
 //!   last stage with the frame angle and the multipliers) against the general partitioned
-//!   evaluation it replaces;
+//!   evaluation (the path without the closed form);
 //! - `fmi2DoStep` at a 1e-5 s communication step through the exported C functions, without
 //!   inputs and with `fmi2SetReal` of the crank angle and speed before every call;
 //! - the accuracy of the default scene against the geometrically exact beam is in the
@@ -172,10 +172,10 @@ fn main() {
 | measured in process (medians; `cargo run --release --example speed`) | value |
 |---|---|
 | two revolutions at 150 rad/s, default scene (`auto`: exponential RK4(3), ETDRK4, on minimal coordinates, tolerance 1e-3), outputs every 3e-4 s | {ms:.3} ms ({:.0} x real time); {steps} steps, {rhs} right-hand sides; peak v_mid/L {peak:.4e} |
-| the same with `solver.method = \"rk43\"` (the classic RK4(3) pair, `auto` before) | {ms_c:.3} ms; {steps_c} steps, {rhs_c} right-hand sides |
+| the same with `solver.method = \"rk43\"` (the classic RK4(3) pair) | {ms_c:.3} ms; {steps_c} steps, {rhs_c} right-hand sides |
 | the same with `solver.method = \"dopri5\"` (Dormand-Prince on minimal coordinates) | {ms_dp:.3} ms; {steps_dp} steps, {rhs_dp} right-hand sides |
 | one right-hand side on minimal coordinates: intermediate stage / last stage (frame angle, multipliers) | {rhs_stage:.0} ns / {rhs_last:.0} ns |
-| one right-hand side by the general partitioned evaluation (the previous one) | {rhs_general:.0} ns |
+| one right-hand side by the general partitioned evaluation (no closed form) | {rhs_general:.0} ns |
 | `fmi2DoStep` at a 1e-5 s communication step | {step:.2} us a call ({:.1} x real time) |
 | `fmi2SetReal` (crank angle and speed) + `fmi2DoStep` at 1e-5 s | {step_inputs:.2} us a call |
 ",

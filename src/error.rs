@@ -95,8 +95,8 @@ impl fmt::Display for ModelError {
 impl std::error::Error for ModelError {}
 
 /// Check that `value` is finite and inside the closed physical window `[low, high]` (in the
-/// parameter's SI unit `unit`): past it, the model's numbers mean nothing (issue 14: a
-/// denormal density gave natural frequencies of 1e149 Hz with fmi2OK).
+/// parameter's SI unit `unit`): past it, the model's numbers mean nothing (a
+/// denormal density would give natural frequencies of 1e149 Hz).
 pub fn require_within(
     name: &'static str,
     value: f64,

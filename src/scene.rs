@@ -138,7 +138,8 @@ fn default_frequencies() -> usize {
     6
 }
 
-/// The default scene's TOML, compiled in (the benchmark rod of seed 001, 150 rad/s).
+/// The default scene's TOML, compiled in (the benchmark rod of the CDI parametric study,
+/// 150 rad/s).
 pub const DEFAULT_SCENE_TOML: &str = include_str!("../scenes/benchmark.toml");
 
 impl Scene {
@@ -159,7 +160,7 @@ impl Scene {
         Scene::from_toml_str(&text, &path.display().to_string())
     }
 
-    /// The default scene: seed 001's benchmark rod at 150 rad/s.
+    /// The default scene: the benchmark rod of the CDI parametric study at 150 rad/s.
     pub fn benchmark() -> Scene {
         Scene::from_toml_str(DEFAULT_SCENE_TOML, "scenes/benchmark.toml")
             .expect("the compiled-in default scene parses")

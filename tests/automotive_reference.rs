@@ -1,8 +1,8 @@
 //! The automotive rod (scenes/automotive_rod.toml) against an independent geometrically exact,
 //! shear-deformable beam: Exudyn's `ObjectBeamGeometricallyExact2D`
 //! (tests/data/exudyn_automotive_rod.csv, written by tests/data/automotive_reference.py, which
-//! states the run and the reference's mesh and step). Issue 11: FFR rod and segment chain
-//! against the reference pointwise, deflection and stress within 0.5 % of the peak, the pin
+//! states the run and the reference's mesh and step). FFR rod and segment chain against the
+//! reference pointwise, deflection and stress within 0.5 % of the peak, the pin
 //! forces at the firing spike within 1 %.
 //!
 //! The run, the same in both: from rest, undeformed, the crank speed ramps smoothly to

@@ -1,4 +1,4 @@
-//! Error control (issue 12): with `solver.method = "auto"` the internal step is chosen by
+//! Error control: with `solver.method = "auto"` the internal step is chosen by
 //! `solver.tolerance`, independent of the communication step, so the stated accuracy holds
 //! when a user changes the parameters. Over random parameter sets inside the contract's ranges
 //! (rod geometry and material, crank speed 50 to 300 rad/s, slider mass, damping, both rod
@@ -198,7 +198,7 @@ fn explore_case() {
     }
 }
 
-/// The error-controlled formulations give the previous formulations' results at a converged
+/// The error-controlled formulations give the fixed-step formulations' results at a converged
 /// step: the FFR rod on its independent coordinates (Dormand-Prince) against the constrained
 /// index-1 form (RK4, h 1e-5), and the segment chain with adaptive generalized-alpha against
 /// fixed steps of 2.5e-7 s, over a quarter revolution: every output of the FFR rod within 1e-6
@@ -272,7 +272,7 @@ fn new_formulations_equal_the_previous_ones_at_a_converged_step() {
     );
 }
 
-/// Dense output (issue 12: the internal step is chosen by the tolerance, independent of the
+/// Dense output (the internal step is chosen by the tolerance, independent of the
 /// communication step): the default scene over two revolutions on communication grids of
 /// 3e-4, 1e-4 and 1e-5 s gives the same v_mid/L at the common points within the tolerance
 /// (1e-3 of the peak), and the 1e-5 s grid takes about as many internal steps as the 3e-4 s
@@ -331,8 +331,8 @@ fn internal_steps_do_not_follow_a_fine_communication_grid() {
         assert!(worst < scene.solver.tolerance, "{dt}: {worst:e}");
     }
     // One communication step over the whole run: the error control's amplitude follows the
-    // motion inside it (it was updated at communication points only, and this took 863
-    // internal steps).
+    // motion inside it (updated at communication points only, the run took 863 internal
+    // steps).
     let single = run(&scene, 150.0, duration, duration);
     let last = |r: &Record| r.outputs.last().unwrap().deflection_rel;
     let worst = (last(&single) - last(&coarse)).abs() / peak;

@@ -1,4 +1,4 @@
-//! The explicit path (`solver.method = "rk4"`, issue 6): fourth order in the step, constraints
+//! The explicit path (`solver.method = "rk4"`): fourth order in the step, constraints
 //! held by projection, the same answer as generalized-alpha.
 
 use flexrod::drive::{communication_grid, CrankDrive};

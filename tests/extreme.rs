@@ -1,4 +1,4 @@
-//! Stiff and extreme cases (issue 6). Every test prints its numbers and asserts an explicit
+//! Stiff and extreme cases. Every test prints its numbers and asserts an explicit
 //! outcome: the run ends bounded and accurate, or in a clean, documented error (a
 //! `ModelError::StepFailed` with the state from before the step kept, checked for every failed
 //! step by `common::runs::drive_visit`).
@@ -821,7 +821,7 @@ fn default_integrator_refuses_out_of_range_steps() {
     assert!(run.peak() > 0.05 && run.peak() < 1.0, "{}", run.peak());
 }
 
-/// Issue 14: the deflection policy on the very flexible rod (E / 100, 150 rad/s, fixed-step
+/// The deflection policy on the very flexible rod (E / 100, 150 rad/s, fixed-step
 /// RK4 3e-4 s, communication step 1e-4 s): warn continues, discard and error refuse the first
 /// step beyond `rod.deflection_limit` = 0.05 with the state from before it kept.
 #[test]

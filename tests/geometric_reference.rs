@@ -1,5 +1,5 @@
 //! The FFR rod against a geometrically exact reference (tests/data/exudyn_ancf_150rad_s.csv:
-//! Exudyn ANCF cable, 32/64 elements, converged to < 1e-5 of the peak). Issue 3's target:
+//! Exudyn ANCF cable, 32/64 elements, converged to < 1e-5 of the peak). The target:
 //! with axial stiffening and a handful of modes, the peak |v_mid/L| within 0.5 %; linear modes
 //! overshoot it by about 10 % (docs/physics.md, "What linear modes miss"). Pointwise, the stiffened
 //! rod follows the exact beam to 0.16 % in the default scene (error-controlled, tolerance

@@ -1,4 +1,4 @@
-//! Issue 12 (speed): the FFR slider-crank on minimal coordinates in closed form
+//! Speed: the FFR slider-crank on minimal coordinates in closed form
 //! (`src/mechanism/minimal.rs`) against the general partitioned evaluation of the DAE
 //! (`src/integrator/partitioned.rs`: Newton or closed-form dependent positions, LU solves of
 //! the constraint Jacobian, the reduced mass matrix from the full one), and whole runs against

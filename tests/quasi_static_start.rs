@@ -1,4 +1,4 @@
-//! The quasi-static deflected start (`[start] deflection = "quasi_static"`, issue 3): the rod
+//! The quasi-static deflected start (`[start] deflection = "quasi_static"`): the rod
 //! starts deflected by the inertia loads of its motion, without the start transient.
 
 use flexrod::drive::communication_grid;

@@ -1,4 +1,4 @@
-//! Real connecting rods, phase 2 (issue 11): the mechanism around the rod. Slider line offset
+//! Real connecting rods: the mechanism around the rod. Slider line offset
 //! and gravity against the closed-form rigid slider-crank inverse dynamics (`rod.modes = 0`).
 
 use flexrod::mechanism::Mechanism;

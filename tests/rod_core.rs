@@ -1,4 +1,4 @@
-//! Rod core invariants, convergence under refinement and bad input (issue 2).
+//! Rod core invariants, convergence under refinement and bad input.
 
 use flexrod::beam::{RodMesh, RodProperties};
 use flexrod::error::ModelError;

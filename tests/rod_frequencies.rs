@@ -1,11 +1,12 @@
-//! The six frequency lists of docs/physics.md (seeds 000 and 001, 2 elements, consistent mass).
+//! The six frequency lists of docs/physics.md (Agrawal and Shabana 1985, section 7; the CDI
+//! benchmark note of J. O'Shea, table 4; 2 elements, consistent mass).
 
 use flexrod::beam::RodProperties;
 use flexrod::modal::{ComponentModes, ModeSelection, ReferenceConditions};
 use flexrod::scene::MassKind;
 
 mod common;
-use common::seeds;
+use common::published_frequencies as published;
 
 fn rod(density: f64) -> RodProperties {
     RodProperties {
@@ -26,7 +27,7 @@ fn frequencies(density: f64, reference: ReferenceConditions) -> Vec<f64> {
     .all_frequencies_hz
 }
 
-/// Seed 001 prints 4 significant digits: match to half a unit in the last digit.
+/// The benchmark note prints 4 significant digits: match to half a unit in the last digit.
 fn check_four_digits(name: &str, got: &[f64], table: &[f64]) {
     println!("{name}: {got:?}");
     assert_eq!(got.len(), table.len());
@@ -40,7 +41,7 @@ fn check_four_digits(name: &str, got: &[f64], table: &[f64]) {
     }
 }
 
-/// Seed 000 prints two decimals: match to 1e-4 relative.
+/// Agrawal and Shabana print two decimals: match to 1e-4 relative.
 fn check_relative(name: &str, got: &[f64], table: &[f64]) {
     println!("{name}: {got:?}");
     assert_eq!(got.len(), table.len());
@@ -50,20 +51,20 @@ fn check_relative(name: &str, got: &[f64], table: &[f64]) {
 }
 
 #[test]
-fn seed001_simply_supported() {
-    let f = frequencies(seeds::SEED001_DENSITY, ReferenceConditions::SimplySupported);
+fn cdi_simply_supported() {
+    let f = frequencies(published::CDI_DENSITY, ReferenceConditions::SimplySupported);
     check_four_digits(
-        "seed 001 simply supported",
+        "benchmark note, simply supported",
         &f,
-        &seeds::SEED001_SIMPLY_SUPPORTED,
+        &published::CDI_SIMPLY_SUPPORTED,
     );
 }
 
 #[test]
-fn seed001_free_free() {
-    // docs/physics.md: seed 001's 980.7 and 3918 Hz are 980.58 and 3917.25 Hz for these data.
-    let f = frequencies(seeds::SEED001_DENSITY, ReferenceConditions::MeanAxis);
-    check_four_digits("seed 001 free-free", &f, &seeds::SEED001_FREE_FREE);
+fn cdi_free_free() {
+    // docs/physics.md: the benchmark note's 980.7 and 3918 Hz are 980.58 and 3917.25 Hz for these data.
+    let f = frequencies(published::CDI_DENSITY, ReferenceConditions::MeanAxis);
+    check_four_digits("benchmark note, free-free", &f, &published::CDI_FREE_FREE);
     assert!(
         (f[1] - 980.58).abs() < 0.01 && (f[3] - 3917.25).abs() < 0.01,
         "{f:?}"
@@ -71,39 +72,53 @@ fn seed001_free_free() {
 }
 
 #[test]
-fn seed000_simply_supported() {
-    let f = frequencies(seeds::SEED000_DENSITY, ReferenceConditions::SimplySupported);
+fn agrawal_shabana_simply_supported() {
+    let f = frequencies(
+        published::AGRAWAL_SHABANA_DENSITY,
+        ReferenceConditions::SimplySupported,
+    );
     check_relative(
-        "seed 000 simply supported",
+        "Agrawal and Shabana, simply supported",
         &f,
-        &seeds::SEED000_SIMPLY_SUPPORTED,
+        &published::AGRAWAL_SHABANA_SIMPLY_SUPPORTED,
     );
 }
 
 #[test]
-fn seed000_body_fixed_mid() {
+fn agrawal_shabana_body_fixed_mid() {
     let f = frequencies(
-        seeds::SEED000_DENSITY,
+        published::AGRAWAL_SHABANA_DENSITY,
         ReferenceConditions::BodyFixed { node: 1 },
     );
     check_relative(
-        "seed 000 body-fixed mid",
+        "Agrawal and Shabana, body-fixed mid",
         &f,
-        &seeds::SEED000_BODY_FIXED_MID,
+        &published::AGRAWAL_SHABANA_BODY_FIXED_MID,
     );
 }
 
 #[test]
-fn seed000_mean_axis() {
-    let f = frequencies(seeds::SEED000_DENSITY, ReferenceConditions::MeanAxis);
-    check_relative("seed 000 mean axis", &f, &seeds::SEED000_MEAN_AXIS);
+fn agrawal_shabana_mean_axis() {
+    let f = frequencies(
+        published::AGRAWAL_SHABANA_DENSITY,
+        ReferenceConditions::MeanAxis,
+    );
+    check_relative(
+        "Agrawal and Shabana, mean axis",
+        &f,
+        &published::AGRAWAL_SHABANA_MEAN_AXIS,
+    );
 }
 
 #[test]
-fn seed000_cantilever() {
+fn agrawal_shabana_cantilever() {
     let f = frequencies(
-        seeds::SEED000_DENSITY,
+        published::AGRAWAL_SHABANA_DENSITY,
         ReferenceConditions::BodyFixed { node: 0 },
     );
-    check_relative("seed 000 cantilever", &f, &seeds::SEED000_CANTILEVER);
+    check_relative(
+        "Agrawal and Shabana, cantilever",
+        &f,
+        &published::AGRAWAL_SHABANA_CANTILEVER,
+    );
 }

@@ -1,15 +1,17 @@
 //! Every shipped scene parses, builds and runs its default experiment, and its peak midpoint
 //! deflection is checked against a reference computed independently of the scene's own
-//! discretization; the seed 000 variants reproduce the seed's frequency lists.
+//! discretization; the scenes of Agrawal and Shabana's slider-crank reproduce the paper's
+//! frequency lists.
 //!
 //! References, by what the scene models:
-//! - the stiffened FFR rod of seed 001 at 150 rad/s from rest-deformation at t = 0 (the default
-//!   scene and the engine example's rod): the geometrically exact beam (Exudyn ANCF data,
-//!   tests/data), peak and pointwise;
-//! - linear modes (seed 000's 1985 formulation, 2 elements): the same physics converged in the
-//!   discretization (16 elements, 8 simply supported modes, generalized-alpha at h = 1e-5 s).
-//!   Simply supported, mean-axis and body-fixed-mid modes agree with it; the cantilever modes
-//!   do not (seed 000, Fig. 8: they poorly represent the deflected shape).
+//! - the stiffened FFR rod of the CDI benchmark note at 150 rad/s from rest-deformation at
+//!   t = 0 (the default scene and the engine example's rod): the geometrically exact beam
+//!   (Exudyn ANCF data, tests/data), peak and pointwise;
+//! - linear modes (the formulation of Agrawal and Shabana 1985, 2 elements): the same physics
+//!   converged in the discretization (16 elements, 8 simply supported modes, generalized-alpha
+//!   at h = 1e-5 s). Simply supported, mean-axis and body-fixed-mid modes agree with it; the
+//!   cantilever modes do not (Agrawal and Shabana, Fig. 8: they poorly represent the deflected
+//!   shape).
 //!
 //! A new scene that fits neither fails the test until it is given a reference here.
 
@@ -18,7 +20,8 @@ use flexrod::scene::{ReferenceKind, SolverMethod};
 use flexrod::Scene;
 
 mod common;
-use common::{exudyn, runs, seeds};
+use common::published_frequencies as published;
+use common::{exudyn, runs};
 
 fn scenes() -> Vec<(String, Scene)> {
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes");
@@ -46,7 +49,7 @@ fn default_experiment(scene: &Scene) -> Record {
     runs::completed(scene, &law, 0.0, &grid).0
 }
 
-/// The seed 001 rod with axial stiffening in the exact beam's experiment.
+/// The benchmark rod with axial stiffening in the exact beam's experiment.
 fn is_exudyn_case(s: &Scene) -> bool {
     let b = Scene::benchmark();
     let e = &s.experiment;
@@ -107,7 +110,11 @@ fn every_shipped_scene_runs_its_default_experiment_and_meets_its_reference() {
             assert!(c.peak_error.abs() < 0.002, "{name}: peak {}", c.peak_error);
             assert!(c.pointwise < 0.0025, "{name}: pointwise {}", c.pointwise);
         } else if !scene.rod.axial_stiffening {
-            assert_eq!(scene.rod.density, seeds::SEED000_DENSITY, "{name}");
+            assert_eq!(
+                scene.rod.density,
+                published::AGRAWAL_SHABANA_DENSITY,
+                "{name}"
+            );
             let reference = &linear_reference
                 .get_or_insert_with(|| {
                     let r = default_experiment(&converged_linear(&scene));
@@ -123,7 +130,7 @@ fn every_shipped_scene_runs_its_default_experiment_and_meets_its_reference() {
                 100.0 * pointwise
             );
             if scene.rod.reference == ReferenceKind::Cantilever {
-                // Seed 000, Fig. 8: the discrepancy of the cantilever modes (measured: peak
+                // Agrawal and Shabana, Fig. 8: the discrepancy of the cantilever modes (measured: peak
                 // +7.4 %, pointwise 34 %).
                 assert!(peak_error > 0.05, "{name}: peak {peak_error}");
                 assert!(pointwise > 0.2, "{name}: pointwise {pointwise}");
@@ -142,11 +149,18 @@ fn every_shipped_scene_runs_its_default_experiment_and_meets_its_reference() {
 }
 
 #[test]
-fn seed000_scenes_reproduce_the_seed_frequencies() {
-    for (name, expected) in seeds::SEED000 {
-        let path = format!("{}/scenes/seed000_{name}.toml", env!("CARGO_MANIFEST_DIR"));
+fn agrawal_shabana_scenes_reproduce_the_papers_frequencies() {
+    for (name, expected) in published::AGRAWAL_SHABANA {
+        let path = format!(
+            "{}/scenes/agrawal_shabana_{name}.toml",
+            env!("CARGO_MANIFEST_DIR")
+        );
         let scene = Scene::from_file(std::path::Path::new(&path)).unwrap();
-        assert_eq!(scene.rod.density, seeds::SEED000_DENSITY, "{name}");
+        assert_eq!(
+            scene.rod.density,
+            published::AGRAWAL_SHABANA_DENSITY,
+            "{name}"
+        );
         let sim = flexrod::Simulation::new(&scene).unwrap();
         assert!(sim.frequencies_hz().len() >= expected.len(), "{name}");
         for (f, e) in sim.frequencies_hz().iter().zip(expected) {

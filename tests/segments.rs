@@ -1,7 +1,8 @@
-//! The finite segment rod (seed 002, 002_e6c2c81d944c25fc.txt; docs/physics.md, "Rod model 2"):
-//! consistency of the body's equations, seed 002's axial convergence table, bending
-//! convergence, centrifugal stiffening, the slider-crank against the FFR rod, energy and
-//! momentum balances, and a run with the default solver settings.
+//! The finite segment rod (R. L. Huston, "Computer methods in flexible multibody dynamics",
+//! IJNME 32, 1991; docs/physics.md, "Rod model 2"): consistency of the body's equations,
+//! Huston's axial convergence table, bending convergence, centrifugal stiffening, the
+//! slider-crank against the FFR rod, energy and momentum balances, and a run with the default
+//! solver settings.
 //!
 //! Run with `cargo test --release --test segments -- --nocapture --test-threads=1` to see the
 //! tables.
@@ -387,11 +388,11 @@ fn segment_count_is_validated() {
     }
 }
 
-/// Seed 002, "Illustrations/convergence" and table II: free-free axial vibration of a 1 m
+/// Huston 1991, "Illustrations/convergence" and table II: free-free axial vibration of a 1 m
 /// beam, A = 0.196 cm^2, E = 1.2e9 dyn/cm^2 = 1.2e8 Pa, rho = 1 g/cm^3 = 1000 kg/m^3, with
 /// 10 and 30 segments joined by axial springs.
 #[test]
-fn seed002_axial_free_free() {
+fn huston_axial_free_free() {
     let area = 0.196e-4;
     let radius = (area / PI).sqrt();
     let props = RodProperties {
@@ -404,7 +405,7 @@ fn seed002_axial_free_free() {
     };
     let c = (props.youngs_modulus / props.density).sqrt();
     println!(
-        "seed 002 axial, continuum f_n = n/(2L) sqrt(E/rho) = {:.4} n Hz",
+        "Huston's axial chain, continuum f_n = n/(2L) sqrt(E/rho) = {:.4} n Hz",
         c / 2.0
     );
     println!("  N  mode  chain (Hz)   continuum (Hz)  chain/continuum  closed form rel diff");
@@ -433,7 +434,7 @@ fn seed002_axial_free_free() {
             assert!((got / fc - expected_ratio).abs() < 1e-9);
         }
     }
-    // More segments: closer to the continuum (the point of seed 002's table).
+    // More segments: closer to the continuum (the point of Huston's table).
     let f10 = axial_chain_frequencies_hz(props, 10).unwrap();
     let f30 = axial_chain_frequencies_hz(props, 30).unwrap();
     for mode in 0..5 {

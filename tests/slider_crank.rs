@@ -1,4 +1,4 @@
-//! Slider-crank dynamics with the FFR rod (issue 3): rigid limit, energy, momentum,
+//! Slider-crank dynamics with the FFR rod: rigid limit, energy, momentum,
 //! convergence in step, elements and modes, reference conditions, stiff stability.
 
 use flexrod::drive::{communication_grid, CrankDrive, Record};
@@ -296,7 +296,7 @@ fn converges_in_elements_and_modes_and_reference_conditions_agree() {
         );
         e
     };
-    // Seed 001 Fig. 5: 2, 4, 6 elements (all modes of 2 elements = 6; here 6 modes each).
+    // The CDI benchmark note, Fig. 5: 2, 4, 6 elements (all modes of 2 elements = 6; here 6 modes each).
     let by_elements: Vec<f64> = [2usize, 4, 6].iter().map(|&n| error_with(n, 6)).collect();
     assert!(
         by_elements.windows(2).all(|w| w[1] < 0.5 * w[0]),
@@ -318,8 +318,9 @@ fn converges_in_elements_and_modes_and_reference_conditions_agree() {
         "{by_modes:?}"
     );
     assert!(by_modes[2] < 2e-3, "3 modes: {}", by_modes[2]);
-    // Seed 000 Figs. 6-8: simply supported, mean axis, body-fixed at the midpoint agree; the
-    // cantilever does not. 4 elements, 6 modes, linear modes (as in 1985).
+    // Agrawal and Shabana 1985, Figs. 6-8: simply supported, mean axis, body-fixed at the
+    // midpoint agree; the cantilever does not. 4 elements, 6 modes, linear modes (as in the
+    // paper).
     let by = |r: ReferenceKind| {
         run(
             &scene(|s| {

@@ -243,8 +243,7 @@ class Bank:
 
     def _force_with_crank_works(self) -> bool:
         """Probe (instance 1, rigid rod): does a `slider.force` set together with the crank
-        inputs before an fmi2DoStep act in that step? (Not in FMUs built from 0407e8c..41848d8:
-        see `step`.)"""
+        inputs before an fmi2DoStep act in that step? (An FMU that drops it: see `step`.)"""
         s = self.slaves[0]
         s.setupExperiment(startTime=0.0)
         self._set_param(s, "rod.modes", 0)

@@ -65,7 +65,7 @@ pub use system::{DaeSystem, GeneralPath};
 /// Largest internal step the error-controlled integrators propose, s (a step may be stretched by
 /// 25 % to land on the communication point). It makes the work of a communication step
 /// bounded from below by `h / (1.25 MAX_ADAPTIVE_STEP)` steps, so a step beyond the work limit
-/// is refused before it starts (issue 14), and keeps the crank law's evaluations far from
+/// is refused before it starts, and keeps the crank law's evaluations far from
 /// overflow. At 300 rad/s it is 3 rad of crank: accuracy bounds the step long before it.
 pub const MAX_ADAPTIVE_STEP: f64 = 1e-2;
 

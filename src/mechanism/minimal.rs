@@ -23,9 +23,10 @@
 //!   `delta = beta_B - beta_C - a_P`, `b_phi = delta_y / X`, `b_x = -Y b_phi - delta_x`,
 //!   `b_R = a_P - beta_B - I~ A u_B b_phi`.
 //! - The reduced equations `(T^T M T) p'' = T^T (Q - M b)` (n x n; `M`, `Q` of
-//!   [`crate::rod::ffr::FfrRod`] with the slider, seed 000 eq. 3.17-3.18, 6.2), assembled from
-//!   the block structure of `M` (no general matrix), solved by Gaussian elimination with
-//!   partial pivoting (`M` carries the non-symmetric stiffening coupling `M_pR`).
+//!   [`crate::rod::ffr::FfrRod`] with the slider, Agrawal and Shabana 1985, eq. 3.17-3.18,
+//!   6.2), assembled from the block structure of `M` (no general matrix), solved by Gaussian
+//!   elimination with partial pivoting (`M` carries the non-symmetric stiffening coupling
+//!   `M_pR`).
 //! - Multipliers from the dependent rows of `M q'' + Phi_q^T lambda = Q` in the same
 //!   evaluation: `Phi_D^T lambda = (Q - M q'')_D` is, with `a_B = I~ A u_B`,
 //!   `a_C = a_B + (-Y, X)`: `lambda_B + lambda_C = r_R`, `a_B.lambda_B + a_C.lambda_C = r_phi`,

@@ -230,7 +230,7 @@ impl MechanismSpec {
         require_positive("solver.newton_tolerance", self.solver.newton_tolerance)?;
         let tol = self.solver.tolerance;
         // Below 1e-10 of the peak the error control asks for more than double precision can
-        // give over a run (issue 14: 5e-324 made every step refuse at the work bound).
+        // give over a run (at 5e-324 every step would refuse at the work bound).
         if !(tol.is_finite() && (1e-10..=0.1).contains(&tol)) {
             return Err(ModelError::InvalidParameter {
                 name: "solver.tolerance",

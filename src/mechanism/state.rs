@@ -262,8 +262,8 @@ impl MechanismState {
         Ok(())
     }
 
-    /// Every field of a state read from bytes in range (issue 14: the checksum of the byte form
-    /// is unkeyed, so crafted bytes must not get in): all numbers finite, the step proposal
+    /// Every field of a state read from bytes in range (the checksum of the byte form is
+    /// unkeyed, so crafted bytes must not get in): all numbers finite, the step proposal
     /// and the amplitude >= 0, `dae.t == time`, `input_time <= time`.
     pub fn validate(&self) -> Result<(), String> {
         let o = &self.outputs;

@@ -563,8 +563,8 @@ mod tests {
         assert!(!steps_past_is_cheaper(1e-4, 0.0));
     }
 
-    /// Issue 14, 1a: a diverged segment chain once returned NaN and 1e254 N with fmi2OK. The
-    /// check every accepted step passes refuses both (and non-finite state coordinates).
+    /// A diverged segment chain can reach NaN and 1e254 N: the check every accepted step
+    /// passes refuses both (and non-finite state coordinates).
     #[test]
     fn diverged_states_and_outputs_are_refused() {
         let mut state = MechanismState::default();

@@ -2,8 +2,9 @@
 //! ([`RodBody`]), and the two models behind it.
 //!
 //! - [`body`]: the [`RodBody`] trait and the rod's material points;
-//! - [`ffr`]: the floating-frame-of-reference rod on component modes (seeds 000, 001);
-//! - [`segments`]: the finite segment chain (seed 002);
+//! - [`ffr`]: the floating-frame-of-reference rod on component modes (Agrawal and Shabana
+//!   1985; the CDI benchmark note of J. O'Shea);
+//! - [`segments`]: the finite segment chain (Huston 1991);
 //! - [`spec`]: what a scene says about the rod ([`RodSpec`], [`RodModelKind`]);
 //! - [`build`]: the rod a spec describes.
 

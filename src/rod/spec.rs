@@ -10,9 +10,9 @@ use crate::modal::ReferenceKind;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum RodModelKind {
-    /// Floating frame of reference with component modes (seeds 000 and 001).
+    /// Floating frame of reference with component modes (Agrawal and Shabana 1985).
     Ffr,
-    /// Rigid segments joined by rotational springs (seed 002).
+    /// Rigid segments joined by rotational springs (the finite segment method, Huston 1991).
     Segments,
 }
 
@@ -284,8 +284,8 @@ pub const MAX_AXIAL_MODES: usize = 8;
 
 /// With `rod.axial_modes` absent, the first axial mode is kept when the masses at C (slider
 /// and small end) reach this multiple of the rod's mass (end bodies included): a heavy piston,
-/// whose axial mode with the rod carries sudden slider forces into the pin forces (issue 11:
-/// the automotive rod's pin forces at firing were 2.6 % of peak off without it; 0.6 kg at C,
+/// whose axial mode with the rod carries sudden slider forces into the pin forces (the
+/// automotive rod's pin forces at firing were 2.6 % of peak off without it; 0.6 kg at C,
 /// 0.52 kg rod). Not lower: at 0.1, three of the 30 random parameter sets of
 /// tests/error_control.rs (light sliders, undamped) missed their tolerance by up to 1.6 times
 /// with the axial mode kept, so the error control with axial modes is established for heavy

@@ -1,5 +1,5 @@
 //! The geometrically exact reference: `tests/data/exudyn_ancf_150rad_s.csv`, the benchmark rod
-//! of seed 001 at a constant 150 rad/s from t = 0, undeformed start, computed once with Exudyn
+//! of the CDI parametric study at a constant 150 rad/s from t = 0, undeformed start, computed once with Exudyn
 //! ANCF cable elements (32 and 64 elements agree to < 1e-5 of the peak v_mid/L), sampled every
 //! 1e-4 s over two revolutions. [`read_rows`] reads any reference file under tests/data (also
 //! `exudyn_automotive_rod.csv`, tests/automotive_reference.rs).

@@ -3,7 +3,8 @@
 //! - [`runs`]: driving a scene through `flexrod::drive` and measuring a run (peaks, pointwise
 //!   differences), including runs that may end in a failed step;
 //! - [`exudyn`]: the geometrically exact reference, `tests/data/exudyn_ancf_150rad_s.csv`;
-//! - [`seeds`]: the frequency tables of seeds 000 and 001;
+//! - [`published_frequencies`]: the frequency tables of Agrawal and Shabana (1985) and of the
+//!   CDI benchmark note;
 //! - [`fragments`]: the generated-fragment convention (`docs/generated/<id>.md` embedded in
 //!   README.md and docs/ between markers) and [`check_generated`];
 //! - [`generated`]: tables assembled from parts measured by several tests, number formats.
@@ -14,8 +15,8 @@
 pub mod exudyn;
 pub mod fragments;
 pub mod generated;
+pub mod published_frequencies;
 pub mod runs;
-pub mod seeds;
 
 #[allow(unused_imports)]
 pub use fragments::{

@@ -1,4 +1,4 @@
-//! The report's engine section (issue 11): the automotive rod (`scenes/automotive_rod.toml`,
+//! The report's engine section: the automotive rod (`scenes/automotive_rod.toml`,
 //! undamped) in its engine run ([`flexrod::drive::engine`]: ramp to 6000 rpm, two revolutions,
 //! a 38 kN gas pulse) against the independent geometrically exact shear beam
 //! (`tests/data/exudyn_automotive_rod.csv`), for both rod models and several tolerances: the

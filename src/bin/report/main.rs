@@ -1,4 +1,4 @@
-//! `report`: error against run time of the rod models and solver settings (issue 6).
+//! `report`: error against run time of the rod models and solver settings.
 //!
 //! ```sh
 //! cargo run --release --bin report            # full matrix: docs/report/, docs/generated/
@@ -162,7 +162,7 @@ fn run_report(options: &Options) -> Result<Vec<Row>, String> {
         peaks.push((case.key, peak));
     }
     progress.finish();
-    println!("the automotive rod's engine run (issue 11) ...");
+    println!("the automotive rod's engine run ...");
     let engine_rows = engine::measure(quick)?;
     let engine_table = engine::table(&engine_rows);
     let out = &options.out;
@@ -174,7 +174,7 @@ fn run_report(options: &Options) -> Result<Vec<Row>, String> {
         seconds: clock.elapsed().as_secs_f64(),
     };
     let engine_section = format!(
-        "\n## The automotive rod in its engine run (issue 11)\n\n`scenes/automotive_rod.toml` undamped, ramp to 6000 rpm over 40 ms, two revolutions, a 38 kN gas pulse at firing (`flexrod::drive::engine`), against the geometrically exact shear beam `tests/data/exudyn_automotive_rod.csv`: largest pointwise differences relative to the reference's peaks (firing: 60 degrees before to 120 after the gas peak), and the median wall time of {} run(s).\n\n{engine_table}",
+        "\n## The automotive rod in its engine run\n\n`scenes/automotive_rod.toml` undamped, ramp to 6000 rpm over 40 ms, two revolutions, a 38 kN gas pulse at firing (`flexrod::drive::engine`), against the geometrically exact shear beam `tests/data/exudyn_automotive_rod.csv`: largest pointwise differences relative to the reference's peaks (firing: 60 degrees before to 120 after the gas peak), and the median wall time of {} run(s).\n\n{engine_table}",
         if quick { 1 } else { 3 }
     );
     write_file(

@@ -18,8 +18,8 @@ pub enum Model {
     /// FFR with axial stiffening, explicit RK4 with projection (`solver.method = "rk4"`).
     FfrRk4,
     /// FFR with axial stiffening, error-controlled (`solver.method = "auto"`: RK4(3) on the
-    /// closed-form minimal coordinates; Dormand-Prince on the general partitioned evaluation
-    /// before issue 12's speed work); `h` of the setting is `solver.tolerance`.
+    /// closed-form minimal coordinates, its exponential form where the modes leave the pins in
+    /// place); `h` of the setting is `solver.tolerance`.
     FfrAuto,
     /// The segment chain, error-controlled (`auto`: adaptive generalized-alpha); `h` is the
     /// tolerance.

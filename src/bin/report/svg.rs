@@ -1,6 +1,6 @@
 //! A hand-written SVG of error against run time: one log-log panel per case, one marker
 //! style per rod model, the Pareto front as a dashed line and the front of the fixed-step
-//! settings alone (what the report had before issue 12's error control) as a grey line.
+//! settings alone (without error control) as a grey line.
 
 /// One point of a panel.
 pub struct Point {
@@ -33,10 +33,10 @@ const COLOURS: [&str; 7] = [
     "#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#17becf",
 ];
 
-/// Models 0 to 3 of [`MODEL_NAMES`] step with a fixed step (the methods before issue 12).
+/// Models 0 to 3 of [`MODEL_NAMES`] step with a fixed step (no error control).
 const FIXED_STEP_MODELS: usize = 4;
 /// Colour of the fixed-step front.
-const OLD_FRONT: &str = "#bbbbbb";
+const FIXED_STEP_FRONT: &str = "#bbbbbb";
 
 /// The points no other point beats in both run time and error, by increasing run time.
 fn non_dominated<'a>(points: &[&'a &'a Point]) -> Vec<&'a Point> {
@@ -101,7 +101,7 @@ pub fn error_vs_runtime(title: &str, panels: &[Panel]) -> String {
         s += &format!("<text x=\"{}\" y=\"{}\">{name}</text>\n", x + 9.0, y + 4.0);
     }
     s += "<line x1=\"15\" x2=\"45\" y1=\"80\" y2=\"80\" stroke=\"black\" stroke-dasharray=\"4 2\"/><text x=\"50\" y=\"84\">Pareto front (all settings)</text>\n";
-    s += &format!("<line x1=\"355\" x2=\"385\" y1=\"80\" y2=\"80\" stroke=\"{OLD_FRONT}\" stroke-width=\"2\"/><text x=\"390\" y=\"84\">front of the fixed-step settings (the methods before issue 12)</text>\n");
+    s += &format!("<line x1=\"355\" x2=\"385\" y1=\"80\" y2=\"80\" stroke=\"{FIXED_STEP_FRONT}\" stroke-width=\"2\"/><text x=\"390\" y=\"84\">front of the fixed-step settings (no error control)</text>\n");
     for (i, panel) in panels.iter().enumerate() {
         let ox = pw * (i % cols) as f64;
         let oy = 95.0 + ph * (i / cols) as f64;
@@ -197,12 +197,12 @@ pub fn error_vs_runtime(title: &str, panels: &[Panel]) -> String {
         let mut front: Vec<&Point> = pts.iter().filter(|p| p.pareto).copied().collect();
         front.sort_by(|a, b| a.time.total_cmp(&b.time));
         s += &polyline(&front, "stroke=\"black\" stroke-dasharray=\"4 2\"");
-        // The front of the fixed-step methods alone (models 0 to 3, what the report had
-        // before issue 12's error control), for comparison with today's.
-        let old: Vec<&&Point> = pts.iter().filter(|p| p.model < FIXED_STEP_MODELS).collect();
+        // The front of the fixed-step methods alone (models 0 to 3, no error control), for
+        // comparison with the error-controlled ones.
+        let fixed: Vec<&&Point> = pts.iter().filter(|p| p.model < FIXED_STEP_MODELS).collect();
         s += &polyline(
-            &non_dominated(&old),
-            &format!("stroke=\"{OLD_FRONT}\" stroke-width=\"2\""),
+            &non_dominated(&fixed),
+            &format!("stroke=\"{FIXED_STEP_FRONT}\" stroke-width=\"2\""),
         );
         for p in &pts {
             s += &marker(p.model, px(p.time), py(p.error));

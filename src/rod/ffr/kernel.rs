@@ -1,9 +1,9 @@
 //! The FFR rod's precomputed data in fixed-size arrays for the minimal-coordinate right-hand
 //! side of the slider-crank (`mechanism::minimal`): the shape integrals of
-//! [`crate::modal::ShapeIntegrals`] (seed 000, eq. 3.17-3.18 and 6.2; docs/physics.md, "Rod
-//! model 1") for at most [`MAX_MODES`] retained modes, copied once when the rod is built, so
-//! that an evaluation runs on the stack with loops of a size known at compile time and pays
-//! no general library's per-call overhead.
+//! [`crate::modal::ShapeIntegrals`] (Agrawal and Shabana 1985, eq. 3.17-3.18 and 6.2;
+//! docs/physics.md, "Rod model 1") for at most [`MAX_MODES`] retained modes, copied once when
+//! the rod is built, so that an evaluation runs on the stack with loops of a size known at
+//! compile time and pays no general library's per-call overhead.
 //!
 //! Two combinations are formed once:
 //! - the velocity part of the axial stiffening is `-phi'^2 G_v p` in `Q_p` for every rod: for

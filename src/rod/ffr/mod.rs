@@ -1,5 +1,6 @@
 //! The floating frame of reference rod: rigid frame `(R, phi)` plus modal coordinates `p`
-//! (seed 000, sections 4-5; docs/physics.md, "Rod model 1").
+//! (O. P. Agrawal and A. A. Shabana, "Dynamic analysis of multibody systems using component
+//! modes", Computers & Structures 21(6), 1985, sections 4-5; docs/physics.md, "Rod model 1").
 
 pub mod kernel;
 pub mod points;

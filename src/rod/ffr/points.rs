@@ -55,7 +55,7 @@ impl FfrRod {
     }
 
     /// Body-frame position of the material point at arc length `s` from B,
-    /// `ubar(s) = (x_b + s, 0) + S_hat(s) p` (seed 000, eq. 3.5; `S_hat(s)` as
+    /// `ubar(s) = (x_b + s, 0) + S_hat(s) p` (Agrawal and Shabana 1985, eq. 3.5; `S_hat(s)` as
     /// `modal::point_shape`, the element's shape functions times the element rows of the
     /// mode shapes), summed in place without allocating. No chord foreshortening: it is
     /// applied at C alone ([`FfrRod::ubar`]).

@@ -4,8 +4,8 @@
 //! (rad, counter-clockwise), modal amplitudes p (unit modal mass). A material point at
 //! undeformed body-frame position `xbar` is at `r = R + A(phi) (xbar + S_hat p)`.
 //!
-//! Mass matrix (seed 000, eq. 3.17-3.18, in modal form eq. 6.2; docs/physics.md; re-derived from
-//! `T = 1/2 int rho r'.r'` with `r' = R' + phi' A I~ ubar + A S_hat p'`):
+//! Mass matrix (Agrawal and Shabana 1985, eq. 3.17-3.18, in modal form eq. 6.2; docs/physics.md;
+//! re-derived from `T = 1/2 int rho r'.r'` with `r' = R' + phi' A I~ ubar + A S_hat p'`):
 //! `M_RR = m I`, `M_Rphi = A I~ (I1 + I2 p)`, `M_Rp = A I2`,
 //! `M_phiphi = I3 + 2 I4 p + p^T M_uu p` (M_uu = M_ff without nodal rotary inertia), `M_phip = -(I5 + p^T S~) + I_rot`, `M_pp = M_ff`.
 //! Quadratic velocity vector (from the velocity-product part of

@@ -13,7 +13,8 @@
 //!   t_C = 0` give `y_0 = t_B` and the massless `t_C` (2 N modes: N - 1 bending, N + 1 shear);
 //! - fixed-fixed axial (both pins also hold the ends along the rod): `x_B = 0`,
 //!   `x_C - L = sum_j s_j = 0` (N - 2 modes);
-//! - free-free axial (seed 002's convergence table, "Illustrations/convergence"): `x_B` and all
+//! - free-free axial (Huston 1991, the convergence table of
+//!   "Illustrations/convergence"): `x_B` and all
 //!   `s_j` free; the rigid translation (`omega = 0`) is dropped (N - 1 modes).
 //!
 //! The free-free axial chain is `N` masses `m = rho A l` joined by `N - 1` springs
@@ -227,7 +228,7 @@ impl LinearizedChain {
     }
 }
 
-/// Axial frequencies of the free-free segment chain of a rod (seed 002, table II), Hz,
+/// Axial frequencies of the free-free segment chain of a rod (Huston 1991, table II), Hz,
 /// ascending: `n_segments` rigid segments with axial springs `E A / l` in prismatic joints,
 /// from the linearized [`SegmentRod`] (its own mass matrix and springs). `N - 1` values.
 pub fn axial_chain_frequencies_hz(

@@ -1,25 +1,26 @@
-//! The finite segment rod (seed 002, `002_e6c2c81d944c25fc.txt`; docs/physics.md,
-//! "Rod model 2: finite segments"): `N` rigid segments joined by revolute joints with
+//! The finite segment rod (R. L. Huston, "Computer methods in flexible multibody dynamics",
+//! International Journal for Numerical Methods in Engineering 32, 1991; docs/physics.md, "Rod
+//! model 2: finite segments"): `N` rigid segments joined by revolute joints with
 //! rotational springs and dampers, optionally with prismatic joints carrying axial springs.
 //!
 //! - [`rod`]: the chain's data and construction ([`SegmentRod`]); [`kinematics`]: its points;
 //!   [`body`]: mass matrix, quadratic velocity vector, joint forces, energies (the derivation
 //!   follows below);
 //! - [`linear`]: the chain linearized about the straight configuration: pinned-pinned
-//!   bending and axial frequencies, and the free-free axial chain of seed 002's convergence
+//!   bending and axial frequencies, and the free-free axial chain of Huston's convergence
 //!   table ([`axial_chain_frequencies_hz`]).
 //!
-//! # The derivation (seed 002, "Flexibility effects" and "Illustrations/convergence")
+//! # The derivation (Huston 1991, "Flexibility effects" and "Illustrations/convergence")
 //!
 //! # Model
-//! The rod of length `L` (m) is cut into `N` rigid segments `k = 0..N-1` (0-based here; seed
-//! 002 counts from 1) of length `l = L/N`, mass `m = rho A l` (kg) and centroidal inertia
+//! The rod of length `L` (m) is cut into `N` rigid segments `k = 0..N-1` (0-based here; Huston
+//! counts from 1) of length `l = L/N`, mass `m = rho A l` (kg) and centroidal inertia
 //! `I_c = m l^2 / 12` (kg m^2). Segment `k` and `k+1` meet in joint `k` (`k = 0..N-2`): a
 //! revolute joint with a rotational spring `k_r` (N m/rad) and damper `c_r` (N m s/rad) and,
 //! with `rod.axial_springs`, a prismatic joint along segment `k` with an axial spring
-//! `k_a = E A / l` (N/m) and damper `c_a` (N s/m). As in seed 002, flexibility and damping live
+//! `k_a = E A / l` (N/m) and damper `c_a` (N s/m). As in Huston 1991, flexibility and damping live
 //! in the joints only ("a lumped parameter method with the flexibility and damping modelled at
-//! the joints"); planar, so one angle per segment and no Euler parameters (seed 002 says so).
+//! the joints"); planar, so one angle per segment and no Euler parameters (Huston says so).
 //!
 //! # Coordinates
 //! `q = [x_B, y_B, theta_0, .., theta_{N-1}, s_0, .., s_{N-2}]`: the free end B of segment 0
@@ -33,11 +34,11 @@
 //! B is `r_0(0)`, C is `r_{N-1}(l)`, the midpoint is the material point at arc length `L/2`
 //! (the centre of the middle segment for odd `N`, the start of segment `N/2` for even `N`).
 //!
-//! Seed 002 uses relative coordinates (the joint rotations `phi_k = theta_k - theta_{k-1}`) as
+//! Huston uses relative coordinates (the joint rotations `phi_k = theta_k - theta_{k-1}`) as
 //! generalized speeds with Kane's equations. Absolute angles are the linear change
 //! `theta = T phi` (`T` lower triangular of ones); Kane's equations in the relative speeds are
 //! `T^T` times the equations here, so the dynamics are the same. The joint springs, single
-//! entries in relative coordinates (seed 002's decoupling), are tridiagonal here; in exchange
+//! entries in relative coordinates (Huston's decoupling), are tridiagonal here; in exchange
 //! the mass matrix stays as well conditioned as the chain itself and the pin constraint rows
 //! are plain.
 //!
@@ -65,7 +66,7 @@
 //! `Q_v,s_j = -m e_j . G_j`, computed in O(N). It equals `-(M' q' - dT/dq)` of Lagrange's
 //! equations (checked in tests/segments.rs).
 //!
-//! Joint forces (seed 002 eq. 33-36: one spring or damper component per generalized force in
+//! Joint forces (Huston, eq. 33-36: one spring or damper component per generalized force in
 //! relative coordinates): the moment of joint `j` on segment `j`,
 //! `tau_j = k_r (theta_{j+1} - theta_j) + c_r (theta_{j+1}' - theta_j')`, enters
 //! `Q_theta_j += tau_j`, `Q_theta_{j+1} -= tau_j`; the axial force `-(k_a s_j + c_a s_j')`
@@ -133,7 +134,7 @@
 //! damper). A body lumped into the end segment would turn with the segment's middle, not with
 //! the section at the pin, and push its inertia force through the half segment's shear and
 //! bending springs instead of straight into the pin: errors first order in `l` (1.6 % in `v_mid`
-//! of the automotive rod at 32 segments, 0.2 % now). Coordinates after the shear slides:
+//! of the automotive rod at 32 segments, against 0.2 % with the rotation coordinates). Coordinates after the shear slides:
 //! `phi_B` if the big end has an inertia, then `phi_C` if the small end has one.
 //!
 //! Geometric exactness: the segments move rigidly with the exact kinematics, so the axial
@@ -154,7 +155,7 @@ pub use rod::SegmentRod;
 use crate::error::ModelError;
 
 /// Smallest and largest number of segments (`rod.elements`) the segment rod accepts
-/// (issue 14: the chain failed from 130 segments; 128 run the benchmark, `tests/abuse.rs`).
+/// (from 130 segments the chain fails; 128 run the benchmark, `tests/abuse.rs`).
 pub const SEGMENT_RANGE: (usize, usize) = (1, 128);
 
 /// Check the number of segments `n` (`rod.elements`) against [`SEGMENT_RANGE`].

@@ -67,8 +67,8 @@ pub fn matrix(quick: bool) -> Vec<Setting> {
             v.push(Setting::auto(8, modes, tol));
         }
     }
-    // The Dormand-Prince pair on the same closed-form minimal coordinates (what `auto` took
-    // before RK4(3) won on these cases).
+    // The Dormand-Prince pair on the same closed-form minimal coordinates (for comparison with
+    // the RK4(3) pair `auto` takes).
     for tol in [1e-2, 3e-3, 1e-3, 3e-4] {
         v.push(Setting::dopri5(8, 3, tol));
     }
