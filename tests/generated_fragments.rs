@@ -338,7 +338,9 @@ fn model_variables(xml: &str) -> (Vec<Variable>, std::collections::BTreeMap<Stri
             .collect()
     };
     loop {
-        let event = reader.read_event().expect("a well-formed model description");
+        let event = reader
+            .read_event()
+            .expect("a well-formed model description");
         let (element, empty) = match &event {
             Event::Start(e) => (e, false),
             Event::Empty(e) => (e, true),
@@ -506,7 +508,10 @@ fn variable_table_is_the_model_descriptions() {
         "rod.deflection_policy",
         "crank.angle",
     ] {
-        assert!(table.contains(&format!("`{name}`")), "{name} missing:\n{table}");
+        assert!(
+            table.contains(&format!("`{name}`")),
+            "{name} missing:\n{table}"
+        );
     }
     common::check_generated("variables", &table);
 }
