@@ -408,7 +408,7 @@ fn model_variables(xml: &str) -> (Vec<Variable>, std::collections::BTreeMap<Stri
 /// `0.0` as `0`.
 fn plain_number(s: &str) -> String {
     match s.parse::<f64>() {
-        Ok(x) if x == 0.0 => "0".into(),
+        Ok(0.0) => "0".into(),
         Ok(x) if x.abs() >= 1e5 || x.abs() < 1e-3 => {
             let e = format!("{x:e}");
             e.replace("e-0", "e-")
