@@ -467,3 +467,32 @@ fn paths_links_and_anchors_are_read_as_written() {
         ["a-title", "a-title-1", "mass-matrix-srcrodffrrodrs"]
     );
 }
+
+#[test]
+fn readme_scene_examples_are_scenes_that_build() {
+    let text = std::fs::read_to_string(repository().join("README.md")).expect("read README.md");
+    let mut scenes = 0;
+    let mut block: Option<String> = None;
+    for line in text.lines() {
+        match (&mut block, line.trim_start()) {
+            (None, "```toml") => block = Some(String::new()),
+            (Some(b), "```") => {
+                // A complete scene names its FMU; partial examples do not.
+                if b.lines().any(|l| l.starts_with("name =")) {
+                    let scene = flexrod::Scene::from_toml_str(b, "README.md")
+                        .unwrap_or_else(|e| panic!("README.md's scene does not parse: {e}"));
+                    flexrod::Simulation::new(&scene)
+                        .unwrap_or_else(|e| panic!("README.md's scene does not build: {e}"));
+                    scenes += 1;
+                }
+                block = None;
+            }
+            (Some(b), _) => {
+                b.push_str(line);
+                b.push('\n');
+            }
+            (None, _) => {}
+        }
+    }
+    assert!(scenes >= 1, "README.md shows no complete scene");
+}
