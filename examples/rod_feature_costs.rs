@@ -2,8 +2,10 @@
 //! revolutions at 6000 rpm (2000 communication steps of 1e-5 s) with the 38 kN gas pulse of
 //! tests/real_rod_mechanics.rs, run with and without each feature; the median wall time of
 //! several repeats. `cargo run --release --example rod_feature_costs` prints the table;
-//! `-- --write` also writes docs/generated/rod-feature-costs.md (embedded in README.md). Times
-//! depend on the machine and its load: a reader reruns the command.
+//! `-- --write` (or `FLEXROD_BLESS=1`) also writes docs/generated/rod-feature-costs.md (embedded
+//! in docs/performance.md). Times depend on the machine and its load: a reader reruns the
+//! command. The internal steps do not: `tests/rod_feature_costs.rs` (which includes this file
+//! for [`cases`] and [`run`]) recomputes them and fails when the fragment's differ.
 
 use flexrod::scene::{RodModelKind, SolverMethod};
 use flexrod::{CrankInput, Scene, Simulation};
@@ -13,8 +15,11 @@ fn gas(theta: f64) -> f64 {
     -38.0e3 * (-d * d).exp()
 }
 
+/// The fragment this example writes.
+pub const FRAGMENT: &str = "docs/generated/rod-feature-costs.md";
+
 /// One run; (seconds, internal steps).
-fn run(scene: &Scene) -> (f64, u64) {
+pub fn run(scene: &Scene) -> (f64, u64) {
     let w = scene.experiment.crank_speed;
     let dt = scene.experiment.step_size;
     let n = ((scene.experiment.stop_time - scene.experiment.start_time) / dt).round() as usize;
@@ -35,8 +40,8 @@ fn run(scene: &Scene) -> (f64, u64) {
     (clock.elapsed().as_secs_f64(), sim.stats().steps)
 }
 
-fn main() {
-    let write = std::env::args().any(|a| a == "--write");
+/// The rows of the table: (name, scene), the shipped automotive rod first.
+pub fn cases() -> Vec<(&'static str, Scene)> {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/automotive_rod.toml");
     let base = Scene::from_file(std::path::Path::new(path)).unwrap();
     let with = |f: &dyn Fn(&mut Scene)| {
@@ -127,6 +132,13 @@ fn main() {
             }),
         ),
     ];
+    cases
+}
+
+fn main() {
+    let write = std::env::args().any(|a| a == "--write")
+        || std::env::var_os("FLEXROD_BLESS").is_some_and(|v| v == "1");
+    let cases = cases();
     let mut table = String::from(
         "| automotive rod, 2 revolutions at 6000 rpm with the gas pulse | wall time (median of 5) | relative | internal steps |\n|---|---|---|---|\n",
     );
@@ -151,11 +163,8 @@ fn main() {
         table += &row;
     }
     if write {
-        let out = concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/docs/generated/rod-feature-costs.md"
-        );
-        std::fs::write(out, &table).unwrap();
-        println!("wrote {out}");
+        let out = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(FRAGMENT);
+        std::fs::write(&out, &table).unwrap();
+        println!("wrote {}", out.display());
     }
 }

@@ -298,3 +298,242 @@ fn check_generated_accepts_a_current_fragment_and_shows_a_stale_line() {
         "{message}"
     );
 }
+
+/// One `ScalarVariable` of a model description, as the README's variable table shows it.
+#[derive(Debug, Default, Clone, PartialEq)]
+struct Variable {
+    name: String,
+    value_reference: String,
+    causality: String,
+    description: String,
+    /// `Real`, `Integer`, `Enumeration`, ...
+    kind: String,
+    declared_type: String,
+    unit: String,
+    min: String,
+    max: String,
+    start: String,
+}
+
+/// The variables of a model description, and the items of each enumeration type
+/// (`name=value` pairs, by type name).
+fn model_variables(xml: &str) -> (Vec<Variable>, std::collections::BTreeMap<String, String>) {
+    use quick_xml::events::Event;
+    let mut reader = quick_xml::Reader::from_str(xml);
+    let mut variables = Vec::new();
+    let mut enums = std::collections::BTreeMap::new();
+    let mut current: Option<Variable> = None;
+    let mut simple_type: Option<String> = None;
+    let attributes = |e: &quick_xml::events::BytesStart| -> Vec<(String, String)> {
+        e.attributes()
+            .map(|a| {
+                let a = a.expect("a well-formed attribute");
+                (
+                    a.key.as_ref().to_string(),
+                    a.normalized_value(quick_xml::XmlVersion::Implicit1_0)
+                        .expect("an attribute value")
+                        .into_owned(),
+                )
+            })
+            .collect()
+    };
+    loop {
+        let event = reader
+            .read_event()
+            .expect("a well-formed model description");
+        let (element, empty) = match &event {
+            Event::Start(e) => (e, false),
+            Event::Empty(e) => (e, true),
+            Event::End(e) => {
+                match e.name().as_ref() {
+                    "ScalarVariable" => variables.extend(current.take()),
+                    "SimpleType" => simple_type = None,
+                    _ => {}
+                }
+                continue;
+            }
+            Event::Eof => break,
+            _ => continue,
+        };
+        let attrs = attributes(element);
+        let get = |key: &str| {
+            attrs
+                .iter()
+                .find(|(k, _)| k == key)
+                .map(|(_, v)| v.clone())
+                .unwrap_or_default()
+        };
+        match element.name().as_ref() {
+            "SimpleType" if !empty => simple_type = Some(get("name")),
+            "Item" => {
+                if let Some(t) = &simple_type {
+                    let items: &mut String = enums.entry(t.clone()).or_default();
+                    if !items.is_empty() {
+                        items.push_str(", ");
+                    }
+                    items.push_str(&format!("`{}`={}", get("name"), get("value")));
+                }
+            }
+            "ScalarVariable" => {
+                let v = Variable {
+                    name: get("name"),
+                    value_reference: get("valueReference"),
+                    causality: get("causality"),
+                    description: get("description"),
+                    ..Default::default()
+                };
+                if empty {
+                    variables.push(v);
+                } else {
+                    current = Some(v);
+                }
+            }
+            kind @ ("Real" | "Integer" | "Enumeration" | "Boolean" | "String") => {
+                if let Some(v) = current.as_mut() {
+                    v.kind = kind.to_string();
+                    v.declared_type = get("declaredType");
+                    v.unit = get("unit");
+                    v.min = get("min");
+                    v.max = get("max");
+                    v.start = get("start");
+                }
+            }
+            _ => {}
+        }
+    }
+    (variables, enums)
+}
+
+/// A model description's number as the table shows it: `206800000000.0` as `2.068e11`,
+/// `0.0` as `0`.
+fn plain_number(s: &str) -> String {
+    match s.parse::<f64>() {
+        Ok(0.0) => "0".into(),
+        Ok(x) if x.abs() >= 1e5 || x.abs() < 1e-3 => {
+            let e = format!("{x:e}");
+            e.replace("e-0", "e-")
+        }
+        Ok(x) => format!("{x}"),
+        Err(_) => s.to_string(),
+    }
+}
+
+/// The README's variable table: one row per variable of the default scene's committed model
+/// description (`modelDescription/modelDescription.xml`, kept identical to what the code
+/// generates by `tests/model_description.rs`); array elements `name[1]`, `name[2]`, ... that
+/// differ only in their index share one row.
+fn variable_table(xml: &str) -> String {
+    let (variables, enums) = model_variables(xml);
+    let mut out = String::from(
+        "<!-- written by `FLEXROD_BLESS=1 cargo test --release --test generated_fragments variable_table` from modelDescription/modelDescription.xml: rerun it, do not edit -->\n\
+         | name | vr | causality | type, unit | range | start | description |\n\
+         |---|---|---|---|---|---|---|\n",
+    );
+    let base = |name: &str| -> Option<(String, u32)> {
+        let (stem, rest) = name.split_once('[')?;
+        let k = rest.strip_suffix(']')?.parse().ok()?;
+        Some((stem.to_string(), k))
+    };
+    let mut k = 0;
+    while k < variables.len() {
+        let v = &variables[k];
+        // A run of array elements stem[1], stem[2], ... with the same attributes.
+        let mut last = k;
+        if let Some((stem, 1)) = base(&v.name) {
+            while last + 1 < variables.len() {
+                let w = &variables[last + 1];
+                let same = base(&w.name) == Some((stem.clone(), (last + 2 - k) as u32))
+                    && (&w.causality, &w.kind, &w.unit, &w.min, &w.max, &w.start)
+                        == (&v.causality, &v.kind, &v.unit, &v.min, &v.max, &v.start);
+                if !same {
+                    break;
+                }
+                last += 1;
+            }
+        }
+        let (name, vr, description) = if last > k {
+            let (stem, _) = base(&v.name).unwrap();
+            (
+                format!("`{stem}[k]`, k = 1..{}", last - k + 1),
+                format!("{}..{}", v.value_reference, variables[last].value_reference),
+                v.description.replace(" 1 ", " k "),
+            )
+        } else {
+            (
+                format!("`{}`", v.name),
+                v.value_reference.clone(),
+                v.description.clone(),
+            )
+        };
+        let kind = if v.unit.is_empty() {
+            v.kind.clone()
+        } else {
+            format!("{}, {}", v.kind, v.unit)
+        };
+        let range = if v.kind == "Enumeration" {
+            enums.get(&v.declared_type).cloned().unwrap_or_default()
+        } else {
+            match (v.min.is_empty(), v.max.is_empty()) {
+                (true, true) => String::new(),
+                (false, true) => format!(">= {}", plain_number(&v.min)),
+                (true, false) => format!("<= {}", plain_number(&v.max)),
+                (false, false) => {
+                    format!("{} .. {}", plain_number(&v.min), plain_number(&v.max))
+                }
+            }
+        };
+        let start = if v.start.is_empty() {
+            String::new()
+        } else {
+            plain_number(&v.start)
+        };
+        out += &format!(
+            "| {name} | {vr} | {} | {kind} | {range} | {start} | {} |\n",
+            v.causality,
+            description.replace('|', "\\|")
+        );
+        k = last + 1;
+    }
+    out
+}
+
+#[test]
+fn variable_table_is_the_model_descriptions() {
+    let xml = std::fs::read_to_string(repository().join("modelDescription/modelDescription.xml"))
+        .expect("read modelDescription/modelDescription.xml");
+    let table = variable_table(&xml);
+    for name in [
+        "solver.tolerance",
+        "rod.deflection_limit",
+        "rod.deflection_policy",
+        "crank.angle",
+    ] {
+        assert!(
+            table.contains(&format!("`{name}`")),
+            "{name} missing:\n{table}"
+        );
+    }
+    common::check_generated("variables", &table);
+}
+
+#[test]
+fn variable_table_reads_every_kind_of_variable() {
+    let xml = r#"<fmiModelDescription><TypeDefinitions>
+      <SimpleType name="M"><Enumeration><Item name="a" value="1"/><Item name="b" value="2"/></Enumeration></SimpleType>
+      </TypeDefinitions><ModelVariables>
+      <ScalarVariable name="x" valueReference="1" description="X &amp; Y" causality="input"><Real unit="m" min="0.0" start="206800000000.0"/></ScalarVariable>
+      <ScalarVariable name="m" valueReference="2" description="model" causality="parameter"><Enumeration declaredType="M" start="1"/></ScalarVariable>
+      <ScalarVariable name="f[1]" valueReference="11" description="Frequency 1 of it" causality="calculatedParameter"><Real unit="Hz"/></ScalarVariable>
+      <ScalarVariable name="f[2]" valueReference="12" description="Frequency 2 of it" causality="calculatedParameter"><Real unit="Hz"/></ScalarVariable>
+      </ModelVariables></fmiModelDescription>"#;
+    let table = variable_table(xml);
+    let rows: Vec<&str> = table.lines().skip(3).collect();
+    assert_eq!(
+        rows,
+        [
+            "| `x` | 1 | input | Real, m | >= 0 | 2.068e11 | X & Y |",
+            "| `m` | 2 | parameter | Enumeration | `a`=1, `b`=2 | 1 | model |",
+            "| `f[k]`, k = 1..2 | 11..12 | calculatedParameter | Real, Hz |  |  | Frequency k of it |",
+        ]
+    );
+}

@@ -1,7 +1,9 @@
 //! Generated fragments: the files, the embedded blocks and their check.
 //!
-//! Every number in the README comes from a command a reader can rerun, and is regenerated or
-//! checked when the code changes. A number produced by a program or a test lives in a
+//! Every number in README.md and docs/ comes from a command a reader can rerun, and is
+//! regenerated or checked when the code changes (a fragment written by an example, such as
+//! `rod-feature-costs`, needs a test that recomputes what does not depend on the machine:
+//! `tests/rod_feature_costs.rs`). A number produced by a program or a test lives in a
 //! *generated fragment*: a Markdown file `docs/generated/<id>.md` (`<id>` lowercase letters,
 //! digits and dashes, e.g. `report-front`), written by the program or test that measures it.
 //! README.md and the Markdown files under docs/ embed a fragment between two whole lines,
