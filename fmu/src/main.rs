@@ -42,7 +42,39 @@ struct Args {
 
 const USAGE: &str = "usage: fmu [SCENE.toml] [--out DIR] [--fmi 2|3] [--simulate] [--csv FILE] [--accel A] [--steps H1,H2,...] [--no-package]";
 
-fn parse_args() -> Result<Args, String> {
+/// `--help`: the usage with what each option does.
+const HELP: &str = "\
+Export a flexrod scene as FMI 2.0 and FMI 3.0 Co-Simulation FMUs, and run its default experiment.
+
+usage: fmu [SCENE.toml] [--out DIR] [--fmi 2|3] [--simulate] [--csv FILE] [--accel A] [--steps H1,H2,...] [--no-package]
+       (cargo run --release -p fmu -- ...)
+
+  SCENE.toml     the scene (default: scenes/benchmark.toml)
+  --out DIR      write the FMUs into DIR (default: <target>/fmu)
+  --fmi 2|3      write only the FMI 2.0 or only the FMI 3.0 FMU (default: both)
+  --no-package   do not build and write FMUs
+  --simulate     run the scene's default experiment in-process and print a summary
+  --csv FILE     with --simulate (implied): write the outputs at the communication points
+  --accel A      with --simulate: a constant crank acceleration A, rad/s^2 (finite)
+  --steps H1,... with --simulate: cycle through these communication steps, s (each > 0)
+  -h, --help     print this help
+
+Exit codes: 0 done, 1 packaging or the run failed, 2 a bad command line.";
+
+/// Why the packager stops: a bad command line (exit code 2) or a failure (exit code 1).
+enum Failure {
+    Usage(String),
+    Run(String),
+}
+
+impl From<String> for Failure {
+    fn from(message: String) -> Self {
+        Failure::Run(message)
+    }
+}
+
+/// The arguments, or `None` for `--help`.
+fn parse_args() -> Result<Option<Args>, String> {
     let workspace = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let mut args = Args {
         scene: workspace.join("scenes/benchmark.toml"),
@@ -98,16 +130,19 @@ fn parse_args() -> Result<Args, String> {
                 }
                 args.steps = Some(steps);
             }
-            "-h" | "--help" => return Err(USAGE.to_string()),
+            "-h" | "--help" => return Ok(None),
             flag if flag.starts_with('-') => return Err(format!("unknown option {flag}\n{USAGE}")),
             path => args.scene = PathBuf::from(path),
         }
     }
-    Ok(args)
+    Ok(Some(args))
 }
 
-fn run() -> Result<(), String> {
-    let args = parse_args()?;
+fn run() -> Result<(), Failure> {
+    let Some(args) = parse_args().map_err(Failure::Usage)? else {
+        println!("{HELP}");
+        return Ok(());
+    };
 
     let scene_text = std::fs::read_to_string(&args.scene)
         .map_err(|e| format!("cannot read the scene {}: {e}", args.scene.display()))?;
@@ -170,7 +205,11 @@ fn run() -> Result<(), String> {
 fn main() -> ExitCode {
     match run() {
         Ok(()) => ExitCode::SUCCESS,
-        Err(message) => {
+        Err(Failure::Usage(message)) => {
+            eprintln!("fmu: error: {message}");
+            ExitCode::from(2)
+        }
+        Err(Failure::Run(message)) => {
             eprintln!("fmu: error: {message}");
             ExitCode::FAILURE
         }

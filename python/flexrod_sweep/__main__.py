@@ -1,4 +1,7 @@
-"""python -m flexrod_sweep SPEC.toml --out DIR [--scheduler ADDRESS] [--workers N]"""
+"""flexrod-sweep SPEC.toml --out DIR [--scheduler ADDRESS] [--workers N]
+
+The console script `flexrod-sweep` (installed with the package) and `python -m flexrod_sweep`
+are the same command. Exit codes: 0 done, 2 a bad command line or spec (nothing run)."""
 
 import argparse
 import sys
@@ -8,8 +11,9 @@ from .sweep import run_sweep
 
 
 def main(argv=None):
+    """Run the command with `argv` (default: sys.argv[1:]); returns the exit code."""
     p = argparse.ArgumentParser(
-        prog="python -m flexrod_sweep",
+        prog="flexrod-sweep",
         description="Parameter sweep of the flexrod FMU on Dask; writes DIR/results.csv and charts. "
         "Rerunning with the same DIR skips the runs already in results.csv.",
     )

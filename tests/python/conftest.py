@@ -1,4 +1,4 @@
-"""Session fixtures: the packaged FMUs (built once through the packager) and the core's
+"""Fixtures built once per test run: the packaged FMUs (through the packager) and the core's
 reference results."""
 
 import shutil
@@ -10,7 +10,7 @@ from fmpy import extract
 from helpers import ROOT, build_fmu, reference
 
 
-# Every FMU test runs on both rod models (issue 5: the segments FMU passes the same tests).
+# Every FMU test runs on both rod models (the segments FMU passes the same tests).
 MODELS = ["ffr", "segments"]
 
 

@@ -1,6 +1,6 @@
-"""Issue 7: four instances of the rod FMU coupled through FMPy to a crankshaft integrated by the
+"""Four instances of the rod FMU coupled through FMPy to a crankshaft integrated by the
 master (examples/engine/engine.py): energy consistency of the coupled system and the rigid-rod
-limit against the closed-form rigid engine. Uses the session's default FMU (internal step 1e-4 s).
+limit against the closed-form rigid engine. Uses the default FMU fixture (internal step 1e-4 s).
 """
 
 import math
@@ -118,6 +118,6 @@ def test_rigid_limit(bank, engine):
         # a stiff flexible rod (E x 100) approaches the rigid engine: the same coupling error plus
         # the elastic effect, O(1/E). (At E x 1000 Gauss-Seidel's linear torque extrapolation
         # diverges at dt = 1e-4 when the FMU's internal step is 5e-5: the rods' stiff modes ring
-        # in the torque; Jacobi stays within 1.4 % of the fluctuation. README, issue 7.)
+        # in the torque; Jacobi stays within 1.4 % of the fluctuation. README, "System-level coupling".)
         es = errs[("E x 1e2", scheme, 1e-4)]
         assert abs(es - e4) < 0.01 * fluct, (es, e4)

@@ -1,4 +1,4 @@
-"""Issue 14: rod.deflection_limit and rod.deflection_policy (1 warn, 2 discard, 3 error) through
+"""rod.deflection_limit and rod.deflection_policy (1 warn, 2 discard, 3 error) through
 fmpy, on both rod models. A refused step keeps the state from before it."""
 
 import pytest

@@ -1,4 +1,4 @@
-"""The FMI 3.0 Co-Simulation FMU (issue 16): written by the packager beside the FMI 2.0 one from
+"""The FMI 3.0 Co-Simulation FMU: written by the packager beside the FMI 2.0 one from
 the same scene and the same library. fmpy validates it; fmpy simulates it to the FMI 2.0 FMU's
 results within 1e-12 of peak (both rod models); FMU states and their serialization are bit
 exact; the crank acceleration is the input `crank.acceleration`; the arrays `rod.shape` and

@@ -1,4 +1,4 @@
-"""The FMU in importers other than fmpy (issue 13): libcosim (Open Simulation Platform, through
+"""The FMU in importers other than fmpy: libcosim (Open Simulation Platform, through
 libcosimpy), and a fixed-step C master (tests/c_master/master.c) that declares the stop time
 in fmi2SetupExperiment. Each runs the default experiment, also with the rod model and the
 reference conditions switched by parameter, and agrees with fmpy to 1e-9 of each output's

@@ -1,5 +1,5 @@
 """Every message the FMU sends to the importer's logger reads as text meant for a user: no
-Rust debug formatting of optional values ("Some(...)", "None") leaks into it (issue 13).
+Rust debug formatting of optional values ("Some(...)", "None") leaks into it.
 Messages are collected through fmpy's logger callback, with every log category on."""
 
 import math

@@ -104,8 +104,8 @@ def test_end_masses_and_shear_modulus_act_on_the_model(automotive_unzipdir):
 
 
 def test_both_rod_models_run_the_shear_deformable_rod_and_say_what_they_keep(automotive_unzipdir):
-    """Issue 11: the automotive rod (shear deformation, end bodies, stress outputs) through the
-    FMU as the FFR rod and as the segment chain (shear slides since issue 11; rejected before).
+    """The automotive rod (shear deformation, end bodies, stress outputs) through the
+    FMU as the FFR rod and as the segment chain (shear deformation as slides between the segments).
     With logging on, fmi2ExitInitializationMode says which modes the FFR rod keeps (bending and
     axial) and what the chain has. Both spin up from rest at a constant 31416 rad/s^2 to
     628 rad/s in 20 ms (the scene's 2 % damping lets the start transient die out) and end with

@@ -1,6 +1,7 @@
-"""The sweep tool (python/flexrod_sweep, issue 15): bad specs rejected before any run, failed runs
+"""The sweep tool (python/flexrod_sweep): bad specs rejected before any run, failed runs
 kept as rows, resumable results, and the same metrics, bit for bit, in this process and on a
-dask.distributed cluster (scheduler and two workers as separate processes, loopback only)."""
+dask.distributed cluster (scheduler and two workers as separate processes, loopback only); the
+installed console script `flexrod-sweep`."""
 
 import csv
 import os
@@ -77,6 +78,24 @@ def test_bad_spec_is_rejected_before_any_run(default_fmu, tmp_path, edit, messag
     res = cli(spec, "--out", tmp_path / "out_cli", "--workers", "0", check=False)
     assert res.returncode == 2 and message in res.stderr, res.stderr
     assert not (tmp_path / "out_cli" / "results.csv").exists()
+
+
+def test_console_script_help_and_bad_spec(tmp_path):
+    """The `flexrod-sweep` console script of the installed package: --help exits 0, a bad spec
+    exits 2 with the spec's error on stderr and writes nothing."""
+    script = BIN / "flexrod-sweep"
+    assert script.is_file(), f"{script}: not installed (pip install -e python)"
+    res = subprocess.run([str(script), "--help"], capture_output=True, text=True, timeout=120)
+    assert res.returncode == 0, res.stderr
+    assert res.stdout.startswith("usage: flexrod-sweep") and "--out" in res.stdout, res.stdout
+    spec = write_spec(tmp_path, 'name = "bad"\n[fmu]\npath = "x.fmu"\n[parmeters]\n')
+    res = subprocess.run([str(script), str(spec), "--out", str(tmp_path / "out"), "--workers", "0",
+                          "--no-progress"], capture_output=True, text=True, timeout=120)
+    assert res.returncode == 2, (res.stdout, res.stderr)
+    assert "unknown table(s) ['parmeters']" in res.stderr, res.stderr
+    assert not (tmp_path / "out").exists()
+    res = subprocess.run([str(script), str(spec)], capture_output=True, text=True, timeout=120)
+    assert res.returncode == 2 and "--out" in res.stderr, res.stderr
 
 
 def test_latin_hypercube_expansion(default_fmu, tmp_path):

@@ -1,4 +1,4 @@
-"""Integer twins of the Enumeration parameters (issue 13): rod.model_index and
+"""Integer twins of the Enumeration parameters: rod.model_index and
 rod.reference_index are a second name, of type Integer, for rod.model and rod.reference, so
 that masters which ignore Enumeration variables can switch them. One value with two names:
 setting either sets both, the last value set wins (also within one fmi2SetInteger call)."""

@@ -1,14 +1,21 @@
 //! `flexrod`: the command-line tool of the core.
 //!
 //! - `flexrod modes [SCENE] [--csv FILE]`: the rod's frequency table and mode shapes.
-//! - `flexrod simulate [SCENE] [--speed W] [--revolutions N] [--ramp T] [--input CSV] [--out CSV] [--plot PREFIX]`:
-//!   simulate the slider-crank, write every output at each communication step, and plot
-//!   v_mid/L and the pin forces against the crank angle (PREFIX_deflection.svg, PREFIX_forces.svg).
+//! - `flexrod simulate [SCENE] [--speed W] [--revolutions N] [--ramp T] [--step H] [--input CSV]
+//!   [--out CSV] [--plot PREFIX]`: simulate the slider-crank, write every output at each
+//!   communication point, and plot v_mid/L and the pin forces against the crank angle in
+//!   degrees (PREFIX_deflection.svg, PREFIX_forces.svg).
+//!
+//! `flexrod --help` and `flexrod COMMAND --help` describe every option. Exit codes: 0 done,
+//! 1 the model or a file failed, 2 a bad command line (unknown option, value out of range).
 
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
+
+use clap::error::ErrorKind;
+use clap::{CommandFactory, Parser, Subcommand};
 
 mod svg_plot;
 
@@ -18,56 +25,149 @@ use flexrod::modal::{ComponentModes, ModeSelection, ReferenceConditions};
 use flexrod::scene::{RodModelKind, Scene};
 use flexrod::Simulation;
 
+/// The most communication points one `simulate` run records (each holds the time, the crank
+/// input and the outputs: 10^7 points take about 1.4 GB).
+const MAX_POINTS: f64 = 1e7;
+
+#[derive(Parser)]
+#[command(
+    name = "flexrod",
+    version,
+    about = "The flexible connecting rod in a planar slider-crank: mode tables and simulations of a scene",
+    long_about = None,
+    after_help = "SCENE is a scene file (TOML, see scenes/); without one the built-in benchmark scene is used.\n\
+                  Exit codes: 0 done, 1 the model or a file failed, 2 a bad command line."
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Print the rod's natural frequencies (bending or axial, which are retained) and write
+    /// its mode shapes.
+    Modes(ModesArgs),
+    /// Simulate the slider-crank: print a summary, write every output at each communication
+    /// point, plot v_mid/L and the pin forces against the crank angle.
+    Simulate(SimulateArgs),
+}
+
+#[derive(clap::Args)]
+struct ModesArgs {
+    /// Scene file (TOML); default: the built-in benchmark scene.
+    scene: Option<PathBuf>,
+    /// Write the mode shapes (unit modal mass, body frame) to FILE: columns s_m, then
+    /// axial_K, transverse_K for each mode K.
+    #[arg(long, value_name = "FILE")]
+    csv: Option<PathBuf>,
+}
+
+#[derive(clap::Args)]
+#[command(
+    allow_negative_numbers = true,
+    after_help = "The run starts at the scene's start_time and ends at its stop_time, or after N crank \
+                  revolutions at the --speed (counted from t = 0) with --revolutions; it records at most \
+                  10^7 communication points ((stop - start) / step)."
+)]
+struct SimulateArgs {
+    /// Scene file (TOML); default: the built-in benchmark scene.
+    scene: Option<PathBuf>,
+    /// Crank speed W, rad/s, any finite value (default: the scene's experiment crank_speed).
+    #[arg(long, value_name = "RAD_PER_S", value_parser = finite)]
+    speed: Option<f64>,
+    /// Stop after N crank revolutions at the --speed (N > 0, finite; default: the scene's
+    /// stop_time).
+    #[arg(long, value_name = "N", value_parser = positive)]
+    revolutions: Option<f64>,
+    /// Start from rest and ramp the crank speed smoothly up to W over SECONDS (> 0, finite):
+    /// omega = W (1 - cos(pi t / T)) / 2. Default: constant speed W from the start.
+    #[arg(long, value_name = "SECONDS", value_parser = positive, conflicts_with = "input")]
+    ramp: Option<f64>,
+    /// Communication step, s (> 0, finite; default: the scene's step_size).
+    #[arg(long, value_name = "SECONDS", value_parser = positive)]
+    step: Option<f64>,
+    /// Drive the crank by a table: CSV rows t (s), angle (rad), speed (rad/s), linear between
+    /// rows; before the first row and after the last the input stays at that row (a warning
+    /// says so: extend the table over the whole run).
+    #[arg(long, value_name = "CSV")]
+    input: Option<PathBuf>,
+    /// Write the outputs at each communication point to CSV: time, crank_angle, crank_speed,
+    /// deflection, deflection_rel, pinB_force_x, pinB_force_y, pinC_force_x, pinC_force_y,
+    /// crank_torque, slider_position, slider_velocity, and with the scene's [outputs]
+    /// stress = true also axial_force_mid (N), bending_moment_mid (N m), stress_max (Pa),
+    /// stress_max_position (m from B).
+    #[arg(long, value_name = "CSV")]
+    out: Option<PathBuf>,
+    /// Write the plots PREFIX_deflection.svg and PREFIX_forces.svg (against the crank angle,
+    /// degrees).
+    #[arg(long, value_name = "PREFIX")]
+    plot: Option<String>,
+}
+
+/// A number that is finite.
+fn finite(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        Ok(_) => Err("not finite: allowed any finite number".into()),
+        Err(_) => Err("not a number: allowed any finite number".into()),
+    }
+}
+
+/// A number that is finite and > 0.
+fn positive(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
+        Ok(_) => Err("out of range: allowed a finite number > 0".into()),
+        Err(_) => Err("not a number: allowed a finite number > 0".into()),
+    }
+}
+
+/// Why a command failed: its command line (exit code 2) or the run (exit code 1).
+enum Failure {
+    Usage(String),
+    Run(String),
+}
+
+impl From<String> for Failure {
+    fn from(message: String) -> Self {
+        Failure::Run(message)
+    }
+}
+
 fn main() -> ExitCode {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let result = match args.first().map(String::as_str) {
-        Some("modes") => modes(&args[1..]),
-        Some("simulate") => simulate(&args[1..]),
-        _ => Err("usage: flexrod modes [SCENE.toml] [--csv FILE] | flexrod simulate [SCENE.toml] [--speed RAD_PER_S] [--revolutions N] [--ramp SECONDS] [--input CSV] [--out CSV] [--plot PREFIX]".to_string()),
+    let cli = Cli::parse();
+    let (name, result) = match &cli.command {
+        Command::Modes(args) => ("modes", modes(args)),
+        Command::Simulate(args) => ("simulate", simulate(args)),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("flexrod: {e}");
+        Err(Failure::Usage(message)) => {
+            let mut command = Cli::command();
+            // Built, so that the usage line names the binary with the subcommand.
+            command.build();
+            let command = command
+                .find_subcommand_mut(name)
+                .expect("the subcommand exists");
+            command.error(ErrorKind::ValueValidation, message).exit()
+        }
+        Err(Failure::Run(message)) => {
+            eprintln!("flexrod {name}: error: {message}");
             ExitCode::FAILURE
         }
     }
 }
 
-/// Positional scene path (first argument not starting with --) and the flag values.
-fn parse(args: &[String]) -> Result<(Scene, Vec<(String, String)>), String> {
-    let mut scene = None;
-    let mut flags = Vec::new();
-    let mut i = 0;
-    while i < args.len() {
-        if let Some(name) = args[i].strip_prefix("--") {
-            let value = args.get(i + 1).ok_or(format!("--{name} needs a value"))?;
-            flags.push((name.to_string(), value.clone()));
-            i += 2;
-        } else {
-            scene = Some(Scene::from_file(&PathBuf::from(&args[i])).map_err(|e| e.to_string())?);
-            i += 1;
-        }
-    }
-    Ok((scene.unwrap_or_else(Scene::benchmark), flags))
-}
-
-fn flag<'a>(flags: &'a [(String, String)], name: &str) -> Option<&'a str> {
-    flags
-        .iter()
-        .find(|(n, _)| n == name)
-        .map(|(_, v)| v.as_str())
-}
-
-fn number(flags: &[(String, String)], name: &str, default: f64) -> Result<f64, String> {
-    match flag(flags, name) {
-        None => Ok(default),
-        Some(v) => v.parse().map_err(|_| format!("--{name} {v}: not a number")),
+fn load_scene(path: Option<&Path>) -> Result<Scene, String> {
+    match path {
+        Some(path) => Scene::from_file(path).map_err(|e| e.to_string()),
+        None => Ok(Scene::benchmark()),
     }
 }
 
-fn modes(args: &[String]) -> Result<(), String> {
-    let (scene, flags) = parse(args)?;
+fn modes(args: &ModesArgs) -> Result<(), Failure> {
+    let scene = load_scene(args.scene.as_deref())?;
     if scene.rod.model != RodModelKind::Ffr {
         let sim = Simulation::new(&scene).map_err(|e| e.to_string())?;
         println!("mode  frequency_hz");
@@ -121,53 +221,130 @@ fn modes(args: &[String]) -> Result<(), String> {
             if kept.contains(&k) { "yes" } else { "no" }
         );
     }
-    if let Some(path) = flag(&flags, "csv") {
-        let mut out = std::fs::File::create(path).map_err(|e| format!("{path}: {e}"))?;
+    if let Some(path) = &args.csv {
+        let failed = |e: std::io::Error| format!("{}: {e}", path.display());
+        let mut out = std::io::BufWriter::new(std::fs::File::create(path).map_err(failed)?);
         let n = all.n_modes();
-        write!(out, "s_m").unwrap();
+        let mut text = String::from("s_m");
         for k in 0..n {
-            write!(out, ",axial_{},transverse_{}", k + 1, k + 1).unwrap();
+            text += &format!(",axial_{},transverse_{}", k + 1, k + 1);
         }
-        writeln!(out).unwrap();
+        writeln!(out, "{text}").map_err(failed)?;
         let samples = 20 * scene.rod.elements;
         for i in 0..=samples {
             let s = scene.rod.length * i as f64 / samples as f64;
             let sh = point_shape(&all, s);
-            write!(out, "{s:.6}").unwrap();
+            let mut line = format!("{s:.6}");
             for k in 0..n {
-                write!(out, ",{:.9e},{:.9e}", sh[(0, k)], sh[(1, k)]).unwrap();
+                line += &format!(",{:.9e},{:.9e}", sh[(0, k)], sh[(1, k)]);
             }
-            writeln!(out).unwrap();
+            writeln!(out, "{line}").map_err(failed)?;
         }
-        println!("mode shapes (unit modal mass, body frame) written to {path}");
+        out.flush().map_err(failed)?;
+        println!(
+            "mode shapes (unit modal mass, body frame) written to {}",
+            path.display()
+        );
     }
     Ok(())
 }
 
-fn simulate(args: &[String]) -> Result<(), String> {
-    let (scene, flags) = parse(args)?;
-    let speed = number(&flags, "speed", scene.experiment.crank_speed)?;
-    let dt = number(&flags, "step", scene.experiment.step_size)?;
-    let drive = if let Some(path) = flag(&flags, "input") {
-        let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
-        CrankDrive::table_from_csv(&text, path).map_err(|e| e.to_string())?
-    } else if let Some(t) = flag(&flags, "ramp") {
-        CrankDrive::Ramp {
-            speed,
-            time: t.parse().map_err(|_| "--ramp: not a number")?,
+/// `x` as short text: plain between 1e-4 and 1e9, else in e-notation.
+fn number(x: f64) -> String {
+    if x == 0.0 || (1e-4..1e9).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// The run's stop time and number of communication steps, or why the command line gives none.
+fn run_length(
+    args: &SimulateArgs,
+    scene: &Scene,
+    speed: f64,
+    dt: f64,
+) -> Result<(f64, usize), Failure> {
+    let t0 = scene.experiment.start_time;
+    let stop = match args.revolutions {
+        Some(revolutions) => {
+            if speed == 0.0 {
+                return Err(Failure::Usage(format!(
+                    "--revolutions {revolutions} at crank speed 0 rad/s never ends: give --speed W with W != 0"
+                )));
+            }
+            2.0 * std::f64::consts::PI * revolutions / speed.abs()
         }
+        None => scene.experiment.stop_time,
+    };
+    let what = match args.revolutions {
+        Some(n) => format!("{} revolutions at {} rad/s", number(n), number(speed)),
+        None => "the scene's stop_time".to_string(),
+    };
+    if !stop.is_finite() {
+        return Err(Failure::Usage(format!(
+            "{what} give no finite stop time ({} s)",
+            number(stop)
+        )));
+    }
+    if stop <= t0 {
+        return Err(Failure::Usage(format!(
+            "the stop time {} s ({what}) is not after the start time {} s",
+            number(stop),
+            number(t0)
+        )));
+    }
+    let steps = ((stop - t0) / dt).round().max(1.0);
+    if steps > MAX_POINTS {
+        return Err(Failure::Usage(format!(
+            "{what} ({} s) at the step {} s need {steps:.3e} communication points; at most {MAX_POINTS:.0e} are allowed (fewer revolutions or a larger --step)",
+            number(stop - t0),
+            number(dt)
+        )));
+    }
+    Ok((stop, steps as usize))
+}
+
+fn simulate(args: &SimulateArgs) -> Result<(), Failure> {
+    let scene = load_scene(args.scene.as_deref())?;
+    let speed = args.speed.unwrap_or(scene.experiment.crank_speed);
+    let dt = args.step.unwrap_or(scene.experiment.step_size);
+    let (stop, n) = run_length(args, &scene, speed, dt)?;
+    let t0 = scene.experiment.start_time;
+    let drive = if let Some(path) = &args.input {
+        let failed = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+        let text = std::fs::read_to_string(path).map_err(|e| failed(&e))?;
+        let drive = CrankDrive::table_from_csv(&text, &path.display().to_string()).map_err(
+            |e| match e {
+                // The table's errors come as scene errors: name the file as the input table.
+                flexrod::ModelError::Scene { origin, message } => {
+                    format!("--input table {origin}: {message}")
+                }
+                other => other.to_string(),
+            },
+        )?;
+        if let CrankDrive::Table(rows) = &drive {
+            let (first, last) = (rows[0], rows[rows.len() - 1]);
+            if first[0] > t0 {
+                eprintln!(
+                    "warning: the --input table {} starts at t = {} s, after the run's start {t0} s: the crank input stays at its first row (angle {} rad, speed {} rad/s) until then; start the table at the run's start for a consistent crank motion",
+                    path.display(), first[0], first[1], first[2]
+                );
+            }
+            if last[0] < stop {
+                eprintln!(
+                    "warning: the --input table {} ends at t = {} s, before the run's stop time {stop} s: the crank input stays at its last row (angle {} rad, speed {} rad/s) from then on; extend the table to the stop time for a consistent crank motion",
+                    path.display(), last[0], last[1], last[2]
+                );
+            }
+        }
+        drive
+    } else if let Some(time) = args.ramp {
+        CrankDrive::Ramp { speed, time }
     } else {
         CrankDrive::Constant { speed }
     };
-    let revolutions = number(&flags, "revolutions", 0.0)?;
-    let stop = if revolutions > 0.0 {
-        2.0 * std::f64::consts::PI * revolutions / speed.abs().max(1e-9)
-    } else {
-        scene.experiment.stop_time
-    };
     let mut sim = Simulation::new(&scene).map_err(|e| e.to_string())?;
-    let t0 = scene.experiment.start_time;
-    let n = ((stop - t0) / dt).round().max(1.0) as usize;
     let wall = Instant::now();
     let record = drive::run(&mut sim, &drive, 0.0, &communication_grid(t0, dt, n))
         .map_err(|e| e.to_string())?;
@@ -176,17 +353,17 @@ fn simulate(args: &[String]) -> Result<(), String> {
         eprintln!("warning after t = {t} s: {w}");
     }
     let stats = record.stats;
-    let rows: Vec<_> = (0..record.times.len())
-        .map(|k| (record.times[k], record.inputs[k], record.outputs[k]))
-        .collect();
     let peak = record.peak_deflection_rel();
-    let peak_b = rows
+    let magnitude = |f: [f64; 2]| f[0].hypot(f[1]);
+    let peak_b = record
+        .outputs
         .iter()
-        .map(|r| r.2.pin_b_force[0].hypot(r.2.pin_b_force[1]))
+        .map(|o| magnitude(o.pin_b_force))
         .fold(0.0, f64::max);
-    let peak_c = rows
+    let peak_c = record
+        .outputs
         .iter()
-        .map(|r| r.2.pin_c_force[0].hypot(r.2.pin_c_force[1]))
+        .map(|o| magnitude(o.pin_c_force))
         .fold(0.0, f64::max);
     println!(
         "scene {}: {:?} rod, {} elements, {} modes, {:?}",
@@ -195,68 +372,120 @@ fn simulate(args: &[String]) -> Result<(), String> {
     let (integrator, counted) = sim.mechanism().integrator_name();
     println!("simulated {:.4} s ({:.2} revolutions) in {:.2} ms wall with {integrator}: {} steps, {} {counted}, {} halvings", stop - t0, (stop - t0) * speed / (2.0 * std::f64::consts::PI), elapsed * 1e3, stats.steps, stats.newton_iterations, stats.halvings);
     println!("peak |v_mid/L| = {peak:.5e}, peak |F_B| = {peak_b:.2} N, peak |F_C| = {peak_c:.2} N");
-    if let Some(path) = flag(&flags, "out") {
-        let mut out = std::fs::File::create(path).map_err(|e| format!("{path}: {e}"))?;
-        writeln!(out, "time,crank_angle,crank_speed,deflection,deflection_rel,pinB_force_x,pinB_force_y,pinC_force_x,pinC_force_y,crank_torque,slider_position,slider_velocity").unwrap();
-        for (t, input, o) in &rows {
-            writeln!(
-                out,
-                "{t:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e}",
-                input.angle, input.speed, o.deflection, o.deflection_rel, o.pin_b_force[0], o.pin_b_force[1], o.pin_c_force[0], o.pin_c_force[1], o.crank_torque, o.slider_position, o.slider_velocity
-            )
-            .unwrap();
-        }
-        println!("outputs written to {path}");
+    if let Some(path) = &args.out {
+        write_csv(path, &record, scene.outputs.stress)?;
+        println!("outputs written to {}", path.display());
     }
-    if let Some(prefix) = flag(&flags, "plot") {
-        use svg_plot::{line_plot, Curve};
-        let pts = |f: &dyn Fn(&flexrod::Outputs) -> f64| {
-            rows.iter()
-                .map(|(_, i, o)| (i.angle, f(o)))
-                .collect::<Vec<_>>()
-        };
-        let deflection = line_plot(
-            &format!("{}: midpoint deflection", scene.name),
-            "crank angle (rad)",
-            "v_mid / L",
-            &[Curve {
-                label: "v_mid/L",
-                colour: "#1f77b4",
-                points: pts(&|o| o.deflection_rel),
-            }],
-        );
-        let forces = line_plot(
-            &format!("{}: pin forces (rod on pin)", scene.name),
-            "crank angle (rad)",
-            "force (N)",
-            &[
-                Curve {
-                    label: "pin B x",
-                    colour: "#1f77b4",
-                    points: pts(&|o| o.pin_b_force[0]),
-                },
-                Curve {
-                    label: "pin B y",
-                    colour: "#ff7f0e",
-                    points: pts(&|o| o.pin_b_force[1]),
-                },
-                Curve {
-                    label: "pin C x",
-                    colour: "#2ca02c",
-                    points: pts(&|o| o.pin_c_force[0]),
-                },
-                Curve {
-                    label: "pin C y",
-                    colour: "#d62728",
-                    points: pts(&|o| o.pin_c_force[1]),
-                },
-            ],
-        );
-        for (name, svg) in [("deflection", deflection), ("forces", forces)] {
+    if let Some(prefix) = &args.plot {
+        for (name, svg) in plots(&scene.name, &record) {
             let path = format!("{prefix}_{name}.svg");
             std::fs::write(&path, svg).map_err(|e| format!("{path}: {e}"))?;
             println!("plot written to {path}");
         }
     }
     Ok(())
+}
+
+/// The outputs at each communication point as CSV; the section forces and stress with
+/// `stress` (the scene's `[outputs] stress`).
+fn write_csv(path: &Path, record: &drive::Record, stress: bool) -> Result<(), String> {
+    let failed = |e: std::io::Error| format!("{}: {e}", path.display());
+    let mut out = std::io::BufWriter::new(std::fs::File::create(path).map_err(failed)?);
+    let mut header = String::from("time,crank_angle,crank_speed,deflection,deflection_rel,pinB_force_x,pinB_force_y,pinC_force_x,pinC_force_y,crank_torque,slider_position,slider_velocity");
+    if stress {
+        header += ",axial_force_mid,bending_moment_mid,stress_max,stress_max_position";
+    }
+    writeln!(out, "{header}").map_err(failed)?;
+    for ((t, input), o) in record.times.iter().zip(&record.inputs).zip(&record.outputs) {
+        let mut values = vec![
+            *t,
+            input.angle,
+            input.speed,
+            o.deflection,
+            o.deflection_rel,
+            o.pin_b_force[0],
+            o.pin_b_force[1],
+            o.pin_c_force[0],
+            o.pin_c_force[1],
+            o.crank_torque,
+            o.slider_position,
+            o.slider_velocity,
+        ];
+        if stress {
+            let s = &o.section;
+            values.extend([
+                s.axial_force_mid,
+                s.bending_moment_mid,
+                s.stress_max,
+                s.stress_max_position,
+            ]);
+        }
+        let line: Vec<String> = values.iter().map(|x| format!("{x:.9e}")).collect();
+        writeln!(out, "{}", line.join(",")).map_err(failed)?;
+    }
+    out.flush().map_err(failed)
+}
+
+/// The two plots, (name, SVG): v_mid/L and the pin forces against the crank angle in degrees.
+fn plots(scene: &str, record: &drive::Record) -> [(&'static str, String); 2] {
+    use svg_plot::{line_plot, Axis, Curve};
+    let pts = |f: &dyn Fn(&flexrod::Outputs) -> f64| {
+        record
+            .inputs
+            .iter()
+            .zip(&record.outputs)
+            .map(|(i, o)| (i.angle.to_degrees(), f(o)))
+            .collect::<Vec<_>>()
+    };
+    let angle = Axis {
+        label: "crank angle",
+        unit: "deg",
+        degrees: true,
+    };
+    let deflection = line_plot(
+        &format!("{scene}: midpoint deflection"),
+        &angle,
+        &Axis {
+            label: "v_mid / L",
+            unit: "",
+            degrees: false,
+        },
+        &[Curve {
+            label: "v_mid/L",
+            colour: "#1f77b4",
+            points: pts(&|o| o.deflection_rel),
+        }],
+    );
+    let forces = line_plot(
+        &format!("{scene}: pin forces (rod on pin)"),
+        &angle,
+        &Axis {
+            label: "force",
+            unit: "N",
+            degrees: false,
+        },
+        &[
+            Curve {
+                label: "pin B x",
+                colour: "#1f77b4",
+                points: pts(&|o| o.pin_b_force[0]),
+            },
+            Curve {
+                label: "pin B y",
+                colour: "#ff7f0e",
+                points: pts(&|o| o.pin_b_force[1]),
+            },
+            Curve {
+                label: "pin C x",
+                colour: "#2ca02c",
+                points: pts(&|o| o.pin_c_force[0]),
+            },
+            Curve {
+                label: "pin C y",
+                colour: "#d62728",
+                points: pts(&|o| o.pin_c_force[1]),
+            },
+        ],
+    );
+    [("deflection", deflection), ("forces", forces)]
 }

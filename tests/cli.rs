@@ -1,0 +1,320 @@
+//! The `flexrod` command line as a user meets it: `--help` everywhere, bad command lines refused
+//! with exit code 2 and a message that names the value and what is allowed (never a panic,
+//! never a run of unbounded length), the stress columns of the CSV when the scene asks for
+//! stress outputs, the warning when an `--input` table ends before the stop time, and plots
+//! against the crank angle in degrees with plain tick labels.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn flexrod(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_flexrod"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the flexrod binary runs")
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+/// A fresh directory for one test's files.
+fn scratch(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("cli_{name}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn help_everywhere() {
+    for (args, usage) in [
+        (&["--help"][..], "Usage: flexrod <COMMAND>"),
+        (&["help"][..], "Usage: flexrod <COMMAND>"),
+        (
+            &["simulate", "--help"][..],
+            "Usage: flexrod simulate [OPTIONS] [SCENE]",
+        ),
+        (
+            &["modes", "--help"][..],
+            "Usage: flexrod modes [OPTIONS] [SCENE]",
+        ),
+        (
+            &["help", "simulate"][..],
+            "Usage: flexrod simulate [OPTIONS] [SCENE]",
+        ),
+    ] {
+        let out = flexrod(args);
+        let stdout = text(&out.stdout);
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "{args:?}: {}",
+            text(&out.stderr)
+        );
+        assert!(stdout.contains(usage), "{args:?}:\n{stdout}");
+    }
+    let simulate = text(&flexrod(&["simulate", "--help"]).stdout);
+    for option in [
+        "--speed",
+        "--revolutions",
+        "--ramp",
+        "--step",
+        "--input",
+        "--out",
+        "--plot",
+        "10^7",
+    ] {
+        assert!(simulate.contains(option), "{option}:\n{simulate}");
+    }
+    assert!(text(&flexrod(&["modes", "--help"]).stdout).contains("--csv"));
+}
+
+/// Each bad command line: exit code 2, the message parts on stderr, no panic, nothing on
+/// stdout (no run started).
+#[test]
+fn bad_command_lines_are_refused() {
+    let cases: &[(&[&str], &[&str])] = &[
+        (&[], &["Usage: flexrod <COMMAND>"]),
+        (
+            &["simulat"],
+            &["unrecognized subcommand 'simulat'", "simulate"],
+        ),
+        (
+            &["simulate", "--revolutoins", "2"],
+            &["unexpected argument '--revolutoins'", "'--revolutions'"],
+        ),
+        (
+            &["modes", "--cvs", "x.csv"],
+            &["unexpected argument '--cvs'"],
+        ),
+        (&["simulate", "-x"], &["unexpected argument '-x'"]),
+        (
+            &["simulate", "--revolutions", "-3"],
+            &[
+                "invalid value '-3' for '--revolutions <N>'",
+                "allowed a finite number > 0",
+            ],
+        ),
+        (
+            &["simulate", "--revolutions", "0"],
+            &["invalid value '0' for '--revolutions <N>'", "> 0"],
+        ),
+        (
+            &["simulate", "--ramp", "-1"],
+            &[
+                "invalid value '-1' for '--ramp <SECONDS>'",
+                "allowed a finite number > 0",
+            ],
+        ),
+        (
+            &["simulate", "--step", "0"],
+            &[
+                "invalid value '0' for '--step <SECONDS>'",
+                "allowed a finite number > 0",
+            ],
+        ),
+        (
+            &["simulate", "--step", "NaN"],
+            &["invalid value 'NaN' for '--step <SECONDS>'", "> 0"],
+        ),
+        (
+            &["simulate", "--speed", "inf"],
+            &["invalid value 'inf' for '--speed <RAD_PER_S>'", "finite"],
+        ),
+        (
+            &["simulate", "--speed", "fast"],
+            &[
+                "invalid value 'fast' for '--speed <RAD_PER_S>'",
+                "not a number",
+            ],
+        ),
+        (
+            &["simulate", "--speed"],
+            &["'--speed <RAD_PER_S>'", "value"],
+        ),
+        (
+            &["simulate", "--speed", "0", "--revolutions", "1"],
+            &[
+                "--revolutions 1 at crank speed 0 rad/s never ends",
+                "W != 0",
+            ],
+        ),
+        (
+            &["simulate", "--revolutions", "1e300"],
+            &[
+                "1e300 revolutions at 150 rad/s",
+                "4.189e302 communication points",
+                "at most 1e7",
+            ],
+        ),
+        (
+            &["simulate", "--revolutions", "2", "--step", "1e-9"],
+            &["8.378e7 communication points", "at most 1e7"],
+        ),
+        (
+            &["simulate", "--ramp", "0.1", "--input", "table.csv"],
+            &["'--ramp <SECONDS>' cannot be used with '--input <CSV>'"],
+        ),
+    ];
+    for (args, parts) in cases {
+        let out = flexrod(args);
+        let stderr = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
+        assert!(out.stdout.is_empty(), "{args:?}: {}", text(&out.stdout));
+        for part in *parts {
+            assert!(stderr.contains(part), "{args:?}: '{part}' not in\n{stderr}");
+        }
+    }
+}
+
+#[test]
+fn a_failing_run_exits_1() {
+    let out = flexrod(&["simulate", "no_such_scene.toml"]);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("no_such_scene.toml"), "{stderr}");
+    let dir = scratch("bad_table");
+    let table = dir.join("one_row.csv");
+    std::fs::write(&table, "t,angle,speed\n0,0,150\n").unwrap();
+    let out = flexrod(&["simulate", "--input", table.to_str().unwrap()]);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("--input table") && stderr.contains("needs at least two rows"),
+        "{stderr}"
+    );
+}
+
+/// Header and rows of a CSV written by `flexrod simulate --out`.
+fn read_csv(path: &std::path::Path) -> (Vec<String>, Vec<Vec<f64>>) {
+    let content = std::fs::read_to_string(path).unwrap();
+    let mut lines = content.lines();
+    let header = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(str::to_string)
+        .collect();
+    let rows = lines
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    (header, rows)
+}
+
+#[test]
+fn stress_columns_when_the_scene_has_stress_outputs() {
+    let dir = scratch("stress");
+    let csv = dir.join("automotive.csv");
+    let out = flexrod(&[
+        "simulate",
+        "scenes/automotive_rod.toml",
+        "--revolutions",
+        "0.5",
+        "--out",
+        csv.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let (header, rows) = read_csv(&csv);
+    let stress = [
+        "axial_force_mid",
+        "bending_moment_mid",
+        "stress_max",
+        "stress_max_position",
+    ];
+    assert_eq!(header.len(), 16, "{header:?}");
+    assert_eq!(header[12..], stress, "{header:?}");
+    assert!(rows.len() > 100 && rows.iter().all(|r| r.len() == 16));
+    // The section forces and stress are those of a loaded rod: the axial force at L/2 of the
+    // order of the pin forces, the stress positive and located on the rod.
+    let peak = |k: usize| rows.iter().map(|r| r[k].abs()).fold(0.0, f64::max);
+    assert!(peak(12) > 1e3 && peak(12) < 1e5, "N_mid {}", peak(12));
+    assert!(peak(13) > 0.0, "M_mid");
+    assert!(rows.iter().all(|r| r[14] > 0.0 && r[14].is_finite()));
+    assert!(rows.iter().all(|r| (0.0..=0.1507).contains(&r[15])));
+
+    // Without [outputs] stress the CSV has the twelve columns only.
+    let plain = dir.join("benchmark.csv");
+    let out = flexrod(&["simulate", "--out", plain.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let (header, _) = read_csv(&plain);
+    assert_eq!(header.len(), 12, "{header:?}");
+    assert!(!header.iter().any(|h| stress.contains(&h.as_str())));
+}
+
+#[test]
+fn warning_when_the_input_table_ends_before_the_stop_time() {
+    let dir = scratch("table");
+    let short = dir.join("short.csv");
+    // The crank at rest up to t = 0.01 s; the default run goes on to 0.0838 s.
+    std::fs::write(&short, "t,angle,speed\n0,0,0\n0.01,0,0\n").unwrap();
+    let out = flexrod(&["simulate", "--input", short.to_str().unwrap()]);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    assert!(
+        stderr.contains("ends at t = 0.01 s, before the run's stop time 0.0838 s")
+            && stderr.contains("stays at its last row (angle 0 rad, speed 0 rad/s)"),
+        "{stderr}"
+    );
+    // A table that covers the run: no warning.
+    let long = dir.join("long.csv");
+    std::fs::write(&long, "t,angle,speed\n0,0,150\n0.1,15,150\n").unwrap();
+    let out = flexrod(&["simulate", "--input", long.to_str().unwrap()]);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    assert!(!stderr.contains("warning"), "{stderr}");
+}
+
+/// The text of every `<text>` element of an SVG document.
+fn svg_texts(svg: &str) -> Vec<String> {
+    svg.split("<text")
+        .skip(1)
+        .map(|s| {
+            let body = &s[s.find('>').unwrap() + 1..];
+            body[..body.find("</text>").unwrap()].to_string()
+        })
+        .collect()
+}
+
+#[test]
+fn plots_against_crank_angle_in_degrees_with_plain_ticks() {
+    let dir = scratch("plot");
+    for (scene, y_labels) in [
+        ("scenes/benchmark.toml", ["v_mid / L", "force (N)"]),
+        (
+            "scenes/automotive_rod.toml",
+            ["v_mid / L (×10⁻⁶)", "force (kN)"],
+        ),
+    ] {
+        let prefix = dir.join("p");
+        let out = flexrod(&[
+            "simulate",
+            scene,
+            "--revolutions",
+            "2",
+            "--plot",
+            prefix.to_str().unwrap(),
+        ]);
+        assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+        for (name, y_label) in ["deflection", "forces"].into_iter().zip(y_labels) {
+            let svg = std::fs::read_to_string(dir.join(format!("p_{name}.svg"))).unwrap();
+            let texts = svg_texts(&svg);
+            assert!(texts.iter().any(|t| t == "crank angle (deg)"), "{texts:?}");
+            assert!(texts.iter().any(|t| t == y_label), "{scene} {texts:?}");
+            // Two revolutions: 0 to 720 degrees in steps of 90.
+            for tick in ["0", "90", "360", "630"] {
+                assert!(texts.iter().any(|t| t == tick), "{tick}: {texts:?}");
+            }
+            let numbers: Vec<&String> = texts.iter().filter(|t| t.parse::<f64>().is_ok()).collect();
+            assert!(numbers.len() >= 12, "{texts:?}");
+            for t in numbers {
+                assert!(
+                    !t.contains(['e', 'E']) && t.len() <= 6,
+                    "tick label {t} in {texts:?}"
+                );
+            }
+        }
+    }
+}
