@@ -255,7 +255,7 @@ fn warning_when_the_input_table_ends_before_the_stop_time() {
     assert_eq!(out.status.code(), Some(0), "{stderr}");
     assert!(
         stderr.contains("ends at t = 0.01 s, before the run's stop time 0.0838 s")
-            && stderr.contains("stays at its last row (angle 0 rad, speed 0 rad/s)"),
+            && stderr.contains("past it the crank turns on at the last row's speed (angle 0 rad, speed 0 rad/s at the last row)"),
         "{stderr}"
     );
     // A table that covers the run: no warning.

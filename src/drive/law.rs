@@ -16,8 +16,9 @@ pub enum CrankDrive {
     /// `omega = W (1 - cos(pi t / T)) / 2`, `theta = W/2 (t - T/pi sin(pi t / T))`,
     /// `alpha = W pi / (2 T) sin(pi t / T)` for `t < T`; then constant speed W.
     Ramp { speed: f64, time: f64 },
-    /// Rows `[t, theta, omega]`, ascending in t: linear between rows (constant outside), with
-    /// `alpha` the slope of omega.
+    /// Rows `[t, theta, omega]`, ascending in t: linear between rows, with `alpha` the slope
+    /// of omega; outside the table the crank turns at the nearest end row's speed
+    /// (`theta = theta_end + omega_end (t - t_end)`, `alpha = 0`).
     Table(Vec<[f64; 3]>),
 }
 
@@ -56,6 +57,18 @@ impl CrankDrive {
                 }
             }
             CrankDrive::Table(rows) => {
+                // Outside the table the crank turns on at the speed of its nearest end row:
+                // angle and speed stay consistent (theta' = omega, omega' = 0).
+                let (first, last) = (rows[0], rows[rows.len() - 1]);
+                for end in [first, last] {
+                    if (end == first && t < first[0]) || (end == last && t > last[0]) {
+                        return CrankInput {
+                            angle: end[1] + end[2] * (t - end[0]),
+                            speed: end[2],
+                            acceleration: 0.0,
+                        };
+                    }
+                }
                 let i = rows.partition_point(|r| r[0] <= t).clamp(1, rows.len() - 1);
                 let (a, b) = (rows[i - 1], rows[i]);
                 let u = ((t - a[0]) / (b[0] - a[0])).clamp(0.0, 1.0);
@@ -148,6 +161,20 @@ mod tests {
                     "{law:?} t {t}"
                 );
             }
+        }
+        // A table continues past its ends at the end rows' speeds, consistently.
+        let table = CrankDrive::Table(vec![[0.0, 0.0, 100.0], [0.01, 1.5, 200.0]]);
+        for (t, angle, speed) in [(-0.01, -1.0, 100.0), (0.02, 3.5, 200.0)] {
+            let input = table.at(t);
+            assert!(
+                (input.angle - angle).abs() < 1e-12,
+                "table at {t}: {input:?}"
+            );
+            assert_eq!(
+                (input.speed, input.acceleration),
+                (speed, 0.0),
+                "table at {t}"
+            );
         }
         let ramp = laws[2].at(0.02);
         assert!((ramp.speed - 150.0).abs() < 1e-12 && ramp.acceleration.abs() < 1e-9);

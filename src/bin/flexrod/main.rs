@@ -327,13 +327,13 @@ fn simulate(args: &SimulateArgs) -> Result<(), Failure> {
             let (first, last) = (rows[0], rows[rows.len() - 1]);
             if first[0] > t0 {
                 eprintln!(
-                    "warning: the --input table {} starts at t = {} s, after the run's start {t0} s: the crank input stays at its first row (angle {} rad, speed {} rad/s) until then; start the table at the run's start for a consistent crank motion",
+                    "warning: the --input table {} starts at t = {} s, after the run's start {t0} s: before it the crank turns at the first row's speed (angle {} rad, speed {} rad/s at the first row); start the table at the run's start to prescribe the motion there",
                     path.display(), first[0], first[1], first[2]
                 );
             }
             if last[0] < stop {
                 eprintln!(
-                    "warning: the --input table {} ends at t = {} s, before the run's stop time {stop} s: the crank input stays at its last row (angle {} rad, speed {} rad/s) from then on; extend the table to the stop time for a consistent crank motion",
+                    "warning: the --input table {} ends at t = {} s, before the run's stop time {stop} s: past it the crank turns on at the last row's speed (angle {} rad, speed {} rad/s at the last row); extend the table to the stop time to prescribe the motion there",
                     path.display(), last[0], last[1], last[2]
                 );
             }
