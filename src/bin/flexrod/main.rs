@@ -88,8 +88,8 @@ struct SimulateArgs {
     #[arg(long, value_name = "SECONDS", value_parser = positive)]
     step: Option<f64>,
     /// Drive the crank by a table: CSV rows t (s), angle (rad), speed (rad/s), linear between
-    /// rows; before the first row and after the last the input stays at that row (a warning
-    /// says so: extend the table over the whole run).
+    /// rows; before the first row and after the last the crank turns at that row's speed (a
+    /// warning says so: extend the table over the whole run).
     #[arg(long, value_name = "CSV")]
     input: Option<PathBuf>,
     /// Write the outputs at each communication point to CSV: time, crank_angle, crank_speed,
