@@ -1,15 +1,15 @@
 //! The variable list: every variable of the FMU, its value reference, unit, start value,
-//! bounds and where its value lives. Names, units and signs are those of `fmu-contract.md`.
+//! bounds and where its value lives. Names, units and signs are those of `docs/fmu.md`.
 
 use super::builder::{real, Builder, DIMENSIONLESS, RAD, RAD_PER_S};
 use super::enumerations::{self, ROD_MODEL, ROD_REFERENCE};
 use super::ranges::{
-    element_count, non_negative, set_model, set_reference, usize_to_i32, ELEMENTS_MAX,
+    element_count, non_negative, policy_code, set_model, set_policy, set_reference, usize_to_i32,
+    ELEMENTS_MAX,
 };
 use super::types::{Access, InitialDependencies, InputSlot, Value, ValueType};
 use super::{ValueReference, VariableTable, FREQUENCY_VR_BASE};
 use crate::fmi::standard::Standard;
-use crate::rod::DeflectionPolicy;
 use crate::scene::Scene;
 
 /// Parameters the rod's natural frequencies depend on.
@@ -144,7 +144,7 @@ impl VariableTable {
             );
         }
 
-        // Real connecting rods (fmu-contract.md, "Real connecting rods"; value references
+        // Real connecting rods (`docs/fmu.md`, "Real connecting rods"; value references
         // 130-149): section forces and stress, with `[outputs] stress = true`.
         if out.stress {
             b.output(
@@ -289,7 +289,7 @@ impl VariableTable {
         );
         b.bounds(Some(Value::Integer(0)), None);
 
-        // Slider line and gravity (fmu-contract.md, "Real connecting rods"), in scenes with a
+        // Slider line and gravity (`docs/fmu.md`, "Real connecting rods"), in scenes with a
         // `[mechanism]` table.
         if !scene.mechanism.is_default() {
             b.real_parameter(
@@ -318,7 +318,7 @@ impl VariableTable {
             );
         }
 
-        // The rod's shear modulus and end bodies (fmu-contract.md, "Real connecting rods"),
+        // The rod's shear modulus and end bodies (`docs/fmu.md`, "Real connecting rods"),
         // value references 138-142: G in shear-deformable scenes, the end bodies in scenes with
         // a section table or an end body (the scenes that report rod.mass).
         if scene.rod.shear_deformation {
@@ -428,12 +428,8 @@ impl VariableTable {
             "rod.deflection_policy",
             121,
             ValueType::Integer,
-            |s| s.rod.deflection_policy.code(),
-            |s, v| {
-                DeflectionPolicy::from_code(v)
-                    .map(|p| s.rod.deflection_policy = p)
-                    .ok_or_else(|| "1 (warn), 2 (discard) or 3 (error)".to_string())
-            },
+            |s| policy_code(s.rod.deflection_policy),
+            set_policy,
             "What a step beyond rod.deflection_limit does: 1 = warn (one warning, continue), 2 = discard (fmi2Discard, the state before the step kept; default), 3 = error (fmi2Error, the state before the step kept)",
         );
         b.bounds(Some(Value::Integer(1)), Some(Value::Integer(3)));
