@@ -21,6 +21,7 @@
 //! state.
 
 use super::inputs::{AccelerationSource, Experiment, Inputs};
+use super::standard::Standard;
 use super::state_machine::MachineState;
 use super::status::Status;
 use crate::hash::fnv1a_64;
@@ -143,8 +144,13 @@ impl<'a> Reader<'a> {
     }
 }
 
-/// Read bytes written by [`serialize`] for the FMU with this GUID.
-pub(crate) fn deserialize<'a>(guid: &str, bytes: &'a [u8]) -> Result<Parsed<'a>, String> {
+/// Read bytes written by [`serialize`] for the FMU with this GUID (FMI 2.0) or
+/// `instantiationToken` (FMI 3.0); messages name both as the `standard` does.
+pub(crate) fn deserialize<'a>(
+    guid: &str,
+    standard: Standard,
+    bytes: &'a [u8],
+) -> Result<Parsed<'a>, String> {
     let mut r = Reader { bytes, at: 0 };
     if r.take(8, "the header").ok() != Some(&MAGIC[..]) {
         return Err(format!(
@@ -177,10 +183,11 @@ pub(crate) fn deserialize<'a>(guid: &str, bytes: &'a [u8]) -> Result<Parsed<'a>,
         bytes: content,
         at: r.at,
     };
-    let written_by = r.str_u32("the GUID")?;
+    let token = standard.token_name();
+    let written_by = r.str_u32(&format!("the {token}"))?;
     if written_by != guid {
         return Err(format!(
-            "it was written by the FMU with GUID {written_by}, this FMU has GUID {guid}"
+            "it was written by the FMU with {token} {written_by}, this FMU has {token} {guid}"
         ));
     }
     let machine_code = r.u8("the machine state")?;
@@ -238,9 +245,10 @@ pub(crate) fn deserialize<'a>(guid: &str, bytes: &'a [u8]) -> Result<Parsed<'a>,
         || (machine == MachineState::StepFailed && last_step != Status::Discard)
     {
         return Err(format!(
-            "the last step status {} does not fit the machine state {} (allowed fmi2OK, or fmi2Discard in StepFailed)",
+            "the last step status {} does not fit the machine state {} (allowed {p}OK, or {p}Discard in StepFailed)",
             last_step.code(),
-            machine.name()
+            machine.name(),
+            p = standard.prefix()
         ));
     }
     let stepping = matches!(
@@ -309,7 +317,7 @@ mod tests {
     fn round_trip_without_simulation() {
         let s = sample();
         let bytes = serialize("{g}", &s, Some(&[1, 2, 3]));
-        let p = deserialize("{g}", &bytes).unwrap();
+        let p = deserialize("{g}", Standard::Fmi2, &bytes).unwrap();
         assert_eq!(p.state.inputs, s.inputs);
         assert_eq!(p.state.scene, s.scene);
         assert_eq!(p.state.experiment, s.experiment);
@@ -320,21 +328,31 @@ mod tests {
     #[test]
     fn foreign_truncated_and_other_fmu_rejected() {
         let bytes = serialize("{g}", &sample(), None);
-        assert!(deserialize("{g}", b"hello world")
+        assert!(deserialize("{g}", Standard::Fmi2, b"hello world")
             .err()
             .unwrap()
             .contains("foreign"));
         for cut in [3, 20, bytes.len() - 1] {
-            let e = deserialize("{g}", &bytes[..cut]).err().expect("truncated");
+            let e = deserialize("{g}", Standard::Fmi2, &bytes[..cut])
+                .err()
+                .expect("truncated");
             assert!(
                 e.contains("truncated") || e.contains("foreign") || e.contains("checksum"),
                 "{e}"
             );
         }
-        assert!(deserialize("{h}", &bytes).err().unwrap().contains("GUID"));
+        assert!(deserialize("{h}", Standard::Fmi2, &bytes)
+            .err()
+            .unwrap()
+            .contains("GUID"));
+        let e = deserialize("{h}", Standard::Fmi3, &bytes).err().unwrap();
+        assert!(
+            e.contains("instantiationToken") && !e.contains("GUID"),
+            "{e}"
+        );
         let mut longer = bytes.clone();
         longer.push(0);
-        assert!(deserialize("{g}", &longer)
+        assert!(deserialize("{g}", Standard::Fmi2, &longer)
             .err()
             .unwrap()
             .contains("checksum"));
@@ -346,7 +364,10 @@ mod tests {
         for at in 0..bytes.len() {
             let mut corrupted = bytes.clone();
             corrupted[at] ^= 0x10;
-            assert!(deserialize("{g}", &corrupted).is_err(), "byte {at} flipped");
+            assert!(
+                deserialize("{g}", Standard::Fmi2, &corrupted).is_err(),
+                "byte {at} flipped"
+            );
         }
     }
 
@@ -391,7 +412,7 @@ mod tests {
             } else {
                 Some(&[1, 2, 3])
             };
-            let e = deserialize("{g}", &serialize("{g}", &state, sim))
+            let e = deserialize("{g}", Standard::Fmi2, &serialize("{g}", &state, sim))
                 .err()
                 .unwrap_or_else(|| panic!("{label} accepted"));
             assert!(e.contains(expected), "{label}: {e}");

@@ -1,4 +1,4 @@
-//! The inputs and their law between communication points (fmu-contract.md, "Behaviour"):
+//! The inputs and their law between communication points (`docs/fmu.md`, "Input law between communication points"):
 //! `theta(t_k + s) = theta_k + omega_k s + alpha_k s^2 / 2`, `omega(t_k + s) = omega_k + alpha_k s`.
 //!
 //! At every `fmi2DoStep(t_k, h)` a new law starts at `t_k`:

@@ -26,7 +26,7 @@ use crate::scene::Scene;
 use super::standard::Standard;
 use super::variables::VariableTable;
 
-/// The FMU's capability flags, written into `<CoSimulation>` (fmu-contract.md).
+/// The FMU's capability flags, written into `<CoSimulation>` (`docs/fmu.md`, "Capabilities").
 pub const CAPABILITIES: [(&str, &str); 10] = [
     ("needsExecutionTool", "false"),
     ("canHandleVariableCommunicationStepSize", "true"),

@@ -5,7 +5,7 @@ use std::borrow::Cow;
 
 use super::{model_error, Instance};
 use crate::fmi::inputs::{Experiment, Inputs};
-use crate::fmi::state_machine::MachineState;
+use crate::fmi::state_machine::{Call, MachineState};
 use crate::fmi::status::{FmiError, FmiResult, Status};
 use crate::scene::Scene;
 use crate::simulation::Simulation;
@@ -40,10 +40,7 @@ impl Instance {
         if let Some(tol) = tolerance {
             self.logger.event(&format!(
                 "{}: tolerance = {tol} is not used; the integrator follows the scene's [solver] settings (step = {} s, newton_tolerance = {}; the parameter solver.tolerance sets the error control)",
-                match self.standard {
-                    crate::fmi::Standard::Fmi2 => "fmi2SetupExperiment",
-                    crate::fmi::Standard::Fmi3 => "fmi3EnterInitializationMode",
-                },
+                Call::SetupExperiment.name(self.standard),
                 self.scene.solver.step, self.scene.solver.newton_tolerance
             ));
         }

@@ -191,9 +191,11 @@ impl Instance {
                 (
                     Status::Error,
                     format!(
-                        "{}: internal error (a panic was caught at the FMI boundary): {panic}; the instance is in the Error state: call {p}Reset, {p}SetFMUstate or {p}FreeInstance",
+                        "{}: internal error (a panic was caught at the FMI boundary): {panic}; the instance is in the Error state: call {}, {} or {}",
                         call.name(self.standard),
-                        p = self.standard.prefix(),
+                        Call::Reset.name(self.standard),
+                        Call::SetFMUstate.name(self.standard),
+                        Call::FreeInstance.name(self.standard),
                     ),
                 )
             }
@@ -268,6 +270,62 @@ mod tests {
         let status = i.run(Call::GetReal, |i| i.get_real(&[9999], &mut [0.0]));
         assert_eq!(status, Status::Error);
         assert_eq!(i.machine_state(), MachineState::Error);
+    }
+
+    /// Collects the messages it is given.
+    struct Capture(std::sync::Arc<std::sync::Mutex<Vec<String>>>);
+    impl LogSink for Capture {
+        fn emit(&self, _: Status, _: &'static str, message: &str) {
+            self.0.lock().unwrap().push(message.to_string());
+        }
+    }
+
+    #[test]
+    fn fmi3_messages_name_fmi3_functions() {
+        let messages = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
+        let scene = Scene::benchmark();
+        let description = ModelDescription::for_scene_fmi3(&scene).unwrap();
+        let sink = Box::new(Capture(messages.clone()));
+        let mut i = Instance::from_description(scene, description, Logger::new(Some(sink), false));
+        let stop = Some(1e-3);
+        assert_eq!(
+            i.run(Call::SetupExperiment, |i| i
+                .setup_experiment(None, 0.0, stop)),
+            Status::Ok
+        );
+        i.run(
+            Call::EnterInitializationMode,
+            Instance::enter_initialization_mode,
+        );
+        i.run(
+            Call::ExitInitializationMode,
+            Instance::exit_initialization_mode,
+        );
+        let vr = i.table.by_name("rod.length").unwrap().value_reference;
+        // A fixed parameter after initialization, a step past the stop time, a wrong size.
+        assert_eq!(
+            i.run(Call::SetReal, |i| i.set_real(&[vr], &[0.3])),
+            Status::Error
+        );
+        assert_eq!(i.run(Call::DoStep, |i| i.do_step(0.0, 1.0)), Status::Error);
+        let handle = i.get_fmu_state(None).unwrap();
+        let status = i.run(Call::SerializeFMUstate, |i| {
+            i.serialize_fmu_state(handle, &mut [0u8; 3])
+        });
+        assert_eq!(status, Status::Error);
+        let messages = messages.lock().unwrap();
+        let text = messages.join("\n");
+        for name in [
+            "fmi3SetFloat64",
+            "fmi3ExitInitializationMode",
+            "fmi3DoStep",
+            "fmi3EnterInitializationMode",
+            "fmi3SerializeFMUState",
+            "fmi3SerializedFMUStateSize",
+        ] {
+            assert!(text.contains(name), "{name} not in {text}");
+        }
+        assert!(!text.contains("fmi2"), "{text}");
     }
 
     #[test]

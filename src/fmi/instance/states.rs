@@ -6,6 +6,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use super::{model_error, Instance};
 use crate::error::ModelError;
 use crate::fmi::fmu_state::{self, FmuState};
+use crate::fmi::state_machine::Call;
 use crate::fmi::status::{FmiError, FmiResult, Status};
 use crate::scene::Scene;
 use crate::simulation::Simulation;
@@ -131,12 +132,14 @@ impl Instance {
 
     /// `fmi2SerializeFMUstate`: `out` must have exactly the size reported.
     pub fn serialize_fmu_state(&mut self, handle: usize, out: &mut [u8]) -> FmiResult<Status> {
+        let standard = self.standard;
         let bytes = self.serialized(handle)?;
         if out.len() != bytes.len() {
             return Err(FmiError::rejected(format!(
-                "size = {} bytes is wrong: allowed {} (from fmi2SerializedFMUstateSize)",
+                "size = {} bytes is wrong: allowed {} (from {})",
                 out.len(),
-                bytes.len()
+                bytes.len(),
+                Call::SerializedFMUstateSize.name(standard)
             )));
         }
         out.copy_from_slice(bytes);
@@ -152,7 +155,7 @@ impl Instance {
         bytes: &[u8],
         existing: Option<usize>,
     ) -> FmiResult<usize> {
-        let parsed = fmu_state::deserialize(&self.guid, bytes)
+        let parsed = fmu_state::deserialize(&self.guid, self.standard, bytes)
             .map_err(|m| FmiError::rejected(format!("serialized state rejected: {m}")))?;
         let simulation = match parsed.simulation_bytes {
             None => None,

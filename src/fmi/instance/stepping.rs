@@ -2,7 +2,7 @@
 
 use super::{model_error, Instance, TIME_TOLERANCE};
 use crate::error::ModelError;
-use crate::fmi::state_machine::MachineState;
+use crate::fmi::state_machine::{Call, MachineState};
 use crate::fmi::status::{FmiError, FmiResult, Status, StatusKind};
 
 impl Instance {
@@ -29,7 +29,8 @@ impl Instance {
             let end = t + h;
             if end > stop + TIME_TOLERANCE * stop.abs().max(1.0) {
                 return Err(FmiError::rejected(format!(
-                    "the step from currentCommunicationPoint = {t} s with communicationStepSize = {h} s would end at {end} s, after stopTime = {stop} s of fmi2SetupExperiment: allowed communicationStepSize <= {} s",
+                    "the step from currentCommunicationPoint = {t} s with communicationStepSize = {h} s would end at {end} s, after stopTime = {stop} s of {}: allowed communicationStepSize <= {} s",
+                    Call::SetupExperiment.name(self.standard),
                     stop - t
                 )));
             }
@@ -75,7 +76,8 @@ impl Instance {
                 self.last_step = Status::Discard;
                 self.take_warnings();
                 Err(FmiError::discard(format!(
-                    "{e}. Restore a state saved before the step (fmi2SetFMUstate) and retry with a smaller communication step, or terminate"
+                    "{e}. Restore a state saved before the step ({}) and retry with a smaller communication step, or terminate",
+                    Call::SetFMUstate.name(self.standard)
                 )))
             }
             Err(e @ ModelError::DeflectionLimit { discard: true, .. }) => {
@@ -83,7 +85,8 @@ impl Instance {
                 self.last_step = Status::Discard;
                 self.take_warnings();
                 Err(FmiError::discard(format!(
-                    "{e}. Restore a state saved before the step (fmi2SetFMUstate) and continue, switch the model, or terminate"
+                    "{e}. Restore a state saved before the step ({}) and continue, switch the model, or terminate",
+                    Call::SetFMUstate.name(self.standard)
                 )))
             }
             Err(e @ ModelError::TooMuchWork { .. }) => {

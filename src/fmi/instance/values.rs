@@ -4,7 +4,7 @@
 //! table has only scalars, so there one value reference is one value).
 
 use super::Instance;
-use crate::fmi::state_machine::MachineState;
+use crate::fmi::state_machine::{Call, MachineState};
 use crate::fmi::status::{FmiError, FmiResult, Status};
 use crate::fmi::variables::{Access, Causality, Family, InputSlot, ValueReference, Variable};
 
@@ -39,8 +39,9 @@ impl Instance {
             Causality::Parameter => match self.state {
                 MachineState::Instantiated | MachineState::InitializationMode => Ok(v),
                 state => Err(FmiError::rejected(format!(
-                    "{} (value reference {vr}) is a fixed parameter: it can be set only before fmi2ExitInitializationMode, and the instance is in state {}",
+                    "{} (value reference {vr}) is a fixed parameter: it can be set only before {}, and the instance is in state {}",
                     v.name,
+                    Call::ExitInitializationMode.name(self.standard),
                     state.name()
                 ))),
             },

@@ -2,7 +2,7 @@
 //!
 //! `modelDescription.xml`, the GUID, the get/set dispatch of the C ABI, the packager's
 //! documentation page and the reference CSV of the packager all read this table. Names,
-//! units and signs are those of `fmu-contract.md`.
+//! units and signs are those of `docs/fmu.md`.
 //!
 //! Value references are fixed per variable (inputs 1.., outputs 10.., parameters 100..,
 //! `rod.frequency[k]` = 200 + k), so a variable keeps its reference when a scene leaves
