@@ -31,6 +31,7 @@ pub mod hash;
 pub mod integrator;
 pub mod mechanism;
 pub mod modal;
+pub mod model;
 pub mod rod;
 pub mod scene;
 pub mod simulation;

@@ -1,8 +1,9 @@
 //! Saved FMU states (`fmi2GetFMUstate`) and their byte form (`fmi2SerializeFMUstate`).
 //!
 //! A saved state holds everything the instance needs to continue bit for bit: the state
-//! machine's state, the instance's scene (parameters), the inputs and their law, the
-//! experiment, and the core's [`Snapshot`]. The byte form, little endian:
+//! machine's state, the experiment, the last step's status, and the model's own saved state
+//! ([`SavedModel`]: its parameters, its inputs and their law, and the simulation). The byte
+//! form, little endian:
 //!
 //! ```text
 //! magic "FLXRFMI2", format version u32, GUID (u32 length + UTF-8),
@@ -10,7 +11,7 @@
 //! start time f64, stop time defined u8, stop time f64,
 //! inputs: angle, speed, slider force, acceleration f64,
 //!         acceleration source u8 (0 none, 1 crank.speed, 2 crank.angle, 3 the FMI 3.0 input
-//!         crank.acceleration), force changed u8,
+//!         crank.acceleration), force changed u8 (the model's `Inputs::to_bytes`),
 //! scene (u32 length + TOML), simulation present u8 (+ u64 length + core bytes),
 //! checksum u64: FNV-1a 64 of all bytes before it
 //! ```
@@ -20,13 +21,12 @@
 //! bytes (a flipped bit in a stored double, too) a rejection rather than a silently different
 //! state.
 
-use super::inputs::{AccelerationSource, Experiment, Inputs};
+use super::experiment::Experiment;
 use super::standard::Standard;
 use super::state_machine::MachineState;
 use super::status::Status;
 use crate::hash::fnv1a_64;
-use crate::scene::Scene;
-use crate::simulation::Snapshot;
+use crate::model::{Inputs, SavedModel};
 
 const MAGIC: &[u8; 8] = b"FLXRFMI2";
 const VERSION: u32 = 2;
@@ -35,12 +35,9 @@ const VERSION: u32 = 2;
 #[derive(Clone, Debug)]
 pub(crate) struct FmuState {
     pub machine: MachineState,
-    pub scene: Scene,
-    pub inputs: Inputs,
     pub experiment: Experiment,
-    pub started: bool,
     pub last_step: Status,
-    pub simulation: Option<Snapshot>,
+    pub model: SavedModel,
 }
 
 /// A parsed byte form: the state without its simulation, and the core's bytes of it.
@@ -66,17 +63,12 @@ pub(crate) fn serialize(guid: &str, state: &FmuState, simulation_bytes: Option<&
     put_bytes_u32(&mut out, guid.as_bytes());
     out.push(state.machine.code());
     out.push(state.last_step.code() as u8);
-    out.push(u8::from(state.started));
+    out.push(u8::from(state.model.started()));
     put_f64(&mut out, state.experiment.start_time);
     out.push(u8::from(state.experiment.stop_time.is_some()));
     put_f64(&mut out, state.experiment.stop_time.unwrap_or(0.0));
-    let i = &state.inputs;
-    for x in [i.angle, i.speed, i.slider_force, i.acceleration] {
-        put_f64(&mut out, x);
-    }
-    out.push(i.source.code());
-    out.push(u8::from(i.force_changed));
-    put_bytes_u32(&mut out, state.scene.to_toml().as_bytes());
+    out.extend_from_slice(&state.model.inputs_bytes());
+    put_bytes_u32(&mut out, state.model.parameters_text().as_bytes());
     match simulation_bytes {
         None => out.push(0),
         Some(b) => {
@@ -200,17 +192,10 @@ pub(crate) fn deserialize<'a>(
     let start_time = r.f64("the start time")?;
     let stop_defined = r.flag("the stop time flag")?;
     let stop = r.f64("the stop time")?;
-    let angle = r.f64("crank.angle")?;
-    let speed = r.f64("crank.speed")?;
-    let slider_force = r.f64("slider.force")?;
-    let acceleration = r.f64("the crank acceleration")?;
-    let source_code = r.u8("the acceleration source")?;
-    let source = AccelerationSource::from_code(source_code)
-        .ok_or_else(|| format!("acceleration source code {source_code} is unknown"))?;
-    let force_changed = r.flag("the slider force flag")?;
-    let scene_text = r.str_u32("the scene")?;
-    let scene =
-        Scene::from_toml_str(scene_text, "the serialized state").map_err(|e| e.to_string())?;
+    let mut inputs = [0u8; Inputs::BYTES];
+    inputs.copy_from_slice(r.take(Inputs::BYTES, "the inputs")?);
+    let parameters = r.str_u32("the scene")?;
+    let model = SavedModel::from_parts(started, &inputs, parameters)?;
     let simulation_bytes = if r.flag("the simulation flag")? {
         let n = r.u64("the simulation length")?;
         let n = usize::try_from(n).map_err(|_| format!("simulation length {n} is too large"))?;
@@ -225,16 +210,10 @@ pub(crate) fn deserialize<'a>(
             r.at
         ));
     }
-    for (name, x) in [
-        ("the start time", start_time),
-        ("crank.angle", angle),
-        ("crank.speed", speed),
-        ("slider.force", slider_force),
-        ("the crank acceleration", acceleration),
-    ] {
-        if !x.is_finite() {
-            return Err(format!("{name} is {x}, allowed a finite value"));
-        }
+    if !start_time.is_finite() {
+        return Err(format!(
+            "the start time is {start_time}, allowed a finite value"
+        ));
     }
     if stop_defined && !(stop.is_finite() && stop >= start_time) {
         return Err(format!(
@@ -261,26 +240,15 @@ pub(crate) fn deserialize<'a>(
             machine.name()
         ));
     }
-    let inputs = Inputs {
-        angle,
-        speed,
-        slider_force,
-        acceleration,
-        source,
-        force_changed,
-    };
     Ok(Parsed {
         state: FmuState {
             machine,
-            scene,
-            inputs,
             experiment: Experiment {
                 start_time,
                 stop_time: stop_defined.then_some(stop),
             },
-            started,
             last_step,
-            simulation: None,
+            model,
         },
         simulation_bytes,
     })
@@ -290,27 +258,40 @@ pub(crate) fn deserialize<'a>(
 mod tests {
     use super::*;
 
-    fn sample() -> FmuState {
-        let inputs = Inputs {
+    use crate::model::{AccelerationSource, Scene};
+
+    fn inputs() -> Inputs {
+        Inputs {
             angle: 1.25,
             speed: 150.0,
             slider_force: -3.5,
             acceleration: 10.0,
             source: AccelerationSource::Angle,
             force_changed: true,
-        };
+        }
+    }
+
+    fn sample() -> FmuState {
+        let model =
+            SavedModel::from_parts(true, &inputs().to_bytes(), &Scene::benchmark().to_toml())
+                .unwrap();
         FmuState {
             machine: MachineState::StepComplete,
-            scene: Scene::benchmark(),
-            inputs,
             experiment: Experiment {
                 start_time: 0.0,
                 stop_time: Some(0.5),
             },
-            started: true,
             last_step: Status::Ok,
-            simulation: None,
+            model,
         }
+    }
+
+    /// `bytes` with the checksum recomputed (bytes crafted with a valid checksum).
+    fn resealed(mut bytes: Vec<u8>) -> Vec<u8> {
+        let n = bytes.len() - 8;
+        let checksum = fnv1a_64(&bytes[..n]);
+        bytes[n..].copy_from_slice(&checksum.to_le_bytes());
+        bytes
     }
 
     #[test]
@@ -318,8 +299,9 @@ mod tests {
         let s = sample();
         let bytes = serialize("{g}", &s, Some(&[1, 2, 3]));
         let p = deserialize("{g}", Standard::Fmi2, &bytes).unwrap();
-        assert_eq!(p.state.inputs, s.inputs);
-        assert_eq!(p.state.scene, s.scene);
+        assert_eq!(p.state.model.inputs_bytes(), s.model.inputs_bytes());
+        assert_eq!(p.state.model.parameters_text(), s.model.parameters_text());
+        assert!(p.state.model.started());
         assert_eq!(p.state.experiment, s.experiment);
         assert_eq!(p.state.machine, s.machine);
         assert_eq!(p.simulation_bytes, Some(&[1u8, 2, 3][..]));
@@ -371,17 +353,21 @@ mod tests {
         }
     }
 
-    /// Issue 14, 1d: the checksum is unkeyed, so bytes with a valid checksum but values out of
+    /// The checksum is unkeyed, so bytes with a valid checksum but values out of
     /// range are crafted easily; every field is validated after reading.
     #[test]
     fn crafted_values_with_a_valid_checksum_are_rejected() {
         type Case = (&'static str, fn(&mut FmuState), &'static str);
-        let cases: [Case; 6] = [
-            (
-                "NaN input",
-                |s| s.inputs.speed = f64::NAN,
-                "crank.speed is NaN",
-            ),
+        // A NaN crank.speed, its bytes after the magic, version, GUID "{g}", three flags,
+        // start time, stop flag, stop time and crank.angle.
+        let mut bytes = serialize("{g}", &sample(), Some(&[1, 2, 3]));
+        let at = 8 + 4 + 4 + 3 + 3 + 8 + 1 + 8 + 8;
+        bytes[at..at + 8].copy_from_slice(&f64::NAN.to_le_bytes());
+        let e = deserialize("{g}", Standard::Fmi2, &resealed(bytes))
+            .err()
+            .expect("a NaN crank.speed is rejected");
+        assert!(e.contains("crank.speed is NaN"), "{e}");
+        let cases: [Case; 5] = [
             (
                 "infinite start",
                 |s| s.experiment.start_time = f64::INFINITY,

@@ -22,11 +22,11 @@
 //! their byte form: `fmu_state`.
 
 pub mod description;
+pub mod experiment;
 #[allow(unsafe_code)]
 pub mod ffi;
 mod fmu_state;
 mod guard;
-pub mod inputs;
 pub mod instance;
 pub mod logging;
 pub mod resource;

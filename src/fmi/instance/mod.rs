@@ -16,7 +16,9 @@
 //! - [`stepping`]: `fmi2DoStep` and the status queries;
 //! - [`states`]: FMU states and their serialization.
 //!
-//! The inputs and their law between communication points: [`super::inputs`].
+//! The model behind the instance ([`Model`]: parameters, inputs and their law, the
+//! simulation) is the model's own ([`crate::model`]); this layer adds the state machine, the
+//! experiment, logging, statuses and saved FMU states.
 
 mod derivatives;
 mod lifecycle;
@@ -28,9 +30,9 @@ use std::collections::HashMap;
 use std::panic::AssertUnwindSafe;
 
 use super::description::ModelDescription;
+use super::experiment::Experiment;
 use super::fmu_state::FmuState;
 use super::guard;
-use super::inputs::{Experiment, Inputs};
 use super::logging::Logger;
 use super::resource;
 use super::standard::Standard;
@@ -38,8 +40,7 @@ use super::state_machine::{self, Call, MachineState};
 use super::status::{FmiResult, Status};
 use super::variables::VariableTable;
 use crate::error::ModelError;
-use crate::scene::Scene;
-use crate::simulation::Simulation;
+use crate::model::{Model, Scene};
 
 /// `fmi2Type` value of Co-Simulation.
 pub const FMI2_CO_SIMULATION: i32 = 1;
@@ -65,18 +66,12 @@ pub struct Instance {
     standard: Standard,
     guid: String,
     table: VariableTable,
-    /// The scene the FMU was exported for: the start values, restored by `fmi2Reset`.
-    exported: Scene,
-    /// The instance's own copy, with the parameters the importer set.
-    scene: Scene,
+    /// The model: parameters (the exported scene's start values, restored by `fmi2Reset`),
+    /// inputs and the simulation.
+    model: Model,
     state: MachineState,
     logger: Logger,
-    inputs: Inputs,
     experiment: Experiment,
-    /// Built from `scene` (invariant: `Some` only if built from the current `scene`).
-    simulation: Option<Simulation>,
-    /// In initialization mode: the simulation was started with the current inputs.
-    started: bool,
     /// Status of the last `fmi2DoStep`.
     last_step: Status,
     /// Why the simulation is missing after a failed initialization (for messages).
@@ -125,23 +120,19 @@ impl Instance {
         description: ModelDescription,
         logger: Logger,
     ) -> Instance {
-        let inputs = Inputs::from_start_values(&description.table);
+        let model = Model::new(scene, &description.table);
         let experiment = Experiment {
-            start_time: scene.experiment.start_time,
+            start_time: model.default_start_time(),
             stop_time: None,
         };
         Instance {
-            standard: description.table.standard(),
+            standard: description.standard,
             guid: description.guid,
             table: description.table,
-            exported: scene.clone(),
-            scene,
+            model,
             state: MachineState::Instantiated,
             logger,
-            inputs,
             experiment,
-            simulation: None,
-            started: false,
             last_step: Status::Ok,
             failure: None,
             fmu_states: HashMap::new(),

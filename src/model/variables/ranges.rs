@@ -1,15 +1,15 @@
-//! The range checks of the Integer and Enumeration parameters at the set call
-//! (`fmi2SetInteger`). An `Err` carries the allowed values for the message; the physical
-//! ranges are checked when the model is built (`Simulation::new`).
+//! The range checks of the Integer and Enumeration parameters at the set call. An `Err`
+//! carries the allowed values for the message; the physical ranges are checked when the model
+//! is built (`Simulation::new`).
 
 use super::enumerations::{self, EnumerationType, Kind, ROD_MODEL, ROD_REFERENCE};
 use crate::beam::mesh::MAX_ELEMENTS;
 use crate::scene::{DeflectionPolicy, ReferenceKind, RodModelKind, Scene};
 
-/// `rod.elements`: the largest value, as the FMI Integer of the `max` attribute.
+/// `rod.elements`: the largest value, as the Integer of the `max` attribute.
 pub const ELEMENTS_MAX: i32 = MAX_ELEMENTS as i32;
 
-/// A count as an FMI Integer (saturating).
+/// A count as an Integer value (saturating).
 pub fn usize_to_i32(n: usize) -> i32 {
     i32::try_from(n).unwrap_or(i32::MAX)
 }
