@@ -150,7 +150,7 @@ impl Model {
             if available < declared {
                 return Err(ModelError::State {
                     message: format!(
-                        "rod.elements = {} with these rod.model and rod.reference leaves {available} natural frequencies, but this FMU declares rod.frequency[1..{declared}]: allowed parameters that leave at least {declared} (e.g. more elements), or export the scene with [outputs] frequencies <= {available}",
+                        "rod.elements = {} with these rod.model and rod.reference leaves {available} natural frequencies, but the variable table declares rod.frequency[1..{declared}]: allowed parameters that leave at least {declared} (e.g. more elements), or export the scene with [outputs] frequencies <= {available}",
                         self.scene.rod.elements
                     ),
                 });

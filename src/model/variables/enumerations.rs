@@ -15,9 +15,9 @@ pub struct EnumerationItem {
 pub trait Kind: Copy + PartialEq + 'static {
     /// Every variant; the code of `ALL[i]` is `i + 1`.
     const ALL: &'static [Self];
-    /// The name in scenes and in `modelDescription.xml`.
+    /// The name in scenes and in descriptions.
     fn name(self) -> &'static str;
-    /// The item's description in `modelDescription.xml`.
+    /// The item's description.
     fn description(self) -> &'static str;
 }
 
@@ -79,7 +79,7 @@ fn items<K: Kind>() -> Vec<EnumerationItem> {
         .collect()
 }
 
-/// An enumeration type of `modelDescription.xml` (`TypeDefinitions/SimpleType`).
+/// An enumeration type of the description (its type definitions).
 #[derive(Debug)]
 pub struct EnumerationType {
     pub name: &'static str,

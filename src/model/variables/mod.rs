@@ -1,7 +1,6 @@
 //! The variable table: the one source of truth for the model's variables.
 //!
-//! The interface layer's description (`modelDescription.xml`) and its GUID, its get/set
-//! dispatch, the packager's documentation page and reference CSV all read this table. Names,
+//! The interface layer's description and its identity hash, its get/set dispatch, the packager's documentation page and reference CSV all read this table. Names,
 //! units and signs are those of `docs/fmu.md`.
 //!
 //! Identifiers are fixed per variable (inputs 1.., outputs 10.., parameters 100..,
