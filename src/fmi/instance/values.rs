@@ -62,15 +62,15 @@ impl Instance {
         if self.state == MachineState::InitializationMode {
             self.ensure_started()?;
         }
-        match self.model.is_built() {
-            true => Ok(()),
-            false => Err(FmiError::rejected(format!(
-                "outputs and calculated parameters are not available: {}",
-                self.failure
-                    .as_deref()
-                    .unwrap_or("the model was not initialized")
-            ))),
+        if self.model.is_built() {
+            return Ok(());
         }
+        Err(FmiError::rejected(format!(
+            "outputs and calculated parameters are not available: {}",
+            self.failure
+                .as_deref()
+                .unwrap_or("the model was not initialized")
+        )))
     }
 
     /// The number of values `vrs` take: `n_values` must match it (FMI 3.0 `nValues`).
