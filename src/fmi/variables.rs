@@ -3,10 +3,8 @@
 //! their get/set functions.
 
 pub use crate::model::variables::{
-    enumerations, ranges, types, Access, Causality, EnumerationItem, EnumerationType, Initial,
-    InitialDependencies, InputSlot, Interface, OutputGetter, Value, ValueType, Variability,
-    Variable, VariableId, VariableTable, ELEMENTS_MAX, ENUMERATION_TYPES, FREQUENCY_VR_BASE,
-    ROD_MODEL, ROD_REFERENCE, SHAPE_POINTS_MAX,
+    Access, Causality, EnumerationType, Initial, InitialDependencies, OutputGetter, Value,
+    ValueType, Variability, Variable, VariableId, VariableTable, ENUMERATION_TYPES,
 };
 
 use super::standard::Standard;
