@@ -1,8 +1,8 @@
-//! A flexible connecting rod in a planar slider-crank, for export as an FMI 2.0
+//! A flexible connecting rod in a planar slider-crank, for export as an FMI 2.0 and FMI 3.0
 //! Co-Simulation FMU.
 //!
 //! Layers, bottom up; each uses only the layers below it (checked by `tests/layers.rs`):
-//! 0. [`error`], [`hash`]: typed errors; FNV hashes;
+//! 0. [`error`], [`hash`], [`trig`]: typed errors; FNV hashes; `sin_cos` of the hot path;
 //! 1. [`beam`]: the planar Euler-Bernoulli element and the straight rod's mesh;
 //!    [`integrator`]: one-step methods (generalized-alpha, fixed-step RK4, the adaptive explicit
 //!    Runge-Kutta pairs Dormand-Prince 5(4) and RK4(3), ETDRK4) on any [`integrator::DaeSystem`];
@@ -12,12 +12,18 @@
 //!    stepping and outputs;
 //! 5. [`scene`]: the TOML scene, composed of each layer's own spec types;
 //! 6. [`simulation`]: the facade: a mechanism built from a scene, its state and snapshots;
-//! 7. [`drive`]: crank laws and the run loop; [`fmi`]: the FMI 2.0 C ABI (the only place with
-//!    `unsafe`).
+//! 7. [`drive`]: crank laws and the run loop; [`model`]: the model's self-description for an
+//!    interface (the variable table, the crank input law between communication points, the
+//!    instance hooks with their validity checks), knowing nothing of FMI;
+//! 8. [`fmi`]: the FMI 2.0 / FMI 3.0 C ABI, a generic shell over [`model`] that knows nothing
+//!    of the mechanism (the only place with `unsafe`).
 //!
-//! Physics and equations: `docs/physics.md`; the FMU's contract: `docs/fmu.md`. The source
-//! papers are cited by file name (`000_c3718bcf5d527da5.txt`, `001_300b657b5809bf4a.txt`,
-//! `002_e6c2c81d944c25fc.txt`); `docs/physics.md` lists them.
+//! Physics and equations: `docs/physics.md`; the FMU's contract: `docs/fmu.md`. The sources,
+//! listed in `docs/physics.md`: O. P. Agrawal and A. A. Shabana, "Dynamic analysis of
+//! multibody systems using component modes", Computers & Structures 21(6), 1985; J. O'Shea
+//! (Computational Dynamics Inc.), "CDI Parametric Study: Analysis of the Small-Deformation
+//! Connecting Rod: Slider Crank Mechanism"; R. L. Huston, "Computer methods in flexible
+//! multibody dynamics", IJNME 32, 1991.
 
 // Index loops are the natural notation for the matrix formulas of the papers.
 #![allow(clippy::needless_range_loop)]
@@ -32,6 +38,7 @@ pub mod hash;
 pub mod integrator;
 pub mod mechanism;
 pub mod modal;
+pub mod model;
 pub mod rod;
 pub mod scene;
 pub mod simulation;

@@ -1,7 +1,8 @@
 //! The simulation facade: one slider-crank with a flexible rod, driven by crank inputs.
 //!
-//! This is the whole surface the FMI layer (and the command-line tools) use. It knows
-//! nothing of FMI: times in s, angles in rad, forces in N.
+//! This is the whole surface the model's self-description (`model`, and through it the FMI
+//! layer) and the command-line tools use. It knows nothing of FMI: times in s, angles in rad,
+//! forces in N.
 //!
 //! Input law between communication points (docs/fmu.md, "Behaviour"):
 //! `theta(t_k + s) = theta_k + omega_k s + alpha_k s^2 / 2`, `omega(t_k + s) = omega_k + alpha_k s`.
@@ -39,7 +40,7 @@ pub struct InputSnapshot {
     slider_force: f64,
 }
 
-/// Largest magnitudes of the inputs (issue 14: past them no output can be trusted): crank
+/// Largest magnitudes of the inputs (past them no output can be trusted): crank
 /// angle 1e9 rad (the phase keeps 1e-7 rad), crank speed 1e4 rad/s (95 000 rpm), crank
 /// acceleration 1e8 rad/s^2, slider force 1e8 N.
 pub const INPUT_WINDOWS: [f64; 4] = [1e9, 1e4, 1e8, 1e8];
@@ -206,13 +207,13 @@ impl Simulation {
         };
         if bytes.len() < 20 || &bytes[..8] != SNAPSHOT_MAGIC {
             return Err(bad(
-                "it does not start with this FMU's header (foreign or truncated bytes)",
+                "it does not start with this model's header (foreign or truncated bytes)",
             ));
         }
         let version = u32::from_le_bytes(bytes[8..12].try_into().unwrap());
         if version != SNAPSHOT_VERSION {
             return Err(bad(&format!(
-                "version {version}, this FMU reads version {SNAPSHOT_VERSION}"
+                "version {version}, this model reads version {SNAPSHOT_VERSION}"
             )));
         }
         let fingerprint = u64::from_le_bytes(bytes[12..20].try_into().unwrap());

@@ -8,11 +8,17 @@
 //! 4. `mechanism`: the slider-crank DAE, its start, stepping and outputs;
 //! 5. `scene`: the TOML scene, composed of the layers' own spec types;
 //! 6. `simulation`: the facade (a mechanism built from a scene, its state, snapshots);
-//! 7. `drive` (crank laws and the run loop) and `fmi` (the FMU's C ABI), side by side.
+//! 7. `drive` (crank laws and the run loop) and `model` (the model's self-description: the
+//!    variable table, the input law between communication points, the instance hooks), side
+//!    by side;
+//! 8. `fmi`: the FMU's C ABI, a generic FMI 2.0 / FMI 3.0 shell over `model`.
 //!
 //! The test reads every `.rs` file under `src/` (the binaries in `src/bin` excluded: they are
 //! users of the library), collects each `crate::<module>` path (in `use` declarations and in
-//! code), and fails on any use of a module in the same or a higher layer.
+//! code), and fails on any use of a module in the same or a higher layer. On top of the order,
+//! the FMI layer knows nothing of the mechanism: `fmi` uses only `model`, `error` and `hash`
+//! (none of `mechanism`, `rod`, `modal`, `beam`, `integrator`, nor `scene` or `simulation`
+//! except through `model`).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -29,8 +35,15 @@ const LAYERS: &[(&str, usize)] = &[
     ("scene", 5),
     ("simulation", 6),
     ("drive", 7),
-    ("fmi", 7),
+    ("model", 7),
+    ("fmi", 8),
 ];
+
+/// The modules `fmi` may use: the model's self-description and layer 0.
+const FMI_USES: &[&str] = &["model", "error", "hash"];
+
+/// The mechanism's modules, which `fmi` must not use.
+const MECHANISM: &[&str] = &["mechanism", "rod", "modal", "beam", "integrator"];
 
 fn layer(module: &str) -> Option<usize> {
     LAYERS.iter().find(|(m, _)| *m == module).map(|(_, l)| *l)
@@ -135,6 +148,27 @@ fn layers_are_one_way() {
             uses.iter().cloned().collect::<Vec<_>>().join(", ")
         );
     }
+    let fmi_uses = graph.get("fmi").cloned().unwrap_or_default();
+    let mechanism: Vec<&String> = fmi_uses
+        .iter()
+        .filter(|m| MECHANISM.contains(&m.as_str()))
+        .collect();
+    assert!(
+        mechanism.is_empty(),
+        "fmi uses the mechanism's modules {mechanism:?}: go through crate::model"
+    );
+    let other: Vec<&String> = fmi_uses
+        .iter()
+        .filter(|m| !FMI_USES.contains(&m.as_str()))
+        .collect();
+    assert!(
+        other.is_empty(),
+        "fmi uses {other:?}: allowed only {FMI_USES:?}"
+    );
+    assert!(
+        fmi_uses.contains("model"),
+        "fmi is the shell over crate::model: {fmi_uses:?}"
+    );
     assert!(
         violations.is_empty(),
         "uses against the layer order:\n{}",

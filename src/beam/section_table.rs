@@ -1,5 +1,5 @@
 //! A section that varies along the rod: a table of stations, properties linear between
-//! consecutive stations (scene table `[[rod.section]]`, /work/shared/design/fmu-contract.md,
+//! consecutive stations (scene table `[[rod.section]]`, `docs/fmu.md`,
 //! "Real connecting rods"), and the rigid bodies attached at the ends (`[rod.big_end]`,
 //! `[rod.small_end]`).
 //!

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use super::description::ModelDescription;
 use super::standard::Standard;
-use crate::scene::Scene;
+use crate::model::Scene;
 
 /// File name of the scene inside `resources/`.
 pub const SCENE_FILE: &str = "scene.toml";

@@ -157,6 +157,8 @@ impl Call {
                 Call::SerializeFMUstate => "fmi3SerializeFMUState",
                 Call::DeSerializeFMUstate => "fmi3DeserializeFMUState",
                 Call::GetRealOutputDerivatives => "fmi3GetOutputDerivatives",
+                // FMI 3.0 passes tolerance, start and stop time to EnterInitializationMode.
+                Call::SetupExperiment => "fmi3EnterInitializationMode",
                 other => other.fmi3_default_name(),
             },
         }
@@ -224,7 +226,13 @@ pub fn check(call: Call, state: MachineState, standard: Standard) -> Result<(), 
         .map(MachineState::name)
         .collect();
     let allowed_text = if names.is_empty() {
-        "never (this FMU steps synchronously and never returns fmi2Pending)".to_string()
+        format!(
+            "never (this FMU steps synchronously{})",
+            match standard {
+                Standard::Fmi2 => " and never returns fmi2Pending",
+                Standard::Fmi3 => "",
+            }
+        )
     } else {
         names.join(", ")
     };

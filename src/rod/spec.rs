@@ -121,17 +121,18 @@ fn is_default_deflection_limit(x: &f64) -> bool {
 pub enum DeflectionPolicy {
     /// One warning, then continue (results beyond the limit are not accurate).
     Warn,
-    /// The step is refused (fmi2Discard), the state from before it kept: the default, so that
-    /// a master can react (restore a state, switch to the segment chain, stop) instead of
-    /// receiving numbers past the small-deformation range with a warning most masters ignore.
+    /// The step is refused and the state from before it kept, a refusal the caller can
+    /// retry: the default, so that a master can react (restore a state, switch to the segment
+    /// chain, stop) instead of receiving numbers past the small-deformation range with a
+    /// warning most masters ignore.
     #[default]
     Discard,
-    /// The step fails (fmi2Error), the state from before it kept.
+    /// The step fails, the state from before it kept.
     Error,
 }
 
 impl DeflectionPolicy {
-    /// In the order of the FMU's Integer codes (1-based).
+    /// Every policy, the mildest first.
     pub const ALL: [DeflectionPolicy; 3] = [
         DeflectionPolicy::Warn,
         DeflectionPolicy::Discard,
@@ -144,17 +145,6 @@ impl DeflectionPolicy {
             DeflectionPolicy::Discard => "discard",
             DeflectionPolicy::Error => "error",
         }
-    }
-
-    /// The FMU's Integer code: 1 warn, 2 discard, 3 error.
-    pub fn code(self) -> i32 {
-        Self::ALL.iter().position(|p| *p == self).unwrap_or(0) as i32 + 1
-    }
-
-    pub fn from_code(code: i32) -> Option<DeflectionPolicy> {
-        usize::try_from(code - 1)
-            .ok()
-            .and_then(|k| Self::ALL.get(k).copied())
     }
 
     fn is_default(&self) -> bool {

@@ -70,7 +70,7 @@ impl Vars {
         };
         for x in d.table.variables() {
             let vr = x.value_reference;
-            let real = x.value_type.family(Standard::Fmi2) == Family::Real;
+            let real = Family::of(x.value_type, Standard::Fmi2) == Family::Real;
             if real {
                 v.all_reals.push(vr);
             } else {

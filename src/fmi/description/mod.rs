@@ -21,12 +21,12 @@ use std::io;
 
 use crate::error::ModelError;
 use crate::hash::fnv1a_128;
-use crate::scene::Scene;
+use crate::model::Scene;
 
 use super::standard::Standard;
 use super::variables::VariableTable;
 
-/// The FMU's capability flags, written into `<CoSimulation>` (fmu-contract.md).
+/// The FMU's capability flags, written into `<CoSimulation>` (`docs/fmu.md`, "Capabilities").
 pub const CAPABILITIES: [(&str, &str); 10] = [
     ("needsExecutionTool", "false"),
     ("canHandleVariableCommunicationStepSize", "true"),
@@ -50,32 +50,36 @@ pub struct ModelDescription {
     pub guid: String,
     /// The table the description was written from.
     pub table: VariableTable,
+    /// The standard the description follows.
+    pub standard: Standard,
 }
 
 impl ModelDescription {
-    /// The description of `scene` (builds the model once to count the natural frequencies).
+    /// The FMI 2.0 description of `scene` (builds the model once to count the natural
+    /// frequencies).
     pub fn for_scene(scene: &Scene) -> Result<ModelDescription, ModelError> {
-        let table = VariableTable::for_scene(scene)?;
-        ModelDescription::new(scene, table)
+        ModelDescription::for_standard(scene, Standard::Fmi2)
     }
 
     /// The FMI 3.0 description of `scene`.
     pub fn for_scene_fmi3(scene: &Scene) -> Result<ModelDescription, ModelError> {
-        let table = VariableTable::for_scene_fmi3(scene)?;
-        ModelDescription::new(scene, table)
+        ModelDescription::for_standard(scene, Standard::Fmi3)
     }
 
-    /// The description of `scene` in `standard`.
+    /// The description of `scene` in `standard`: the model's table declared for the
+    /// standard's interface.
     pub fn for_standard(scene: &Scene, standard: Standard) -> Result<ModelDescription, ModelError> {
-        match standard {
-            Standard::Fmi2 => ModelDescription::for_scene(scene),
-            Standard::Fmi3 => ModelDescription::for_scene_fmi3(scene),
-        }
+        let table = VariableTable::for_scene(scene, standard.interface())?;
+        ModelDescription::new(scene, table, standard)
     }
 
-    /// The description of `scene` with the given table, in the table's standard.
-    pub fn new(scene: &Scene, table: VariableTable) -> Result<ModelDescription, ModelError> {
-        let render = match table.standard() {
+    /// The description of `scene` with the given table, in `standard`.
+    pub fn new(
+        scene: &Scene,
+        table: VariableTable,
+        standard: Standard,
+    ) -> Result<ModelDescription, ModelError> {
+        let render = match standard {
             Standard::Fmi2 => xml::render,
             Standard::Fmi3 => xml3::render,
         };
@@ -83,12 +87,17 @@ impl ModelDescription {
         let unhashed = render(scene, &table, placeholder).map_err(write_error)?;
         let guid = guid_from_hash(fnv1a_128(unhashed.as_bytes()));
         let xml = render(scene, &table, &guid).map_err(write_error)?;
-        Ok(ModelDescription { xml, guid, table })
+        Ok(ModelDescription {
+            xml,
+            guid,
+            table,
+            standard,
+        })
     }
 
     /// The standard of the description.
     pub fn standard(&self) -> Standard {
-        self.table.standard()
+        self.standard
     }
 }
 
@@ -119,6 +128,10 @@ fn guid_from_hash(h: u128) -> String {
 mod tests {
     use super::*;
 
+    fn fmi2_table(scene: &Scene) -> VariableTable {
+        VariableTable::for_interface(scene, 6, Standard::Fmi2.interface())
+    }
+
     #[test]
     fn guid_format() {
         let g = guid_from_hash(0x0123456789abcdef0123456789abcdef);
@@ -128,10 +141,10 @@ mod tests {
     #[test]
     fn description_depends_on_start_values() {
         let scene = Scene::benchmark();
-        let a = ModelDescription::new(&scene, VariableTable::new(&scene, 6)).unwrap();
+        let a = ModelDescription::new(&scene, fmi2_table(&scene), Standard::Fmi2).unwrap();
         let mut other = scene.clone();
         other.rod.length = 0.31;
-        let b = ModelDescription::new(&other, VariableTable::new(&other, 6)).unwrap();
+        let b = ModelDescription::new(&other, fmi2_table(&other), Standard::Fmi2).unwrap();
         assert_ne!(a.guid, b.guid);
         assert!(a.xml.contains(&a.guid));
         assert!(a.xml.contains("canSerializeFMUstate=\"true\""));
@@ -142,7 +155,7 @@ mod tests {
     fn non_finite_values_are_not_written() {
         let mut scene = Scene::benchmark();
         scene.experiment.stop_time = f64::INFINITY;
-        let e = ModelDescription::new(&scene, VariableTable::new(&scene, 6))
+        let e = ModelDescription::new(&scene, fmi2_table(&scene), Standard::Fmi2)
             .err()
             .expect("an infinite stop time is rejected");
         assert!(e.to_string().contains("not finite"), "{e}");
@@ -151,7 +164,7 @@ mod tests {
     #[test]
     fn parameter_bounds_are_declared() {
         let scene = Scene::benchmark();
-        let xml = ModelDescription::new(&scene, VariableTable::new(&scene, 6))
+        let xml = ModelDescription::new(&scene, fmi2_table(&scene), Standard::Fmi2)
             .unwrap()
             .xml;
         assert!(

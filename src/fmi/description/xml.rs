@@ -11,7 +11,7 @@ use crate::fmi::logging::LOG_CATEGORIES;
 use crate::fmi::variables::{
     Causality, InitialDependencies, Value, ValueType, VariableTable, ENUMERATION_TYPES,
 };
-use crate::scene::Scene;
+use crate::model::Scene;
 
 /// Shortest text that reads back as the same f64. Non-finite values have no xs:double text
 /// that importers accept (and are never valid start values or bounds here): an error.

@@ -16,7 +16,7 @@ use crate::fmi::logging::LOG_CATEGORIES;
 use crate::fmi::variables::{
     Causality, InitialDependencies, Value, ValueType, VariableTable, ENUMERATION_TYPES,
 };
-use crate::scene::Scene;
+use crate::model::Scene;
 
 /// The attributes of `<CoSimulation>` (besides `modelIdentifier`); only what is implemented
 /// and tested is claimed.
@@ -114,8 +114,9 @@ fn write_model_variables(w: &mut W, table: &VariableTable) -> io::Result<()> {
         .write_inner_content(|w| {
             for v in table.variables() {
                 let vr = v.value_reference.to_string();
-                // Status names in descriptions are those of the standard (fmi3Discard, ...).
-                let description = v.description.replace("fmi2", "fmi3");
+                // Status names in descriptions are those of the standard's interface
+                // (fmi3Discard, ...: `Standard::interface`).
+                let description = &v.description;
                 let mut attributes = vec![
                     ("name", v.name.as_str()),
                     ("valueReference", vr.as_str()),

@@ -4,12 +4,9 @@
 use std::borrow::Cow;
 
 use super::{model_error, Instance};
-use crate::fmi::inputs::{Experiment, Inputs};
-use crate::fmi::state_machine::MachineState;
+use crate::fmi::experiment::Experiment;
+use crate::fmi::state_machine::{Call, MachineState};
 use crate::fmi::status::{FmiError, FmiResult, Status};
-use crate::scene::Scene;
-use crate::simulation::Simulation;
-
 impl Instance {
     /// `fmi2SetDebugLogging`.
     pub fn set_debug_logging(&mut self, on: bool, categories: &[Cow<str>]) -> FmiResult<Status> {
@@ -39,12 +36,9 @@ impl Instance {
         }
         if let Some(tol) = tolerance {
             self.logger.event(&format!(
-                "{}: tolerance = {tol} is not used; the integrator follows the scene's [solver] settings (step = {} s, newton_tolerance = {}; the parameter solver.tolerance sets the error control)",
-                match self.standard {
-                    crate::fmi::Standard::Fmi2 => "fmi2SetupExperiment",
-                    crate::fmi::Standard::Fmi3 => "fmi3EnterInitializationMode",
-                },
-                self.scene.solver.step, self.scene.solver.newton_tolerance
+                "{}: tolerance = {tol} is not used; {}",
+                Call::SetupExperiment.name(self.standard),
+                self.model.accuracy_note()
             ));
         }
         self.experiment = Experiment {
@@ -57,7 +51,7 @@ impl Instance {
     /// `fmi2EnterInitializationMode`.
     pub fn enter_initialization_mode(&mut self) -> FmiResult<Status> {
         self.state = MachineState::InitializationMode;
-        self.started = false;
+        self.model.invalidate(false);
         Ok(Status::Ok)
     }
 
@@ -66,34 +60,18 @@ impl Instance {
     pub fn exit_initialization_mode(&mut self) -> FmiResult<Status> {
         if let Err(e) = self.ensure_started() {
             // Nothing may look started: outputs read in the Error state fail with this reason.
-            self.simulation = None;
-            self.started = false;
+            self.model.discard_simulation();
             self.failure = Some(e.message.clone());
             return Err(FmiError::failed(e.message));
         }
         let t0 = self.experiment.start_time;
-        // The simulation starts with the current slider force; the crank acceleration set in
-        // initialization mode holds for the first step (it was set at t0).
-        self.inputs.force_changed = false;
+        self.model.begin_stepping();
         self.state = MachineState::StepComplete;
         self.last_step = Status::Ok;
         if self.logger.events_on() {
-            let lowest = self
-                .simulation
-                .as_ref()
-                .and_then(|s| s.frequencies_hz().first().copied());
-            let frequency = match lowest {
-                Some(f) => format!("lowest natural frequency {f} Hz"),
-                None => "no natural frequency (rigid rod)".to_string(),
-            };
-            let model = self
-                .simulation
-                .as_ref()
-                .map(|s| s.describe())
-                .unwrap_or_default();
             self.logger.event(&format!(
-                "initialized at t = {t0} s with crank.angle = {} rad, crank.speed = {} rad/s; {frequency}; {model}",
-                self.inputs.angle, self.inputs.speed,
+                "initialized at t = {t0} s with {}",
+                self.model.start_summary()
             ));
         }
         Ok(self.take_warnings())
@@ -110,60 +88,22 @@ impl Instance {
     /// valid.
     pub fn reset(&mut self) -> FmiResult<Status> {
         self.logger.reset();
-        self.scene = self.exported.clone();
-        self.inputs = Inputs::from_start_values(&self.table);
+        self.model.reset(&self.table);
         self.experiment = Experiment {
-            start_time: self.scene.experiment.start_time,
+            start_time: self.model.default_start_time(),
             stop_time: None,
         };
-        self.simulation = None;
-        self.started = false;
         self.last_step = Status::Ok;
         self.failure = None;
         self.state = MachineState::Instantiated;
         Ok(Status::Ok)
     }
 
-    /// Build the simulation for the current scene if needed and start it with the current
-    /// inputs at the start time.
+    /// Build the simulation for the current parameters if needed and start it with the
+    /// current inputs at the start time.
     pub(super) fn ensure_started(&mut self) -> FmiResult<()> {
-        if self.simulation.is_none() {
-            check_geometry(&self.scene)?;
-            let simulation =
-                Simulation::new(&self.scene).map_err(|e| FmiError::rejected(model_error(e)))?;
-            let available = simulation.frequencies_hz().len();
-            let declared = self.table.frequency_count();
-            if available < declared {
-                return Err(FmiError::rejected(format!(
-                    "rod.elements = {} with these rod.model and rod.reference leaves {available} natural frequencies, but this FMU declares rod.frequency[1..{declared}]: allowed parameters that leave at least {declared} (e.g. more elements), or export the scene with [outputs] frequencies <= {available}",
-                    self.scene.rod.elements
-                )));
-            }
-            self.simulation = Some(simulation);
-            self.started = false;
-        }
-        if !self.started {
-            let input = self.inputs.crank_input();
-            let force = self.inputs.slider_force;
-            let t0 = self.experiment.start_time;
-            if let Some(simulation) = self.simulation.as_mut() {
-                simulation
-                    .start(t0, input, force)
-                    .map_err(|e| FmiError::rejected(model_error(e)))?;
-            }
-            self.started = true;
-        }
-        Ok(())
+        self.model
+            .ensure_started(self.experiment.start_time, &self.table)
+            .map_err(|e| FmiError::rejected(model_error(e)))
     }
-}
-
-/// The slider-crank turns a full revolution only with r < L; the core checks the rest.
-fn check_geometry(scene: &Scene) -> FmiResult<()> {
-    let (r, l) = (scene.crank.length, scene.rod.length);
-    if r.is_finite() && l.is_finite() && r >= l {
-        return Err(FmiError::rejected(format!(
-            "crank.length = {r} m must be smaller than rod.length = {l} m: allowed 0 < crank.length < rod.length (otherwise the crank cannot turn a full revolution)"
-        )));
-    }
-    Ok(())
 }

@@ -16,7 +16,9 @@
 //! - [`stepping`]: `fmi2DoStep` and the status queries;
 //! - [`states`]: FMU states and their serialization.
 //!
-//! The inputs and their law between communication points: [`super::inputs`].
+//! The model behind the instance ([`Model`]: parameters, inputs and their law, the
+//! simulation) is the model's own ([`crate::model`]); this layer adds the state machine, the
+//! experiment, logging, statuses and saved FMU states.
 
 mod derivatives;
 mod lifecycle;
@@ -28,9 +30,9 @@ use std::collections::HashMap;
 use std::panic::AssertUnwindSafe;
 
 use super::description::ModelDescription;
+use super::experiment::Experiment;
 use super::fmu_state::FmuState;
 use super::guard;
-use super::inputs::{Experiment, Inputs};
 use super::logging::Logger;
 use super::resource;
 use super::standard::Standard;
@@ -38,8 +40,7 @@ use super::state_machine::{self, Call, MachineState};
 use super::status::{FmiResult, Status};
 use super::variables::VariableTable;
 use crate::error::ModelError;
-use crate::scene::Scene;
-use crate::simulation::Simulation;
+use crate::model::{Model, Scene};
 
 /// `fmi2Type` value of Co-Simulation.
 pub const FMI2_CO_SIMULATION: i32 = 1;
@@ -65,18 +66,12 @@ pub struct Instance {
     standard: Standard,
     guid: String,
     table: VariableTable,
-    /// The scene the FMU was exported for: the start values, restored by `fmi2Reset`.
-    exported: Scene,
-    /// The instance's own copy, with the parameters the importer set.
-    scene: Scene,
+    /// The model: parameters (the exported scene's start values, restored by `fmi2Reset`),
+    /// inputs and the simulation.
+    model: Model,
     state: MachineState,
     logger: Logger,
-    inputs: Inputs,
     experiment: Experiment,
-    /// Built from `scene` (invariant: `Some` only if built from the current `scene`).
-    simulation: Option<Simulation>,
-    /// In initialization mode: the simulation was started with the current inputs.
-    started: bool,
     /// Status of the last `fmi2DoStep`.
     last_step: Status,
     /// Why the simulation is missing after a failed initialization (for messages).
@@ -125,23 +120,19 @@ impl Instance {
         description: ModelDescription,
         logger: Logger,
     ) -> Instance {
-        let inputs = Inputs::from_start_values(&description.table);
+        let model = Model::new(scene, &description.table);
         let experiment = Experiment {
-            start_time: scene.experiment.start_time,
+            start_time: model.default_start_time(),
             stop_time: None,
         };
         Instance {
-            standard: description.table.standard(),
+            standard: description.standard,
             guid: description.guid,
             table: description.table,
-            exported: scene.clone(),
-            scene,
+            model,
             state: MachineState::Instantiated,
             logger,
-            inputs,
             experiment,
-            simulation: None,
-            started: false,
             last_step: Status::Ok,
             failure: None,
             fmu_states: HashMap::new(),
@@ -191,9 +182,11 @@ impl Instance {
                 (
                     Status::Error,
                     format!(
-                        "{}: internal error (a panic was caught at the FMI boundary): {panic}; the instance is in the Error state: call {p}Reset, {p}SetFMUstate or {p}FreeInstance",
+                        "{}: internal error (a panic was caught at the FMI boundary): {panic}; the instance is in the Error state: call {}, {} or {}",
                         call.name(self.standard),
-                        p = self.standard.prefix(),
+                        Call::Reset.name(self.standard),
+                        Call::SetFMUstate.name(self.standard),
+                        Call::FreeInstance.name(self.standard),
                     ),
                 )
             }
@@ -268,6 +261,62 @@ mod tests {
         let status = i.run(Call::GetReal, |i| i.get_real(&[9999], &mut [0.0]));
         assert_eq!(status, Status::Error);
         assert_eq!(i.machine_state(), MachineState::Error);
+    }
+
+    /// Collects the messages it is given.
+    struct Capture(std::sync::Arc<std::sync::Mutex<Vec<String>>>);
+    impl LogSink for Capture {
+        fn emit(&self, _: Status, _: &'static str, message: &str) {
+            self.0.lock().unwrap().push(message.to_string());
+        }
+    }
+
+    #[test]
+    fn fmi3_messages_name_fmi3_functions() {
+        let messages = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
+        let scene = Scene::benchmark();
+        let description = ModelDescription::for_scene_fmi3(&scene).unwrap();
+        let sink = Box::new(Capture(messages.clone()));
+        let mut i = Instance::from_description(scene, description, Logger::new(Some(sink), false));
+        let stop = Some(1e-3);
+        assert_eq!(
+            i.run(Call::SetupExperiment, |i| i
+                .setup_experiment(None, 0.0, stop)),
+            Status::Ok
+        );
+        i.run(
+            Call::EnterInitializationMode,
+            Instance::enter_initialization_mode,
+        );
+        i.run(
+            Call::ExitInitializationMode,
+            Instance::exit_initialization_mode,
+        );
+        let vr = i.table.by_name("rod.length").unwrap().value_reference;
+        // A fixed parameter after initialization, a step past the stop time, a wrong size.
+        assert_eq!(
+            i.run(Call::SetReal, |i| i.set_real(&[vr], &[0.3])),
+            Status::Error
+        );
+        assert_eq!(i.run(Call::DoStep, |i| i.do_step(0.0, 1.0)), Status::Error);
+        let handle = i.get_fmu_state(None).unwrap();
+        let status = i.run(Call::SerializeFMUstate, |i| {
+            i.serialize_fmu_state(handle, &mut [0u8; 3])
+        });
+        assert_eq!(status, Status::Error);
+        let messages = messages.lock().unwrap();
+        let text = messages.join("\n");
+        for name in [
+            "fmi3SetFloat64",
+            "fmi3ExitInitializationMode",
+            "fmi3DoStep",
+            "fmi3EnterInitializationMode",
+            "fmi3SerializeFMUState",
+            "fmi3SerializedFMUStateSize",
+        ] {
+            assert!(text.contains(name), "{name} not in {text}");
+        }
+        assert!(!text.contains("fmi2"), "{text}");
     }
 
     #[test]

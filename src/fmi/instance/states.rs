@@ -4,11 +4,9 @@
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use super::{model_error, Instance};
-use crate::error::ModelError;
 use crate::fmi::fmu_state::{self, FmuState};
+use crate::fmi::state_machine::Call;
 use crate::fmi::status::{FmiError, FmiResult, Status};
-use crate::scene::Scene;
-use crate::simulation::Simulation;
 
 /// Handles of FMU states are unique across all instances of the process, so a state of
 /// another instance is recognized as foreign.
@@ -18,12 +16,9 @@ impl Instance {
     fn capture(&self) -> FmuState {
         FmuState {
             machine: self.state,
-            scene: self.scene.clone(),
-            inputs: self.inputs,
             experiment: self.experiment,
-            started: self.started,
             last_step: self.last_step,
-            simulation: self.simulation.as_ref().map(Simulation::snapshot),
+            model: self.model.save(),
         }
     }
 
@@ -60,24 +55,10 @@ impl Instance {
     pub fn set_fmu_state(&mut self, handle: usize) -> FmiResult<Status> {
         self.saved(handle)?;
         let saved = &self.fmu_states[&handle];
-        match &saved.simulation {
-            None => self.simulation = None,
-            Some(snapshot) => {
-                let reuse = self.simulation.is_some() && self.scene == saved.scene;
-                if !reuse {
-                    let rebuilt = Simulation::new(&saved.scene)
-                        .map_err(|e| FmiError::rejected(model_error(e)))?;
-                    self.simulation = Some(rebuilt);
-                }
-                if let Some(simulation) = self.simulation.as_mut() {
-                    simulation.restore(snapshot);
-                }
-            }
-        }
-        self.scene.clone_from(&saved.scene);
-        self.inputs = saved.inputs;
+        self.model
+            .restore(&saved.model)
+            .map_err(|e| FmiError::rejected(model_error(e)))?;
         self.experiment = saved.experiment;
-        self.started = saved.started;
         self.last_step = saved.last_step;
         self.state = saved.machine;
         self.failure = None;
@@ -100,20 +81,12 @@ impl Instance {
         if !cached {
             self.saved(handle)?;
             let saved = &self.fmu_states[&handle];
-            // The core serializes the current state of a simulation: bring the saved
-            // snapshot in, write it, and put the current state back.
-            let simulation_bytes = match &saved.simulation {
-                None => None,
-                Some(snapshot) => Some(with_simulation_of(
-                    self.simulation.as_mut(),
-                    &self.scene,
-                    &saved.scene,
-                    |s| {
-                        s.restore(snapshot);
-                        Ok(s.snapshot_to_bytes())
-                    },
-                )?),
-            };
+            // The core serializes the current state of a simulation: the model brings the
+            // saved snapshot in, writes it, and puts the current state back.
+            let simulation_bytes = self
+                .model
+                .simulation_bytes(&saved.model)
+                .map_err(|e| FmiError::rejected(model_error(e)))?;
             let bytes = fmu_state::serialize(&self.guid, saved, simulation_bytes.as_deref());
             self.serialized = Some((handle, bytes));
         }
@@ -131,12 +104,14 @@ impl Instance {
 
     /// `fmi2SerializeFMUstate`: `out` must have exactly the size reported.
     pub fn serialize_fmu_state(&mut self, handle: usize, out: &mut [u8]) -> FmiResult<Status> {
+        let standard = self.standard;
         let bytes = self.serialized(handle)?;
         if out.len() != bytes.len() {
             return Err(FmiError::rejected(format!(
-                "size = {} bytes is wrong: allowed {} (from fmi2SerializedFMUstateSize)",
+                "size = {} bytes is wrong: allowed {} (from {})",
                 out.len(),
-                bytes.len()
+                bytes.len(),
+                Call::SerializedFMUstateSize.name(standard)
             )));
         }
         out.copy_from_slice(bytes);
@@ -152,22 +127,14 @@ impl Instance {
         bytes: &[u8],
         existing: Option<usize>,
     ) -> FmiResult<usize> {
-        let parsed = fmu_state::deserialize(&self.guid, bytes)
+        let parsed = fmu_state::deserialize(&self.guid, self.standard, bytes)
             .map_err(|m| FmiError::rejected(format!("serialized state rejected: {m}")))?;
-        let simulation = match parsed.simulation_bytes {
-            None => None,
-            Some(b) => Some(with_simulation_of(
-                self.simulation.as_mut(),
-                &self.scene,
-                &parsed.state.scene,
-                |s| {
-                    s.restore_from_bytes(b)?;
-                    Ok(s.snapshot())
-                },
-            )?),
-        };
+        let model = self
+            .model
+            .saved_from_bytes(parsed.state.model, parsed.simulation_bytes)
+            .map_err(|e| FmiError::rejected(model_error(e)))?;
         let state = FmuState {
-            simulation,
+            model,
             ..parsed.state
         };
         let handle = self.handle_for(existing);
@@ -177,25 +144,4 @@ impl Instance {
         }
         Ok(handle)
     }
-}
-
-/// Run `f` on a simulation of `scene` whose state `f` may replace: the instance's own one if
-/// it was built from the same scene (its state is put back bit for bit afterwards), else a
-/// scratch one.
-fn with_simulation_of<T>(
-    own: Option<&mut Simulation>,
-    own_scene: &Scene,
-    scene: &Scene,
-    f: impl FnOnce(&mut Simulation) -> Result<T, ModelError>,
-) -> FmiResult<T> {
-    let result = match own {
-        Some(simulation) if own_scene == scene => {
-            let current = simulation.snapshot();
-            let result = f(simulation);
-            simulation.restore(&current);
-            result
-        }
-        _ => Simulation::new(scene).and_then(|mut scratch| f(&mut scratch)),
-    };
-    result.map_err(|e| FmiError::rejected(model_error(e)))
 }

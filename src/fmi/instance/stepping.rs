@@ -2,16 +2,16 @@
 
 use super::{model_error, Instance, TIME_TOLERANCE};
 use crate::error::ModelError;
-use crate::fmi::state_machine::MachineState;
+use crate::fmi::state_machine::{Call, MachineState};
 use crate::fmi::status::{FmiError, FmiResult, Status, StatusKind};
+use crate::model::StepError;
 
 impl Instance {
     /// `fmi2DoStep`: integrate from the FMU time `t` to `t + h`.
     pub fn do_step(&mut self, t: f64, h: f64) -> FmiResult<Status> {
-        let Some(simulation) = self.simulation.as_mut() else {
+        let Some(now) = self.model.time() else {
             return Err(FmiError::failed("no simulation (internal error)"));
         };
-        let now = simulation.time();
         let tolerance = TIME_TOLERANCE * now.abs().max(1.0);
         if !(t.is_finite() && (t - now).abs() <= tolerance) {
             return Err(FmiError::rejected(format!(
@@ -29,44 +29,25 @@ impl Instance {
             let end = t + h;
             if end > stop + TIME_TOLERANCE * stop.abs().max(1.0) {
                 return Err(FmiError::rejected(format!(
-                    "the step from currentCommunicationPoint = {t} s with communicationStepSize = {h} s would end at {end} s, after stopTime = {stop} s of fmi2SetupExperiment: allowed communicationStepSize <= {} s",
+                    "the step from currentCommunicationPoint = {t} s with communicationStepSize = {h} s would end at {end} s, after stopTime = {stop} s of {}: allowed communicationStepSize <= {} s",
+                    Call::SetupExperiment.name(self.standard),
                     stop - t
                 )));
             }
         }
         // Refusals that change nothing come first: a step beyond the work bound.
-        simulation
-            .check_work(h)
+        self.model
+            .check_step(h)
             .map_err(|e| FmiError::rejected(model_error(e)))?;
-        // A new law starts at every communication point: theta_k, omega_k as set (or the
-        // previous law's values at t_k), alpha_k as set at t_k or 0 (see `inputs`). A step
-        // that is refused puts the inputs in force back (with the state, which the core
-        // restores), so that continuing gives what a run that never tried gives.
-        let saved_inputs = simulation.inputs_snapshot();
-        let mut set_inputs = || {
-            simulation.set_input(self.inputs.crank_input())?;
-            if self.inputs.force_changed {
-                simulation.set_slider_force(self.inputs.slider_force)?;
-            }
-            Ok(())
+        // A new input law starts at every communication point (see `crate::model::inputs`);
+        // refused inputs change nothing, a failed step keeps the state before it.
+        let result = match self.model.step(h) {
+            Ok(()) => Ok(()),
+            Err(StepError::Inputs(e)) => return Err(FmiError::rejected(model_error(e))),
+            Err(StepError::Step(e)) => Err(e),
         };
-        if let Err(e) = set_inputs() {
-            simulation.restore_inputs(saved_inputs);
-            return Err(FmiError::rejected(model_error(e)));
-        }
-        let result = simulation.advance(h);
-        if result.is_err() {
-            simulation.restore_inputs(saved_inputs);
-        }
         match result {
-            Ok(_) => {
-                // The values the law used at the new time, from the core's own law.
-                let time = simulation.time();
-                let (angle, speed, _) = simulation
-                    .mechanism()
-                    .crank_law(simulation.state())
-                    .kinematics(time);
-                self.inputs.after_step(angle, speed);
+            Ok(()) => {
                 self.last_step = Status::Ok;
                 Ok(self.take_warnings())
             }
@@ -75,7 +56,8 @@ impl Instance {
                 self.last_step = Status::Discard;
                 self.take_warnings();
                 Err(FmiError::discard(format!(
-                    "{e}. Restore a state saved before the step (fmi2SetFMUstate) and retry with a smaller communication step, or terminate"
+                    "{e}. Restore a state saved before the step ({}) and retry with a smaller communication step, or terminate",
+                    Call::SetFMUstate.name(self.standard)
                 )))
             }
             Err(e @ ModelError::DeflectionLimit { discard: true, .. }) => {
@@ -83,7 +65,8 @@ impl Instance {
                 self.last_step = Status::Discard;
                 self.take_warnings();
                 Err(FmiError::discard(format!(
-                    "{e}. Restore a state saved before the step (fmi2SetFMUstate) and continue, switch the model, or terminate"
+                    "{e}. Restore a state saved before the step ({}) and continue, switch the model, or terminate",
+                    Call::SetFMUstate.name(self.standard)
                 )))
             }
             Err(e @ ModelError::TooMuchWork { .. }) => {
@@ -101,18 +84,12 @@ impl Instance {
     /// The FMU's time: the simulation's, or the start time before there is one (FMI 3.0
     /// `time` and `lastSuccessfulTime`).
     pub fn time(&self) -> f64 {
-        match &self.simulation {
-            Some(s) => s.time(),
-            None => self.experiment.start_time,
-        }
+        self.model.time().unwrap_or(self.experiment.start_time)
     }
 
     /// Pass the simulation's warnings to the logger; `Warning` if there were any.
     pub(super) fn take_warnings(&mut self) -> Status {
-        let Some(simulation) = self.simulation.as_mut() else {
-            return Status::Ok;
-        };
-        let warnings = simulation.take_warnings();
+        let warnings = self.model.take_warnings();
         for w in &warnings {
             self.logger.status(Status::Warning, w);
         }
@@ -134,8 +111,8 @@ impl Instance {
     /// `fmi2GetRealStatus`: `fmi2LastSuccessfulTime` is the FMU time (after a discarded step,
     /// the time before it).
     pub fn get_real_status(&self, kind: StatusKind) -> FmiResult<f64> {
-        match (kind, &self.simulation) {
-            (StatusKind::LastSuccessfulTime, Some(s)) => Ok(s.time()),
+        match (kind, self.model.time()) {
+            (StatusKind::LastSuccessfulTime, Some(time)) => Ok(time),
             _ => {
                 Err(self.undefined_status(kind, "fmi2GetRealStatus", "only fmi2LastSuccessfulTime"))
             }

@@ -4,9 +4,10 @@
 //! table has only scalars, so there one value reference is one value).
 
 use super::Instance;
-use crate::fmi::state_machine::MachineState;
+use crate::fmi::state_machine::{Call, MachineState};
 use crate::fmi::status::{FmiError, FmiResult, Status};
-use crate::fmi::variables::{Access, Causality, Family, InputSlot, ValueReference, Variable};
+use crate::fmi::variables::{Causality, Family, ValueReference, Variable};
+use crate::model::Model;
 
 impl Instance {
     pub(super) fn variable(&self, vr: ValueReference, family: Family) -> FmiResult<&Variable> {
@@ -17,7 +18,7 @@ impl Instance {
                 family.name(standard)
             ))
         })?;
-        let actual = v.value_type.family(standard);
+        let actual = Family::of(v.value_type, standard);
         if actual != family {
             return Err(FmiError::rejected(format!(
                 "value reference {vr} ({}) is a {} variable, not {}: use {p}Get{}/{p}Set{}",
@@ -39,8 +40,9 @@ impl Instance {
             Causality::Parameter => match self.state {
                 MachineState::Instantiated | MachineState::InitializationMode => Ok(v),
                 state => Err(FmiError::rejected(format!(
-                    "{} (value reference {vr}) is a fixed parameter: it can be set only before fmi2ExitInitializationMode, and the instance is in state {}",
+                    "{} (value reference {vr}) is a fixed parameter: it can be set only before {}, and the instance is in state {}",
                     v.name,
+                    Call::ExitInitializationMode.name(self.standard),
                     state.name()
                 ))),
             },
@@ -54,29 +56,21 @@ impl Instance {
         }
     }
 
-    /// A parameter or input changed during initialization: the start must be redone.
-    pub(super) fn invalidate(&mut self, parameter_changed: bool) {
-        if parameter_changed {
-            self.simulation = None;
-        }
-        self.started = false;
-    }
-
     /// Make the simulation that provides outputs and frequencies available (built on
     /// demand in initialization mode).
     fn prepare_values(&mut self) -> FmiResult<()> {
         if self.state == MachineState::InitializationMode {
             self.ensure_started()?;
         }
-        match &self.simulation {
-            Some(_) => Ok(()),
-            None => Err(FmiError::rejected(format!(
-                "outputs and calculated parameters are not available: {}",
-                self.failure
-                    .as_deref()
-                    .unwrap_or("the model was not initialized")
-            ))),
+        if self.model.is_built() {
+            return Ok(());
         }
+        Err(FmiError::rejected(format!(
+            "outputs and calculated parameters are not available: {}",
+            self.failure
+                .as_deref()
+                .unwrap_or("the model was not initialized")
+        )))
     }
 
     /// The number of values `vrs` take: `n_values` must match it (FMI 3.0 `nValues`).
@@ -101,52 +95,19 @@ impl Instance {
         self.check_value_count(vrs, values.len())?;
         let mut needs_simulation = false;
         for &vr in vrs {
-            let v = self.variable(vr, Family::Real)?;
-            needs_simulation |= matches!(
-                v.access,
-                Access::Output(_) | Access::Frequency(_) | Access::Frequencies | Access::Shape
-            );
+            needs_simulation |= self.variable(vr, Family::Real)?.access.needs_simulation();
         }
         if needs_simulation {
             self.prepare_values()?;
         }
-        let (outputs, frequencies) = match &self.simulation {
-            Some(s) if needs_simulation => (s.outputs(), s.frequencies_hz()),
-            _ => (Default::default(), &[][..]),
-        };
         let mut next = 0;
         for &vr in vrs {
             let v = self.table.get(vr).expect("checked above");
             let out = &mut values[next..next + v.value_count()];
             next += out.len();
-            let missing =
-                || FmiError::rejected(format!("{} does not exist for these parameters", v.name));
-            out[0] =
-                match v.access {
-                    Access::Input(slot) => self.inputs.value(slot),
-                    Access::Output(get) => get(&outputs),
-                    Access::RealParameter { get, .. } => get(&self.scene),
-                    Access::Frequency(i) => *frequencies.get(i).ok_or_else(missing)?,
-                    Access::Frequencies => {
-                        let all = frequencies.get(..out.len()).ok_or_else(missing)?;
-                        out.copy_from_slice(all);
-                        continue;
-                    }
-                    Access::Shape => {
-                        if let Some(s) = &self.simulation {
-                            s.mechanism().deflection_shape(s.state(), out);
-                        }
-                        continue;
-                    }
-                    Access::Time => match &self.simulation {
-                        Some(s) => s.time(),
-                        None => self.experiment.start_time,
-                    },
-                    Access::RodMass => self.scene.rod.total_mass().map_err(|e| {
-                        FmiError::rejected(format!("{} is not available: {e}", v.name))
-                    })?,
-                    Access::IntegerParameter { .. } => unreachable!("family checked"),
-                };
+            self.model
+                .get_real(v, out, self.experiment.start_time)
+                .map_err(FmiError::rejected)?;
         }
         Ok(Status::Ok)
     }
@@ -162,10 +123,7 @@ impl Instance {
         self.check_value_count(vrs, values.len())?;
         for (&vr, out) in vrs.iter().zip(values.iter_mut()) {
             let v = self.variable(vr, family)?;
-            *out = T::from(match v.access {
-                Access::IntegerParameter { get, .. } => get(&self.scene),
-                _ => unreachable!("only Integer parameters are Integer variables"),
-            });
+            *out = T::from(self.model.get_integer(v).map_err(FmiError::rejected)?);
         }
         Ok(Status::Ok)
     }
@@ -181,35 +139,20 @@ impl Instance {
                     v.name
                 )));
             }
-            if let Access::Input(slot) = v.access {
-                let bound = crate::simulation::INPUT_WINDOWS[match slot {
-                    InputSlot::CrankAngle => 0,
-                    InputSlot::CrankSpeed => 1,
-                    InputSlot::CrankAcceleration => 2,
-                    InputSlot::SliderForce => 3,
-                }];
-                if x.abs() > bound {
-                    return Err(FmiError::rejected(format!(
-                        "{} = {x:e} (value reference {vr}) is out of range: allowed |value| <= {bound:e} in SI units; nothing was set",
-                        v.name
-                    )));
-                }
+            if let Err(allowed) = Model::check_real(v, x) {
+                return Err(FmiError::rejected(format!(
+                    "{} = {x:e} (value reference {vr}) is out of range: allowed {allowed}; nothing was set",
+                    v.name
+                )));
             }
         }
         let mut parameter_changed = false;
         for (&vr, &x) in vrs.iter().zip(values) {
-            let access = self.table.get(vr).expect("checked above").access;
-            match access {
-                Access::Input(slot) => self.inputs.set(slot, x),
-                Access::RealParameter { set, .. } => {
-                    set(&mut self.scene, x);
-                    parameter_changed = true;
-                }
-                _ => unreachable!("settable Real variables are inputs or Real parameters"),
-            }
+            let v = self.table.get(vr).expect("checked above");
+            parameter_changed |= self.model.set_real(v, x).map_err(FmiError::rejected)?;
         }
         if self.state != MachineState::StepComplete {
-            self.invalidate(parameter_changed);
+            self.model.invalidate(parameter_changed);
         }
         Ok(Status::Ok)
     }
@@ -223,26 +166,27 @@ impl Instance {
         values: &[T],
     ) -> FmiResult<Status> {
         self.check_value_count(vrs, values.len())?;
-        let mut scene = self.scene.clone();
+        let mut checked = Vec::with_capacity(vrs.len());
         for (&vr, &value) in vrs.iter().zip(values) {
             let v = self.settable(vr, family)?;
-            if let Access::IntegerParameter { set, .. } = v.access {
-                let out_of_range = |allowed: String| {
-                    FmiError::rejected(format!(
-                        "{} = {value} (value reference {vr}) is out of range: allowed {allowed}; nothing was set",
-                        v.name
-                    ))
-                };
-                let n: i32 = value
-                    .try_into()
-                    .map_err(|_| out_of_range("a value in the 32-bit integer range".to_string()))?;
-                set(&mut scene, n).map_err(out_of_range)?;
-            }
+            let n: i32 = value.try_into().map_err(|_| {
+                out_of_range(
+                    v,
+                    vr,
+                    value,
+                    "a value in the 32-bit integer range".to_string(),
+                )
+            })?;
+            checked.push(n);
         }
-        if !vrs.is_empty() {
-            self.scene = scene;
-            self.invalidate(true);
-        }
+        let items: Vec<(&Variable, i32)> = vrs
+            .iter()
+            .zip(checked)
+            .map(|(&vr, n)| (self.table.get(vr).expect("checked above"), n))
+            .collect();
+        self.model
+            .set_integers(&items)
+            .map_err(|(k, allowed)| out_of_range(items[k].0, vrs[k], values[k], allowed))?;
         Ok(Status::Ok)
     }
 
@@ -255,4 +199,17 @@ impl Instance {
             Some(&vr) => self.variable(vr, family).map(|_| Status::Ok),
         }
     }
+}
+
+/// A value refused by a set call, with the allowed values.
+fn out_of_range(
+    v: &Variable,
+    vr: ValueReference,
+    value: impl std::fmt::Display,
+    allowed: String,
+) -> FmiError {
+    FmiError::rejected(format!(
+        "{} = {value} (value reference {vr}) is out of range: allowed {allowed}; nothing was set",
+        v.name
+    ))
 }

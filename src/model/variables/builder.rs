@@ -5,8 +5,7 @@ use super::types::{
     Access, Causality, Initial, InitialDependencies, InputSlot, OutputGetter, Value, ValueType,
     Variability, Variable,
 };
-use super::{ValueReference, VariableTable};
-use crate::fmi::standard::Standard;
+use super::{Interface, VariableId, VariableTable};
 use crate::scene::Scene;
 
 pub(super) const RAD: ValueType = ValueType::Real {
@@ -30,18 +29,18 @@ pub(super) const DIMENSIONLESS: ValueType = ValueType::Real {
     display_unit: None,
 };
 
-/// Collects the variables of one table, in modelDescription.xml order.
+/// Collects the variables of one table, in description order.
 pub(super) struct Builder<'a> {
     pub scene: &'a Scene,
-    standard: Standard,
+    interface: Interface,
     variables: Vec<Variable>,
 }
 
 impl<'a> Builder<'a> {
-    pub fn new(scene: &'a Scene, standard: Standard) -> Builder<'a> {
+    pub fn new(scene: &'a Scene, interface: Interface) -> Builder<'a> {
         Builder {
             scene,
-            standard,
+            interface,
             variables: Vec::new(),
         }
     }
@@ -61,7 +60,7 @@ impl<'a> Builder<'a> {
         VariableTable {
             variables: self.variables,
             by_vr,
-            standard: self.standard,
+            interface: self.interface,
         }
     }
 
@@ -88,15 +87,15 @@ impl<'a> Builder<'a> {
         }
     }
 
-    /// Make the variable added last an FMI 3.0 array of `n` elements.
+    /// Make the variable added last an array of `n` elements.
     pub fn array(&mut self, n: usize) {
         if let Some(v) = self.variables.last_mut() {
             v.dimension = Some(n);
         }
     }
 
-    /// FMI 3.0 `time` (causality `independent`).
-    pub fn independent(&mut self, name: &str, vr: ValueReference, description: &str) {
+    /// The independent variable `time` (causality `independent`).
+    pub fn independent(&mut self, name: &str, vr: VariableId, description: &str) {
         self.variables.push(Variable {
             name: name.into(),
             value_reference: vr,
@@ -114,9 +113,9 @@ impl<'a> Builder<'a> {
         });
     }
 
-    /// `min="0"` on a Real parameter that must be positive: FMI 2.0 has no open bound, so 0
-    /// itself passes the declared range and is rejected at initialization (`fmi2Error` at
-    /// `fmi2ExitInitializationMode` naming the parameter).
+    /// `min="0"` on a Real parameter that must be positive: the bounds are closed, so 0
+    /// itself passes the declared range and is rejected when the model is built (at the end
+    /// of initialization, naming the parameter).
     pub fn positive(&mut self) {
         self.bounds(Some(Value::Real(0.0)), None);
     }
@@ -129,7 +128,7 @@ impl<'a> Builder<'a> {
     pub fn input(
         &mut self,
         name: &str,
-        vr: ValueReference,
+        vr: VariableId,
         ty: ValueType,
         start: f64,
         slot: InputSlot,
@@ -155,7 +154,7 @@ impl<'a> Builder<'a> {
     pub fn output(
         &mut self,
         name: &str,
-        vr: ValueReference,
+        vr: VariableId,
         ty: ValueType,
         get: OutputGetter,
         deps: InitialDependencies,
@@ -181,7 +180,7 @@ impl<'a> Builder<'a> {
     pub fn real_parameter(
         &mut self,
         name: &str,
-        vr: ValueReference,
+        vr: VariableId,
         ty: ValueType,
         get: fn(&Scene) -> f64,
         set: fn(&mut Scene, f64),
@@ -207,7 +206,7 @@ impl<'a> Builder<'a> {
     pub fn integer_parameter(
         &mut self,
         name: &str,
-        vr: ValueReference,
+        vr: VariableId,
         ty: ValueType,
         get: fn(&Scene) -> i32,
         set: fn(&mut Scene, i32) -> Result<(), String>,
@@ -234,7 +233,7 @@ impl<'a> Builder<'a> {
     pub fn calculated_parameter(
         &mut self,
         name: String,
-        vr: ValueReference,
+        vr: VariableId,
         ty: ValueType,
         access: Access,
         deps: InitialDependencies,

@@ -1,15 +1,14 @@
-//! The variable list: every variable of the FMU, its value reference, unit, start value,
-//! bounds and where its value lives. Names, units and signs are those of `fmu-contract.md`.
+//! The variable list: every variable of the model, its value reference, unit, start value,
+//! bounds and where its value lives. Names, units and signs are those of `docs/fmu.md`.
 
 use super::builder::{real, Builder, DIMENSIONLESS, RAD, RAD_PER_S};
 use super::enumerations::{self, ROD_MODEL, ROD_REFERENCE};
 use super::ranges::{
-    element_count, non_negative, set_model, set_reference, usize_to_i32, ELEMENTS_MAX,
+    element_count, non_negative, policy_code, set_model, set_policy, set_reference, usize_to_i32,
+    ELEMENTS_MAX,
 };
 use super::types::{Access, InitialDependencies, InputSlot, Value, ValueType};
-use super::{ValueReference, VariableTable, FREQUENCY_VR_BASE};
-use crate::fmi::standard::Standard;
-use crate::rod::DeflectionPolicy;
+use super::{Interface, VariableId, VariableTable, FREQUENCY_VR_BASE};
 use crate::scene::Scene;
 
 /// Parameters the rod's natural frequencies depend on.
@@ -27,18 +26,22 @@ const FREQUENCY_KNOWNS: &[&str] = &[
 ];
 
 impl VariableTable {
-    /// The FMI 2.0 table of `scene`, with `n_frequencies` calculated parameters
-    /// `rod.frequency[k]`.
+    /// The table of `scene` for [`Interface::SCALARS`], with `n_frequencies` calculated
+    /// parameters `rod.frequency[k]`.
     pub fn new(scene: &Scene, n_frequencies: usize) -> VariableTable {
-        VariableTable::for_standard(scene, n_frequencies, Standard::Fmi2)
+        VariableTable::for_interface(scene, n_frequencies, Interface::SCALARS)
     }
 
-    /// The table of `scene` for `standard`: FMI 3.0 adds `time`, `crank.acceleration`, the
-    /// array `rod.shape` and has the frequencies as one array `rod.frequency`
-    /// ([`super::fmi3`]).
-    pub fn for_standard(scene: &Scene, n_frequencies: usize, standard: Standard) -> VariableTable {
+    /// The table of `scene` for `interface`, with `n_frequencies` natural frequencies: the
+    /// independent variable, `crank.acceleration`, the array `rod.shape` and the frequencies
+    /// as one array `rod.frequency` as the interface calls for ([`super::interface`]).
+    pub fn for_interface(
+        scene: &Scene,
+        n_frequencies: usize,
+        interface: Interface,
+    ) -> VariableTable {
         use InitialDependencies as D;
-        let mut b = Builder::new(scene, standard);
+        let mut b = Builder::new(scene, interface);
         let exp = &scene.experiment;
         let out = &scene.outputs;
 
@@ -144,7 +147,7 @@ impl VariableTable {
             );
         }
 
-        // Real connecting rods (fmu-contract.md, "Real connecting rods"; value references
+        // Real connecting rods (`docs/fmu.md`, "Real connecting rods"; value references
         // 130-149): section forces and stress, with `[outputs] stress = true`.
         if out.stress {
             b.output(
@@ -181,7 +184,7 @@ impl VariableTable {
             );
         }
 
-        // Parameters (fixed: settable until fmi2ExitInitializationMode).
+        // Parameters (fixed: settable until the end of initialization).
         b.real_parameter(
             "crank.length",
             100,
@@ -289,7 +292,7 @@ impl VariableTable {
         );
         b.bounds(Some(Value::Integer(0)), None);
 
-        // Slider line and gravity (fmu-contract.md, "Real connecting rods"), in scenes with a
+        // Slider line and gravity (`docs/fmu.md`, "Real connecting rods"), in scenes with a
         // `[mechanism]` table.
         if !scene.mechanism.is_default() {
             b.real_parameter(
@@ -318,7 +321,7 @@ impl VariableTable {
             );
         }
 
-        // The rod's shear modulus and end bodies (fmu-contract.md, "Real connecting rods"),
+        // The rod's shear modulus and end bodies (`docs/fmu.md`, "Real connecting rods"),
         // value references 138-142: G in shear-deformable scenes, the end bodies in scenes with
         // a section table or an end body (the scenes that report rod.mass).
         if scene.rod.shear_deformation {
@@ -414,7 +417,7 @@ impl VariableTable {
         );
         b.bounds(Some(Value::Real(1e-10)), Some(Value::Real(0.1)));
 
-        // Issue 14: what a step beyond the small-deformation range does.
+        // What a step beyond the small-deformation range does.
         b.real_parameter(
             "rod.deflection_limit",
             120,
@@ -428,26 +431,21 @@ impl VariableTable {
             "rod.deflection_policy",
             121,
             ValueType::Integer,
-            |s| s.rod.deflection_policy.code(),
-            |s, v| {
-                DeflectionPolicy::from_code(v)
-                    .map(|p| s.rod.deflection_policy = p)
-                    .ok_or_else(|| "1 (warn), 2 (discard) or 3 (error)".to_string())
-            },
-            "What a step beyond rod.deflection_limit does: 1 = warn (one warning, continue), 2 = discard (fmi2Discard, the state before the step kept; default), 3 = error (fmi2Error, the state before the step kept)",
+            |s| policy_code(s.rod.deflection_policy),
+            set_policy,
+            &format!(
+                "What a step beyond rod.deflection_limit does: 1 = warn (one warning, continue), 2 = discard ({}, the state before the step kept; default), 3 = error ({}, the state before the step kept)",
+                interface.refused_step, interface.failed_step
+            ),
         );
         b.bounds(Some(Value::Integer(1)), Some(Value::Integer(3)));
 
-        // Calculated parameters (FMI 3.0: one array, see `fmi3`).
-        let scalar_frequencies = if standard == Standard::Fmi2 {
-            n_frequencies
-        } else {
-            0
-        };
+        // Calculated parameters (with arrays: one array, see `interface`).
+        let scalar_frequencies = if interface.arrays { 0 } else { n_frequencies };
         for k in 1..=scalar_frequencies {
             b.calculated_parameter(
                 format!("rod.frequency[{k}]"),
-                FREQUENCY_VR_BASE + k as ValueReference,
+                FREQUENCY_VR_BASE + k as VariableId,
                 real("Hz"),
                 Access::Frequency(k - 1),
                 D::Named(FREQUENCY_KNOWNS),
@@ -467,9 +465,7 @@ impl VariableTable {
                 "Mass of the rod with its end bodies".into(),
             );
         }
-        if standard == Standard::Fmi3 {
-            super::fmi3::add_variables(&mut b, n_frequencies, FREQUENCY_KNOWNS);
-        }
+        super::interface::add_variables(&mut b, interface, n_frequencies, FREQUENCY_KNOWNS);
         b.finish()
     }
 }

@@ -1,13 +1,13 @@
-//! The types a variable is made of: FMI 2.0 attributes (causality, variability, initial, type
-//! and unit), start values, and where its value lives ([`Access`]).
+//! The types a variable is made of: its attributes (causality, variability, initial, type and
+//! unit, in the words of the co-simulation standards), start values, and where its value
+//! lives ([`Access`]).
 
 use super::enumerations::EnumerationType;
-use super::ValueReference;
-use crate::fmi::standard::Standard;
+use super::VariableId;
 use crate::mechanism::Outputs;
 use crate::scene::Scene;
 
-/// FMI causality (`Independent` only in FMI 3.0, for `time`).
+/// Causality (`Independent` only for the independent variable `time`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Causality {
     Independent,
@@ -29,7 +29,7 @@ impl Causality {
     }
 }
 
-/// FMI 2.0 variability (only those used here).
+/// Variability (only those used here).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Variability {
     Fixed,
@@ -45,7 +45,7 @@ impl Variability {
     }
 }
 
-/// FMI 2.0 `initial` (absent for inputs).
+/// `initial` (absent for inputs).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Initial {
     Exact,
@@ -61,61 +61,17 @@ impl Initial {
     }
 }
 
-/// FMI 2.0 type of a variable, with its unit attributes.
+/// The type of a variable, with its unit attributes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum ValueType {
     Real {
-        /// Unit (declared in `UnitDefinitions`); `None` for dimensionless.
+        /// Unit (declared in the unit definitions); `None` for dimensionless.
         unit: Option<&'static str>,
         /// Display unit (deg for angles, rpm for speeds).
         display_unit: Option<&'static str>,
     },
     Integer,
     Enumeration(&'static EnumerationType),
-}
-
-impl ValueType {
-    /// Which get/set family serves this type: FMI 2.0 reads Enumerations with
-    /// `fmi2GetInteger`, FMI 3.0 with `fmi3GetInt64`.
-    pub fn family(self, standard: Standard) -> Family {
-        match (self, standard) {
-            (ValueType::Real { .. }, _) => Family::Real,
-            (ValueType::Integer, _) | (ValueType::Enumeration(_), Standard::Fmi2) => {
-                Family::Integer
-            }
-            (ValueType::Enumeration(_), Standard::Fmi3) => Family::Enumeration,
-        }
-    }
-}
-
-/// The get/set families (`fmi2GetReal` = `fmi3GetFloat64`, `fmi2GetInteger` = `fmi3GetInt32`,
-/// FMI 3.0 Enumerations through `fmi3GetInt64`; `Other` names an FMI 3.0 type this FMU has
-/// no variable of, e.g. `Float32`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Family {
-    Real,
-    Integer,
-    Enumeration,
-    Boolean,
-    String,
-    Other(&'static str),
-}
-
-impl Family {
-    /// The type name in the functions of `standard`: `Real`/`Float64`, `Integer`/`Int32`, ...
-    pub fn name(self, standard: Standard) -> &'static str {
-        match (self, standard) {
-            (Family::Real, Standard::Fmi2) => "Real",
-            (Family::Real, Standard::Fmi3) => "Float64",
-            (Family::Integer, Standard::Fmi2) => "Integer",
-            (Family::Integer, Standard::Fmi3) => "Int32",
-            (Family::Enumeration, Standard::Fmi2) => "Integer",
-            (Family::Enumeration, Standard::Fmi3) => "Int64",
-            (Family::Boolean, _) => "Boolean",
-            (Family::String, _) => "String",
-            (Family::Other(name), _) => name,
-        }
-    }
 }
 
 /// A start value.
@@ -131,8 +87,8 @@ pub enum InputSlot {
     CrankAngle,
     CrankSpeed,
     SliderForce,
-    /// FMI 3.0 only: the crank acceleration `alpha_k` of the input law (FMI 2.0 takes it as
-    /// an input derivative instead).
+    /// The crank acceleration `alpha_k` of the input law, as an input of its own (for
+    /// interfaces without input derivatives, see [`super::Interface`]).
     CrankAcceleration,
 }
 
@@ -161,15 +117,16 @@ pub enum Access {
     Frequency(usize),
     /// `rod.mass`: the rod with its end bodies, from the instance's scene.
     RodMass,
-    /// FMI 3.0 `time`: the FMU's time.
+    /// `time`, the independent variable: the model's time.
     Time,
-    /// FMI 3.0 array `rod.shape`: the transverse deflection at equally spaced points.
+    /// The array `rod.shape`: the transverse deflection at equally spaced points.
     Shape,
-    /// FMI 3.0 array `rod.frequency`: the first `len` natural frequencies, Hz.
+    /// The array `rod.frequency`: the first `len` natural frequencies, Hz.
     Frequencies,
 }
 
-/// Which knowns an unknown depends on during initialization (`ModelStructure/InitialUnknowns`).
+/// Which knowns an unknown depends on during initialization (the description's initial
+/// unknowns).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum InitialDependencies {
     /// Constant during initialization (e.g. the deflection of the undeformed rod).
@@ -184,22 +141,33 @@ pub enum InitialDependencies {
 #[derive(Clone)]
 pub struct Variable {
     pub name: String,
-    pub value_reference: ValueReference,
+    pub value_reference: VariableId,
     pub description: String,
     pub causality: Causality,
     pub variability: Variability,
     pub initial: Option<Initial>,
     pub value_type: ValueType,
     pub start: Option<Value>,
-    /// `min` and `max` attributes (closed bounds; FMI 2.0 has no open ones).
+    /// `min` and `max` attributes (closed bounds).
     pub min: Option<Value>,
     pub max: Option<Value>,
     pub access: Access,
     /// Only for outputs and calculated parameters.
     pub initial_dependencies: InitialDependencies,
-    /// FMI 3.0 arrays: the fixed number of elements (`<Dimension start="n"/>`); `None` for
-    /// a scalar. FMI 2.0 tables have no arrays.
+    /// Arrays: the fixed number of elements; `None` for a scalar (tables declared without
+    /// arrays have only scalars).
     pub dimension: Option<usize>,
+}
+
+impl Access {
+    /// The value comes from the simulation (outputs, frequencies, the shape), which must be
+    /// built and started to read it.
+    pub fn needs_simulation(self) -> bool {
+        matches!(
+            self,
+            Access::Output(_) | Access::Frequency(_) | Access::Frequencies | Access::Shape
+        )
+    }
 }
 
 impl Variable {

@@ -1,6 +1,6 @@
-//! The FMU's enumeration types. Their items are the core's single name lists
+//! The model's enumeration types. Their items are the core's single name lists
 //! (`RodModelKind::ALL`, `ReferenceKind::ALL` with `name()`), numbered 1, 2, ... in that
-//! order; only the items' descriptions for `modelDescription.xml` are written here.
+//! order; only the items' descriptions are written here.
 
 use crate::scene::{ReferenceKind, RodModelKind};
 
@@ -11,13 +11,13 @@ pub struct EnumerationItem {
     pub description: &'static str,
 }
 
-/// A core enumeration exported as an FMI enumeration type: its variants in code order.
+/// A core enumeration exported as an enumeration type: its variants in code order.
 pub trait Kind: Copy + PartialEq + 'static {
-    /// Every variant; the FMI code of `ALL[i]` is `i + 1`.
+    /// Every variant; the code of `ALL[i]` is `i + 1`.
     const ALL: &'static [Self];
-    /// The name in scenes and in `modelDescription.xml`.
+    /// The name in scenes and in descriptions.
     fn name(self) -> &'static str;
-    /// The item's description in `modelDescription.xml`.
+    /// The item's description.
     fn description(self) -> &'static str;
 }
 
@@ -57,13 +57,13 @@ impl Kind for ReferenceKind {
     }
 }
 
-/// The FMI code (1-based) of a variant.
+/// The code (1-based) of a variant.
 pub fn code<K: Kind>(kind: K) -> i32 {
     let position = K::ALL.iter().position(|&k| k == kind).unwrap_or(0);
     i32::try_from(position + 1).unwrap_or(i32::MAX)
 }
 
-/// The variant of an FMI code, `None` outside 1..=ALL.len().
+/// The variant of a code, `None` outside 1..=ALL.len().
 pub fn from_code<K: Kind>(code: i32) -> Option<K> {
     let index = usize::try_from(code).ok()?.checked_sub(1)?;
     K::ALL.get(index).copied()
@@ -79,7 +79,7 @@ fn items<K: Kind>() -> Vec<EnumerationItem> {
         .collect()
 }
 
-/// An enumeration type of `modelDescription.xml` (`TypeDefinitions/SimpleType`).
+/// An enumeration type of the description (its type definitions).
 #[derive(Debug)]
 pub struct EnumerationType {
     pub name: &'static str,

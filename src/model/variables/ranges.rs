@@ -1,15 +1,15 @@
-//! The range checks of the Integer and Enumeration parameters at the set call
-//! (`fmi2SetInteger`). An `Err` carries the allowed values for the message; the physical
-//! ranges are checked when the model is built (`Simulation::new`).
+//! The range checks of the Integer and Enumeration parameters at the set call. An `Err`
+//! carries the allowed values for the message; the physical ranges are checked when the model
+//! is built (`Simulation::new`).
 
 use super::enumerations::{self, EnumerationType, Kind, ROD_MODEL, ROD_REFERENCE};
 use crate::beam::mesh::MAX_ELEMENTS;
-use crate::scene::{ReferenceKind, RodModelKind, Scene};
+use crate::scene::{DeflectionPolicy, ReferenceKind, RodModelKind, Scene};
 
-/// `rod.elements`: the largest value, as the FMI Integer of the `max` attribute.
+/// `rod.elements`: the largest value, as the Integer of the `max` attribute.
 pub const ELEMENTS_MAX: i32 = MAX_ELEMENTS as i32;
 
-/// A count as an FMI Integer (saturating).
+/// A count as an Integer value (saturating).
 pub fn usize_to_i32(n: usize) -> i32 {
     i32::try_from(n).unwrap_or(i32::MAX)
 }
@@ -46,6 +46,28 @@ pub fn set_reference(scene: &mut Scene, value: i32) -> Result<(), String> {
     Ok(())
 }
 
+/// `rod.deflection_policy` as an Integer: 1 warn, 2 discard, 3 error (the order of
+/// [`DeflectionPolicy::ALL`]).
+pub fn policy_code(policy: DeflectionPolicy) -> i32 {
+    let position = DeflectionPolicy::ALL.iter().position(|&p| p == policy);
+    usize_to_i32(position.unwrap_or(0) + 1)
+}
+
+/// `rod.deflection_policy`: 1 (warn), 2 (discard), 3 (error).
+pub fn set_policy(scene: &mut Scene, value: i32) -> Result<(), String> {
+    let policy = usize::try_from(value)
+        .ok()
+        .and_then(|code| code.checked_sub(1))
+        .and_then(|index| DeflectionPolicy::ALL.get(index));
+    match policy {
+        Some(&p) => {
+            scene.rod.deflection_policy = p;
+            Ok(())
+        }
+        None => Err("1 (warn), 2 (discard) or 3 (error)".to_string()),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -62,6 +84,22 @@ mod tests {
         assert!(set_reference(&mut scene, 0).is_err());
         assert!(set_reference(&mut scene, 4).is_ok());
         assert_eq!(scene.rod.reference, ReferenceKind::Cantilever);
+    }
+
+    #[test]
+    fn policy_codes() {
+        let mut scene = Scene::benchmark();
+        for (code, policy) in [1, 2, 3].into_iter().zip(DeflectionPolicy::ALL) {
+            assert_eq!(policy_code(policy), code);
+            assert!(set_policy(&mut scene, code).is_ok());
+            assert_eq!(scene.rod.deflection_policy, policy);
+        }
+        for bad in [0, 4, -1, i32::MIN] {
+            assert_eq!(
+                set_policy(&mut scene, bad).unwrap_err(),
+                "1 (warn), 2 (discard) or 3 (error)"
+            );
+        }
     }
 
     #[test]

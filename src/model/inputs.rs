@@ -1,0 +1,348 @@
+//! The inputs and their law between communication points (`docs/fmu.md`, "Input law between
+//! communication points"):
+//! `theta(t_k + s) = theta_k + omega_k s + alpha_k s^2 / 2`, `omega(t_k + s) = omega_k + alpha_k s`.
+//!
+//! At every communication step from `t_k` to `t_k + h` a new law starts at `t_k`:
+//! - `theta_k`, `omega_k`: the values set by the importer at `t_k`; for an input not set at
+//!   `t_k`, the value the previous law has at `t_k` (so a model left without inputs continues
+//!   the motion it was started with);
+//! - `alpha_k`: the crank acceleration set at `t_k` as an input derivative (order 1 of
+//!   `crank.speed`, or order 2 of `crank.angle`), and 0 if none was set at `t_k`.
+//!
+//! An interface without input derivatives has the input `crank.acceleration` instead, which,
+//! like every input, holds its value until it is set again.
+//!
+//! After the step, `crank.angle` and `crank.speed` read the values the law had at `t_k + h`
+//! (read back from the core's law, so they are exactly those the integrator used there).
+
+use super::variables::{Access, InputSlot, Value, Variable, VariableTable};
+use crate::simulation::{CrankInput, INPUT_WINDOWS};
+
+impl InputSlot {
+    /// The largest magnitude the input takes, in SI units ([`INPUT_WINDOWS`]).
+    pub fn window(self) -> f64 {
+        INPUT_WINDOWS[match self {
+            InputSlot::CrankAngle => 0,
+            InputSlot::CrankSpeed => 1,
+            InputSlot::CrankAcceleration => 2,
+            InputSlot::SliderForce => 3,
+        }]
+    }
+}
+
+/// Where the crank acceleration of the current communication point came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AccelerationSource {
+    /// Not set at this point: `alpha_k` = 0.
+    None,
+    /// Order 1 of `crank.speed` (takes precedence).
+    Speed,
+    /// Order 2 of `crank.angle`.
+    Angle,
+    /// The input `crank.acceleration`. An input keeps its value until it is set again, so
+    /// unlike an input derivative it carries over to the next communication points.
+    Input,
+}
+
+impl AccelerationSource {
+    /// Stable code for serialized states.
+    pub fn code(self) -> u8 {
+        match self {
+            AccelerationSource::None => 0,
+            AccelerationSource::Speed => 1,
+            AccelerationSource::Angle => 2,
+            AccelerationSource::Input => 3,
+        }
+    }
+
+    /// Decode [`AccelerationSource::code`].
+    pub fn from_code(code: u8) -> Option<AccelerationSource> {
+        [
+            AccelerationSource::None,
+            AccelerationSource::Speed,
+            AccelerationSource::Angle,
+            AccelerationSource::Input,
+        ]
+        .into_iter()
+        .find(|s| s.code() == code)
+    }
+}
+
+/// The inputs as the instance keeps them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Inputs {
+    /// Current values: set by the importer, or the law's values at the current time.
+    pub angle: f64,
+    pub speed: f64,
+    pub slider_force: f64,
+    /// Crank acceleration set at this communication point (meaningful unless `source` is
+    /// `None`).
+    pub acceleration: f64,
+    pub source: AccelerationSource,
+    /// `slider.force` was set since the last step.
+    pub force_changed: bool,
+}
+
+impl Inputs {
+    pub fn from_start_values(table: &VariableTable) -> Inputs {
+        let start = |slot: InputSlot| {
+            table
+                .variables()
+                .iter()
+                .find_map(|v| match (v.access, v.start) {
+                    (Access::Input(s), Some(Value::Real(x))) if s == slot => Some(x),
+                    _ => None,
+                })
+                .unwrap_or(0.0)
+        };
+        Inputs {
+            angle: start(InputSlot::CrankAngle),
+            speed: start(InputSlot::CrankSpeed),
+            slider_force: start(InputSlot::SliderForce),
+            acceleration: 0.0,
+            source: AccelerationSource::None,
+            force_changed: false,
+        }
+    }
+
+    pub fn value(&self, slot: InputSlot) -> f64 {
+        match slot {
+            InputSlot::CrankAngle => self.angle,
+            InputSlot::CrankSpeed => self.speed,
+            InputSlot::SliderForce => self.slider_force,
+            InputSlot::CrankAcceleration => match self.source {
+                AccelerationSource::Input => self.acceleration,
+                _ => 0.0,
+            },
+        }
+    }
+
+    pub fn set(&mut self, slot: InputSlot, x: f64) {
+        match slot {
+            InputSlot::CrankAngle => self.angle = x,
+            InputSlot::CrankSpeed => self.speed = x,
+            InputSlot::SliderForce => {
+                self.slider_force = x;
+                self.force_changed = true;
+            }
+            InputSlot::CrankAcceleration => {
+                self.acceleration = x;
+                self.source = AccelerationSource::Input;
+            }
+        }
+    }
+
+    /// The acceleration set at this point, if any.
+    pub fn acceleration_set(&self) -> Option<f64> {
+        (self.source != AccelerationSource::None).then_some(self.acceleration)
+    }
+
+    /// The law that starts at the current communication point.
+    pub fn crank_input(&self) -> CrankInput {
+        CrankInput {
+            angle: self.angle,
+            speed: self.speed,
+            acceleration: self.acceleration_set().unwrap_or(0.0),
+        }
+    }
+
+    /// After a step: the current values are the law's values at the new time; nothing is set
+    /// at the new communication point yet (an input derivative does not carry over; the input
+    /// `crank.acceleration` keeps its value, as every input does).
+    pub fn after_step(&mut self, angle: f64, speed: f64) {
+        self.angle = angle;
+        self.speed = speed;
+        if self.source != AccelerationSource::Input {
+            self.acceleration = 0.0;
+            self.source = AccelerationSource::None;
+        }
+        self.force_changed = false;
+    }
+}
+
+impl Inputs {
+    /// Number of bytes of [`Inputs::to_bytes`].
+    pub const BYTES: usize = 34;
+
+    /// The byte form (little endian): angle, speed, slider force, acceleration f64,
+    /// acceleration source u8 (0 none, 1 crank.speed, 2 crank.angle, 3 the input
+    /// crank.acceleration), force changed u8.
+    pub fn to_bytes(&self) -> [u8; Inputs::BYTES] {
+        let mut out = [0u8; Inputs::BYTES];
+        for (k, x) in [self.angle, self.speed, self.slider_force, self.acceleration]
+            .into_iter()
+            .enumerate()
+        {
+            out[8 * k..8 * k + 8].copy_from_slice(&x.to_le_bytes());
+        }
+        out[32] = self.source.code();
+        out[33] = u8::from(self.force_changed);
+        out
+    }
+
+    /// Read [`Inputs::to_bytes`]; the error names the offending value.
+    pub fn from_bytes(bytes: &[u8; Inputs::BYTES]) -> Result<Inputs, String> {
+        let f = |k: usize| {
+            let mut b = [0u8; 8];
+            b.copy_from_slice(&bytes[8 * k..8 * k + 8]);
+            f64::from_le_bytes(b)
+        };
+        let source = AccelerationSource::from_code(bytes[32])
+            .ok_or_else(|| format!("acceleration source code {} is unknown", bytes[32]))?;
+        let force_changed = match bytes[33] {
+            0 => false,
+            1 => true,
+            b => return Err(format!("the slider force flag is {b}, allowed 0 or 1")),
+        };
+        let inputs = Inputs {
+            angle: f(0),
+            speed: f(1),
+            slider_force: f(2),
+            acceleration: f(3),
+            source,
+            force_changed,
+        };
+        for (name, x) in [
+            ("crank.angle", inputs.angle),
+            ("crank.speed", inputs.speed),
+            ("slider.force", inputs.slider_force),
+            ("the crank acceleration", inputs.acceleration),
+        ] {
+            if !x.is_finite() {
+                return Err(format!("{name} is {x}, allowed a finite value"));
+            }
+        }
+        Ok(inputs)
+    }
+
+    /// Check one input derivative before anything is set ([`Inputs::set_derivatives`]).
+    pub fn check_derivative(v: &Variable, order: i32, x: f64) -> Result<(), String> {
+        if !matches!(v.access, Access::Input(_)) {
+            return Err(format!(
+                "{} (value reference {}) has causality {}: input derivatives can be set only for inputs (crank.speed, crank.angle); nothing was set",
+                v.name,
+                v.value_reference,
+                v.causality.as_str()
+            ));
+        }
+        if order <= 0 {
+            return Err(format!(
+                "derivative order {order} of {} is out of range: allowed an order >= 1 (order 1 of crank.speed or order 2 of crank.angle is the crank acceleration); nothing was set",
+                v.name
+            ));
+        }
+        if !x.is_finite() {
+            return Err(format!(
+                "order-{order} derivative of {} = {x} is out of range: allowed a finite value; nothing was set",
+                v.name
+            ));
+        }
+        Ok(())
+    }
+
+    /// Set input derivatives at this communication point: `(variable, order, value)`. The
+    /// crank acceleration alpha_k of the law that starts here:
+    ///
+    /// - Order 1 of `crank.speed` and order 2 of `crank.angle` are alpha_k. If both are given
+    ///   at the same point and differ, `crank.speed`'s is used, with a warning.
+    /// - Order 1 of `crank.angle` is accepted and not used (the angle follows from
+    ///   `crank.speed`); a value different from `crank.speed` gives a warning.
+    /// - A derivative the law already has (0 for `slider.force`, which is held over a step,
+    ///   for order >= 2 of `crank.speed` and order >= 3 of `crank.angle`) is accepted
+    ///   silently; any other value of these cannot be used: it is ignored with a warning.
+    /// - Order <= 0, variables that are not inputs and non-finite values are errors, and then
+    ///   nothing is set.
+    ///
+    /// Returns the warnings.
+    pub fn set_derivatives(
+        &mut self,
+        items: &[(&Variable, i32, f64)],
+    ) -> Result<Vec<String>, String> {
+        for &(v, order, x) in items {
+            Inputs::check_derivative(v, order, x)?;
+        }
+        let mut warnings = Vec::new();
+        for &(v, order, x) in items {
+            let Access::Input(slot) = v.access else {
+                continue;
+            };
+            match (slot, order) {
+                (InputSlot::CrankSpeed, 1) => {
+                    let previous = self.acceleration;
+                    if self.source == AccelerationSource::Angle && previous != x {
+                        warnings.push(format!(
+                            "the crank acceleration is given twice at this point: order 2 of crank.angle = {previous} rad/s^2 and order 1 of crank.speed = {x} rad/s^2; crank.speed's is used"
+                        ));
+                    }
+                    self.acceleration = x;
+                    self.source = AccelerationSource::Speed;
+                }
+                (InputSlot::CrankAngle, 2) => match self.source {
+                    AccelerationSource::Speed => {
+                        let used = self.acceleration;
+                        if used != x {
+                            warnings.push(format!(
+                                "the crank acceleration is given twice at this point: order 1 of crank.speed = {used} rad/s^2 and order 2 of crank.angle = {x} rad/s^2; crank.speed's is used"
+                            ));
+                        }
+                    }
+                    AccelerationSource::None
+                    | AccelerationSource::Angle
+                    | AccelerationSource::Input => {
+                        self.acceleration = x;
+                        self.source = AccelerationSource::Angle;
+                    }
+                },
+                (InputSlot::CrankAngle, 1) => {
+                    let speed = self.speed;
+                    if (x - speed).abs() > 1e-9 * speed.abs().max(1.0) {
+                        warnings.push(format!(
+                            "order-1 derivative of crank.angle = {x} rad/s differs from crank.speed = {speed} rad/s; it is not used (the angle follows from crank.speed)"
+                        ));
+                    }
+                }
+                (_, _) if x == 0.0 => {}
+                (slot, order) => {
+                    let why = match slot {
+                        InputSlot::SliderForce => "slider.force is held constant over a step",
+                        InputSlot::CrankSpeed
+                        | InputSlot::CrankAngle
+                        | InputSlot::CrankAcceleration => {
+                            "the crank law has a constant acceleration over a step (order 1 of crank.speed or order 2 of crank.angle)"
+                        }
+                    };
+                    warnings.push(format!(
+                        "order-{order} derivative of {} = {x} cannot be used and is ignored: {why}",
+                        v.name
+                    ));
+                }
+            }
+        }
+        Ok(warnings)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Scene;
+
+    #[test]
+    fn byte_form_round_trips() {
+        let table = VariableTable::new(&Scene::benchmark(), 0);
+        let mut inputs = Inputs::from_start_values(&table);
+        inputs.set(InputSlot::SliderForce, -3.5);
+        inputs.set(InputSlot::CrankAcceleration, 12.0);
+        assert_eq!(Inputs::from_bytes(&inputs.to_bytes()), Ok(inputs));
+        let mut bad = inputs.to_bytes();
+        bad[32] = 9;
+        assert!(Inputs::from_bytes(&bad)
+            .unwrap_err()
+            .contains("source code 9"));
+        let mut bad = inputs.to_bytes();
+        bad[0..8].copy_from_slice(&f64::NAN.to_le_bytes());
+        assert!(Inputs::from_bytes(&bad)
+            .unwrap_err()
+            .contains("crank.angle"));
+    }
+}

@@ -1,0 +1,467 @@
+//! One model instance as an importer drives it: the parameters it set, its inputs and their
+//! law, and the simulation built from them. These are the hooks an interface layer calls (the
+//! way a model of the Modelica Reference-FMUs implements a few functions that a generic shell
+//! calls); it says nothing of how the interface reports the outcome.
+
+use super::inputs::Inputs;
+use super::variables::{Access, Variable, VariableTable};
+use crate::error::ModelError;
+use crate::scene::Scene;
+use crate::simulation::{Simulation, Snapshot};
+
+/// Why a step did not complete.
+#[derive(Debug)]
+pub enum StepError {
+    /// The inputs set for the step were refused; nothing changed.
+    Inputs(ModelError),
+    /// The step itself failed; the state before it is kept.
+    Step(ModelError),
+}
+
+/// One model instance.
+pub struct Model {
+    /// The scene the model was exported for: the start values, restored by [`Model::reset`].
+    exported: Scene,
+    /// The instance's own copy, with the parameters the importer set.
+    scene: Scene,
+    inputs: Inputs,
+    /// Built from `scene` (invariant: `Some` only if built from the current `scene`).
+    simulation: Option<Simulation>,
+    /// The simulation was started with the current inputs.
+    started: bool,
+}
+
+/// A saved model: everything [`Model::restore`] needs to continue bit for bit.
+#[derive(Clone, Debug)]
+pub struct SavedModel {
+    scene: Scene,
+    inputs: Inputs,
+    started: bool,
+    simulation: Option<Snapshot>,
+}
+
+impl SavedModel {
+    /// The simulation was started with the saved inputs.
+    pub fn started(&self) -> bool {
+        self.started
+    }
+
+    /// A simulation was saved (the model had been built).
+    pub fn has_simulation(&self) -> bool {
+        self.simulation.is_some()
+    }
+
+    /// The inputs' byte form ([`Inputs::to_bytes`]).
+    pub fn inputs_bytes(&self) -> [u8; Inputs::BYTES] {
+        self.inputs.to_bytes()
+    }
+
+    /// The parameters as scene text (TOML).
+    pub fn parameters_text(&self) -> String {
+        self.scene.to_toml()
+    }
+
+    /// A saved model without a simulation from its parts (as [`SavedModel::started`],
+    /// [`SavedModel::inputs_bytes`], [`SavedModel::parameters_text`] give them); the
+    /// simulation's bytes are read by [`Model::saved_from_bytes`].
+    pub fn from_parts(
+        started: bool,
+        inputs: &[u8; Inputs::BYTES],
+        parameters: &str,
+    ) -> Result<SavedModel, String> {
+        let inputs = Inputs::from_bytes(inputs)?;
+        let scene =
+            Scene::from_toml_str(parameters, "the serialized state").map_err(|e| e.to_string())?;
+        Ok(SavedModel {
+            scene,
+            inputs,
+            started,
+            simulation: None,
+        })
+    }
+}
+
+impl Model {
+    /// A model of `scene`, inputs at the start values of `table`, not built yet.
+    pub fn new(scene: Scene, table: &VariableTable) -> Model {
+        Model {
+            exported: scene.clone(),
+            scene,
+            inputs: Inputs::from_start_values(table),
+            simulation: None,
+            started: false,
+        }
+    }
+
+    /// Back to the start values of the exported scene and of `table`, not built.
+    pub fn reset(&mut self, table: &VariableTable) {
+        self.scene = self.exported.clone();
+        self.inputs = Inputs::from_start_values(table);
+        self.simulation = None;
+        self.started = false;
+    }
+
+    /// The start time of the scene's default experiment, s.
+    pub fn default_start_time(&self) -> f64 {
+        self.scene.experiment.start_time
+    }
+
+    /// What sets the accuracy instead of an importer's tolerance, in words.
+    pub fn accuracy_note(&self) -> String {
+        format!(
+            "the integrator follows the scene's [solver] settings (step = {} s, newton_tolerance = {}; the parameter solver.tolerance sets the error control)",
+            self.scene.solver.step, self.scene.solver.newton_tolerance
+        )
+    }
+
+    /// The simulation's time, if it is built.
+    pub fn time(&self) -> Option<f64> {
+        self.simulation.as_ref().map(Simulation::time)
+    }
+
+    /// The simulation is built (for the current parameters).
+    pub fn is_built(&self) -> bool {
+        self.simulation.is_some()
+    }
+
+    /// A parameter or input changed before stepping: the start must be redone (and, for a
+    /// parameter, the model rebuilt).
+    pub fn invalidate(&mut self, parameter_changed: bool) {
+        if parameter_changed {
+            self.simulation = None;
+        }
+        self.started = false;
+    }
+
+    /// Drop the simulation (after a failed start nothing may look started).
+    pub fn discard_simulation(&mut self) {
+        self.simulation = None;
+        self.started = false;
+    }
+
+    /// Build the simulation for the current parameters if needed, with at least the
+    /// frequencies `table` declares, and start it with the current inputs at `t0`.
+    pub fn ensure_started(&mut self, t0: f64, table: &VariableTable) -> Result<(), ModelError> {
+        if self.simulation.is_none() {
+            check_geometry(&self.scene)?;
+            let simulation = Simulation::new(&self.scene)?;
+            let available = simulation.frequencies_hz().len();
+            let declared = table.frequency_count();
+            if available < declared {
+                return Err(ModelError::State {
+                    message: format!(
+                        "rod.elements = {} with these rod.model and rod.reference leaves {available} natural frequencies, but the variable table declares rod.frequency[1..{declared}]: allowed parameters that leave at least {declared} (e.g. more elements), or export the scene with [outputs] frequencies <= {available}",
+                        self.scene.rod.elements
+                    ),
+                });
+            }
+            self.simulation = Some(simulation);
+            self.started = false;
+        }
+        if !self.started {
+            let input = self.inputs.crank_input();
+            let force = self.inputs.slider_force;
+            if let Some(simulation) = self.simulation.as_mut() {
+                simulation.start(t0, input, force)?;
+            }
+            self.started = true;
+        }
+        Ok(())
+    }
+
+    /// Stepping begins: the simulation started with the current slider force; the crank
+    /// acceleration set before holds for the first step (it was set at the start time).
+    pub fn begin_stepping(&mut self) {
+        self.inputs.force_changed = false;
+    }
+
+    /// The start in words: the crank inputs, the lowest natural frequency, the rod model.
+    pub fn start_summary(&self) -> String {
+        let lowest = self
+            .simulation
+            .as_ref()
+            .and_then(|s| s.frequencies_hz().first().copied());
+        let frequency = match lowest {
+            Some(f) => format!("lowest natural frequency {f} Hz"),
+            None => "no natural frequency (rigid rod)".to_string(),
+        };
+        let model = self
+            .simulation
+            .as_ref()
+            .map(|s| s.describe())
+            .unwrap_or_default();
+        format!(
+            "crank.angle = {} rad, crank.speed = {} rad/s; {frequency}; {model}",
+            self.inputs.angle, self.inputs.speed,
+        )
+    }
+
+    /// The values of the Real variable `v` (one, or an array's elements) into `out`; outputs
+    /// need the simulation (see [`Access::needs_simulation`]), `time` before it is built is
+    /// `start_time`.
+    pub fn get_real(&self, v: &Variable, out: &mut [f64], start_time: f64) -> Result<(), String> {
+        let frequencies = self
+            .simulation
+            .as_ref()
+            .map_or(&[][..], |s| s.frequencies_hz());
+        let missing = || format!("{} does not exist for these parameters", v.name);
+        out[0] = match v.access {
+            Access::Input(slot) => self.inputs.value(slot),
+            Access::Output(get) => get(&self
+                .simulation
+                .as_ref()
+                .map_or_else(Default::default, Simulation::outputs)),
+            Access::RealParameter { get, .. } => get(&self.scene),
+            Access::Frequency(i) => *frequencies.get(i).ok_or_else(missing)?,
+            Access::Frequencies => {
+                let all = frequencies.get(..out.len()).ok_or_else(missing)?;
+                out.copy_from_slice(all);
+                return Ok(());
+            }
+            Access::Shape => {
+                if let Some(s) = &self.simulation {
+                    s.mechanism().deflection_shape(s.state(), out);
+                }
+                return Ok(());
+            }
+            Access::Time => self.time().unwrap_or(start_time),
+            Access::RodMass => self
+                .scene
+                .rod
+                .total_mass()
+                .map_err(|e| format!("{} is not available: {e}", v.name))?,
+            Access::IntegerParameter { .. } => {
+                return Err(format!("{} is not a Real variable", v.name))
+            }
+        };
+        Ok(())
+    }
+
+    /// The value of the Integer or Enumeration variable `v`.
+    pub fn get_integer(&self, v: &Variable) -> Result<i32, String> {
+        match v.access {
+            Access::IntegerParameter { get, .. } => Ok(get(&self.scene)),
+            _ => Err(format!("{} is not an Integer variable", v.name)),
+        }
+    }
+
+    /// Check a value for the Real input or parameter `v` before anything is set: the
+    /// allowed magnitude of an input, as an error text.
+    pub fn check_real(v: &Variable, x: f64) -> Result<(), String> {
+        if let Access::Input(slot) = v.access {
+            let bound = slot.window();
+            if x.abs() > bound {
+                return Err(format!("|value| <= {bound:e} in SI units"));
+            }
+        }
+        Ok(())
+    }
+
+    /// Set the Real input or parameter `v`; true if a parameter changed.
+    pub fn set_real(&mut self, v: &Variable, x: f64) -> Result<bool, String> {
+        match v.access {
+            Access::Input(slot) => {
+                self.inputs.set(slot, x);
+                Ok(false)
+            }
+            Access::RealParameter { set, .. } => {
+                set(&mut self.scene, x);
+                Ok(true)
+            }
+            _ => Err(format!("{} cannot be set", v.name)),
+        }
+    }
+
+    /// Set Integer parameters, all or none: on error, the position of the refused one and
+    /// the allowed values.
+    pub fn set_integers(&mut self, items: &[(&Variable, i32)]) -> Result<(), (usize, String)> {
+        let mut scene = self.scene.clone();
+        for (k, &(v, n)) in items.iter().enumerate() {
+            match v.access {
+                Access::IntegerParameter { set, .. } => set(&mut scene, n).map_err(|e| (k, e))?,
+                _ => return Err((k, format!("{} cannot be set as an Integer", v.name))),
+            }
+        }
+        if !items.is_empty() {
+            self.scene = scene;
+            self.invalidate(true);
+        }
+        Ok(())
+    }
+
+    /// Set input derivatives ([`Inputs::set_derivatives`]); returns the warnings.
+    pub fn set_input_derivatives(
+        &mut self,
+        items: &[(&Variable, i32, f64)],
+    ) -> Result<Vec<String>, String> {
+        self.inputs.set_derivatives(items)
+    }
+
+    /// Refuse, before anything changes, a communication step `h` that needs too much work.
+    pub fn check_step(&self, h: f64) -> Result<(), ModelError> {
+        match &self.simulation {
+            Some(s) => s.check_work(h),
+            None => Ok(()),
+        }
+    }
+
+    /// One communication step of `h` from the current time: a new input law starts now
+    /// (theta_k, omega_k as set, or the previous law's values now; alpha_k as set now, or 0,
+    /// see [`super::inputs`]). A step that is refused or fails puts the inputs in force back
+    /// (with the state, which the core restores), so that continuing gives what a run that
+    /// never tried gives.
+    pub fn step(&mut self, h: f64) -> Result<(), StepError> {
+        let Some(simulation) = self.simulation.as_mut() else {
+            return Err(StepError::Inputs(ModelError::State {
+                message: "no simulation (internal error)".into(),
+            }));
+        };
+        let saved_inputs = simulation.inputs_snapshot();
+        let inputs = &self.inputs;
+        let mut set_inputs = || {
+            simulation.set_input(inputs.crank_input())?;
+            if inputs.force_changed {
+                simulation.set_slider_force(inputs.slider_force)?;
+            }
+            Ok(())
+        };
+        if let Err(e) = set_inputs() {
+            simulation.restore_inputs(saved_inputs);
+            return Err(StepError::Inputs(e));
+        }
+        if let Err(e) = simulation.advance(h) {
+            simulation.restore_inputs(saved_inputs);
+            return Err(StepError::Step(e));
+        }
+        // The values the law used at the new time, from the core's own law.
+        let time = simulation.time();
+        let (angle, speed, _) = simulation
+            .mechanism()
+            .crank_law(simulation.state())
+            .kinematics(time);
+        self.inputs.after_step(angle, speed);
+        Ok(())
+    }
+
+    /// The simulation's warnings since the last call.
+    pub fn take_warnings(&mut self) -> Vec<String> {
+        match self.simulation.as_mut() {
+            Some(s) => s.take_warnings(),
+            None => Vec::new(),
+        }
+    }
+
+    /// Save everything.
+    pub fn save(&self) -> SavedModel {
+        SavedModel {
+            scene: self.scene.clone(),
+            inputs: self.inputs,
+            started: self.started,
+            simulation: self.simulation.as_ref().map(Simulation::snapshot),
+        }
+    }
+
+    /// Restore a saved model (rebuilding the simulation if the parameters differ).
+    pub fn restore(&mut self, saved: &SavedModel) -> Result<(), ModelError> {
+        match &saved.simulation {
+            None => self.simulation = None,
+            Some(snapshot) => {
+                let reuse = self.simulation.is_some() && self.scene == saved.scene;
+                if !reuse {
+                    self.simulation = Some(Simulation::new(&saved.scene)?);
+                }
+                if let Some(simulation) = self.simulation.as_mut() {
+                    simulation.restore(snapshot);
+                }
+            }
+        }
+        self.scene.clone_from(&saved.scene);
+        self.inputs = saved.inputs;
+        self.started = saved.started;
+        Ok(())
+    }
+
+    /// The core's bytes of the simulation of `saved` (`None` without one): its magic,
+    /// version and model fingerprint, then its state. The current state is left as it was.
+    pub fn simulation_bytes(&mut self, saved: &SavedModel) -> Result<Option<Vec<u8>>, ModelError> {
+        let Some(snapshot) = &saved.simulation else {
+            return Ok(None);
+        };
+        self.with_simulation_of(&saved.scene, |s| {
+            s.restore(snapshot);
+            Ok(s.snapshot_to_bytes())
+        })
+        .map(Some)
+    }
+
+    /// `saved` (from [`SavedModel::from_parts`]) with the simulation read from the core's
+    /// bytes. Foreign, truncated or other-model bytes are rejected.
+    pub fn saved_from_bytes(
+        &mut self,
+        saved: SavedModel,
+        simulation_bytes: Option<&[u8]>,
+    ) -> Result<SavedModel, ModelError> {
+        let simulation = match simulation_bytes {
+            None => None,
+            Some(b) => Some(self.with_simulation_of(&saved.scene, |s| {
+                s.restore_from_bytes(b)?;
+                Ok(s.snapshot())
+            })?),
+        };
+        Ok(SavedModel {
+            simulation,
+            ..saved
+        })
+    }
+
+    /// Run `f` on a simulation of `scene` whose state `f` may replace: the instance's own one
+    /// if it was built from the same scene (its state is put back bit for bit afterwards),
+    /// else a scratch one.
+    fn with_simulation_of<T>(
+        &mut self,
+        scene: &Scene,
+        f: impl FnOnce(&mut Simulation) -> Result<T, ModelError>,
+    ) -> Result<T, ModelError> {
+        match self.simulation.as_mut() {
+            Some(simulation) if self.scene == *scene => {
+                let current = simulation.snapshot();
+                let result = f(simulation);
+                simulation.restore(&current);
+                result
+            }
+            _ => Simulation::new(scene).and_then(|mut scratch| f(&mut scratch)),
+        }
+    }
+}
+
+/// The slider-crank turns a full revolution only with r < L; the core checks the rest.
+fn check_geometry(scene: &Scene) -> Result<(), ModelError> {
+    let (r, l) = (scene.crank.length, scene.rod.length);
+    if r.is_finite() && l.is_finite() && r >= l {
+        return Err(ModelError::State {
+            message: format!(
+                "crank.length = {r} m must be smaller than rod.length = {l} m: allowed 0 < crank.length < rod.length (otherwise the crank cannot turn a full revolution)"
+            ),
+        });
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_crank_as_long_as_the_rod_is_refused_with_both_values() {
+        let mut scene = Scene::benchmark();
+        scene.crank.length = scene.rod.length;
+        let table = VariableTable::new(&scene, 0);
+        let mut model = Model::new(scene, &table);
+        let e = model.ensure_started(0.0, &table).unwrap_err().to_string();
+        assert!(
+            e.contains("crank.length = 0.3048 m") && e.contains("0 < crank.length < rod.length"),
+            "{e}"
+        );
+        assert!(!model.is_built());
+    }
+}

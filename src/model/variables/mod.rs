@@ -1,0 +1,203 @@
+//! The variable table: the one source of truth for the model's variables.
+//!
+//! The interface layer's description and its identity hash, its get/set dispatch, the packager's documentation page and reference CSV all read this table. Names,
+//! units and signs are those of `docs/fmu.md`.
+//!
+//! Identifiers are fixed per variable (inputs 1.., outputs 10.., parameters 100..,
+//! `rod.frequency[k]` = 200 + k), so a variable keeps its identifier when a scene leaves
+//! others out. The table is declared for an [`Interface`]: what the importer's interface
+//! offers (arrays, input derivatives, an independent variable) and its words in descriptions.
+//!
+//! - this file: the table and its lookups;
+//! - [`types`]: what a variable is made of (causality, type and unit, [`Access`]);
+//! - [`enumerations`]: the enumeration types, items from the core's name lists;
+//! - [`list`]: the variable list itself (built with [`builder`]);
+//! - [`interface`]: the variables that depend on the interface (the independent variable,
+//!   the crank acceleration as an input, the arrays);
+//! - [`ranges`]: the checks of Integer and Enumeration values at the set call.
+
+mod builder;
+pub mod enumerations;
+mod interface;
+mod list;
+pub mod ranges;
+pub mod types;
+
+pub use enumerations::{
+    EnumerationItem, EnumerationType, ENUMERATION_TYPES, ROD_MODEL, ROD_REFERENCE,
+};
+pub use ranges::ELEMENTS_MAX;
+pub use types::{
+    Access, Causality, Initial, InitialDependencies, InputSlot, OutputGetter, Value, ValueType,
+    Variability, Variable,
+};
+
+pub use interface::SHAPE_POINTS_MAX;
+
+use crate::error::ModelError;
+use crate::scene::Scene;
+use crate::simulation::Simulation;
+
+/// The identifier of a variable in get/set calls (the interface's value reference).
+pub type VariableId = u32;
+
+/// Identifier of `rod.frequency[1]` minus one.
+pub const FREQUENCY_VR_BASE: VariableId = 200;
+
+/// What the interface a table is declared for offers, and its words in descriptions.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Interface {
+    /// Its name in descriptions (e.g. where a variable exists because of it).
+    pub name: &'static str,
+    /// Array variables: `rod.shape` and `rod.frequency` as arrays; without them the
+    /// frequencies are the scalars `rod.frequency[k]` and there is no shape.
+    pub arrays: bool,
+    /// Derivatives of inputs set at communication points: the crank acceleration is the
+    /// derivative of `crank.speed` (order 1) or `crank.angle` (order 2); without them it is
+    /// the input `crank.acceleration`.
+    pub input_derivatives: bool,
+    /// The independent variable `time` declared as a variable.
+    pub independent_variable: bool,
+    /// Its name for the outcome of a step refused with the state before it kept (the caller
+    /// may restore a state and retry), and for a step that failed.
+    pub refused_step: &'static str,
+    pub failed_step: &'static str,
+}
+
+impl Interface {
+    /// Scalars only, input derivatives, no independent variable, plain words (for tools
+    /// that read names and identifiers).
+    pub const SCALARS: Interface = Interface {
+        name: "the interface",
+        arrays: false,
+        input_derivatives: true,
+        independent_variable: false,
+        refused_step: "refused",
+        failed_step: "failed",
+    };
+}
+
+/// All variables of one model, in description order, with an index by identifier.
+#[derive(Clone)]
+pub struct VariableTable {
+    variables: Vec<Variable>,
+    /// `by_vr[vr]` = position + 1 in `variables`, 0 if no variable has that identifier.
+    by_vr: Vec<u16>,
+    interface: Interface,
+}
+
+impl VariableTable {
+    /// The table of `scene` for `interface`, with K = min(`[outputs] frequencies`,
+    /// frequencies that exist); builds the model once to count the frequencies. With
+    /// arrays, `[outputs] shape_points` must be 0 or 2..=[`SHAPE_POINTS_MAX`].
+    pub fn for_scene(scene: &Scene, interface: Interface) -> Result<VariableTable, ModelError> {
+        if interface.arrays {
+            interface::check_shape_points(scene)?;
+        }
+        let simulation = Simulation::new(scene)?;
+        let k = scene
+            .outputs
+            .frequencies
+            .min(simulation.frequencies_hz().len());
+        Ok(VariableTable::for_interface(scene, k, interface))
+    }
+
+    /// The interface the table was declared for.
+    pub fn interface(&self) -> Interface {
+        self.interface
+    }
+
+    /// All variables in description order.
+    pub fn variables(&self) -> &[Variable] {
+        &self.variables
+    }
+
+    /// The variable with this identifier.
+    pub fn get(&self, vr: VariableId) -> Option<&Variable> {
+        let position = *self.by_vr.get(vr as usize)?;
+        (position > 0).then(|| &self.variables[position as usize - 1])
+    }
+
+    /// 1-based index in the description's variable list (used by its model structure).
+    pub fn index_of_name(&self, name: &str) -> Option<usize> {
+        self.variables
+            .iter()
+            .position(|v| v.name == name)
+            .map(|i| i + 1)
+    }
+
+    /// The variable with this name.
+    pub fn by_name(&self, name: &str) -> Option<&Variable> {
+        self.variables.iter().find(|v| v.name == name)
+    }
+
+    /// Number of frequencies declared: `rod.frequency[k]` scalars or the length of the
+    /// array `rod.frequency`.
+    pub fn frequency_count(&self) -> usize {
+        self.variables
+            .iter()
+            .map(|v| match v.access {
+                Access::Frequency(_) => 1,
+                Access::Frequencies => v.value_count(),
+                _ => 0,
+            })
+            .sum()
+    }
+
+    /// The outputs, in table order: (name, getter).
+    pub fn outputs(&self) -> impl Iterator<Item = (&str, OutputGetter)> + '_ {
+        self.variables.iter().filter_map(|v| match v.access {
+            Access::Output(get) => Some((v.name.as_str(), get)),
+            _ => None,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn value_references_unique_and_indexed() {
+        let scene = Scene::benchmark();
+        let table = VariableTable::new(&scene, 6);
+        let mut vrs: Vec<_> = table
+            .variables()
+            .iter()
+            .map(|v| v.value_reference)
+            .collect();
+        vrs.sort();
+        vrs.dedup();
+        assert_eq!(vrs.len(), table.variables().len());
+        for v in table.variables() {
+            assert_eq!(table.get(v.value_reference).unwrap().name, v.name);
+        }
+        assert!(table.get(9999).is_none());
+        assert!(table.get(0).is_none());
+        assert_eq!(
+            table.by_name("rod.frequency[6]").unwrap().value_reference,
+            206
+        );
+    }
+
+    #[test]
+    fn switched_off_variables_are_absent() {
+        let mut scene = Scene::benchmark();
+        scene.outputs.slider = false;
+        scene.outputs.slider_force = false;
+        scene.outputs.pin_forces = false;
+        scene.outputs.crank_torque = false;
+        let table = VariableTable::new(&scene, 2);
+        for name in [
+            "slider.position",
+            "slider.force",
+            "pinB.force_x",
+            "crank.torque",
+            "rod.frequency[3]",
+        ] {
+            assert!(table.by_name(name).is_none(), "{name}");
+        }
+        assert!(table.by_name("rod.deflection").is_some());
+        assert!(table.by_name("slider.mass").is_some());
+    }
+}
