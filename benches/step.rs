@@ -1,8 +1,8 @@
-//! Step benchmarks (issue 6): one internal step, one revolution at 150 rad/s, and the cost of
+//! Step benchmarks: one internal step, one revolution at 150 rad/s, and the cost of
 //! `fmi2DoStep` beyond `Simulation::advance` with the same communication step (the exported C
 //! functions called in-process; default scene, NULL resource location, so the instance uses
 //! the compiled-in default scene after checking the GUID).
-//! `fmi2DoStep` at a 1e-5 s communication step (issue 12: <= 1.5 us a call), without inputs and
+//! `fmi2DoStep` at a 1e-5 s communication step (target: <= 1.5 us a call), without inputs and
 //! with the crank angle and speed set before every call as an importer does.
 //! Run: `cargo bench --bench step`.
 
@@ -173,7 +173,7 @@ fn instance() -> ffi::fmi2Component {
     comp
 }
 
-/// Issue 12: `fmi2DoStep` at a 1e-5 s communication step, per call, in process.
+/// `fmi2DoStep` at a 1e-5 s communication step, per call, in process.
 fn do_step_1e5(c: &mut Criterion) {
     let h = 1e-5;
     let comp = instance();

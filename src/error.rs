@@ -38,7 +38,7 @@ pub enum ModelError {
         time: f64,
         deflection: f64,
         limit: f64,
-        /// Policy "discard" (fmi2Discard); false: "error" (fmi2Error).
+        /// Policy "discard" (the step refused, to be retried); false: "error".
         discard: bool,
     },
     /// A call that the model cannot serve in its current state (e.g. bad state bytes).

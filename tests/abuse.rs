@@ -1,4 +1,4 @@
-//! Issue 14, "Trustworthy under abuse": the core refuses what it cannot do well, with the state
+//! Trustworthy under abuse: the core refuses what it cannot do well, with the state
 //! kept and a message naming the value and the limit.
 
 use std::time::Instant;
@@ -31,7 +31,7 @@ fn scene(model: RodModelKind, elements: usize) -> Scene {
     s
 }
 
-/// Issue 14, 1b: the declared range of `rod.elements` works (built and run at the limit, in
+/// The declared range of `rod.elements` works (built and run at the limit, in
 /// bounded time and memory); limit + 1 is refused naming the value and the range.
 #[test]
 fn element_limits_work_and_limit_plus_one_is_refused() {
@@ -63,7 +63,7 @@ fn element_limits_work_and_limit_plus_one_is_refused() {
     }
 }
 
-/// Issue 14, 1c: a communication step needing more than `MAX_INTERNAL_STEPS` internal steps is
+/// A communication step needing more than `MAX_INTERNAL_STEPS` internal steps is
 /// refused within seconds, the state kept; continuing with legal steps gives the outputs of a run
 /// that never tried.
 #[test]
@@ -102,7 +102,7 @@ fn huge_communication_steps_are_refused_with_the_state_kept() {
     }
 }
 
-/// Issue 14, 1d: core state bytes with a correct header and fingerprint but fields out of range
+/// Core state bytes with a correct header and fingerprint but fields out of range
 /// are rejected, the state unchanged (offsets: 20 header bytes, then f64 fields in the order of
 /// `MechanismState::write_bytes`).
 #[test]
@@ -151,7 +151,7 @@ fn crafted_state_bytes_are_rejected_field_by_field() {
         .expect("the original bytes are accepted");
 }
 
-/// Issue 14, 2: the deflection policy in the core. Beyond `rod.deflection_limit`: warn continues
+/// The deflection policy in the core. Beyond `rod.deflection_limit`: warn continues
 /// with one warning; discard and error refuse the step with the state from before it kept.
 #[test]
 fn deflection_policy_warn_discard_error() {

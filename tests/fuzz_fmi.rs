@@ -1,4 +1,4 @@
-//! Issue 14: the FMI 2.0 C boundary fuzzed (harness in `tests/fuzz/`).
+//! The FMI 2.0 C boundary fuzzed (harness in `tests/fuzz/`).
 //!
 //! - `random_call_sequences_keep_the_contract`: seeded sequences of all 34 fmi2 functions in
 //!   legal and illegal orders, with the continuation-equivalence oracle (a twin instance gets
@@ -315,7 +315,7 @@ fn crafted_serialized_states_never_give_garbage() {
     assert_eq!(violations.count, 0, "{:#?}", violations.first);
 }
 
-/// Absurd parameter sets (issue 14): each is refused at the set call or at
+/// Absurd parameter sets: each is refused at the set call or at
 /// fmi2ExitInitializationMode with fmi2Error and a message, within bounded time; after
 /// fmi2Reset the instance runs the default scene exactly as a fresh instance does.
 #[test]
@@ -416,8 +416,8 @@ fn run_default(f: &Fmu, vars: &Vars) -> Vec<u64> {
     bits
 }
 
-/// Issue 14, 3, first defect: the segment chain diverged (NaN and 1e254 N) and fmi2DoStep said
-/// fmi2OK. The reproducer of the issue, replayed through the C functions: every answer with
+/// A segment chain that diverges (NaN and 1e254 N) must not be answered with fmi2OK. The
+/// reproducer, replayed through the C functions: every answer with
 /// fmi2OK or fmi2Warning has finite outputs below 1e12, and a refused step keeps the state.
 #[test]
 fn segment_chain_divergence_reproducer_gives_no_garbage() {

@@ -1,4 +1,4 @@
-//! The FMI 3.0 description (issue 16): the golden copy
+//! The FMI 3.0 description: the golden copy
 //! `modelDescription/modelDescription-fmi3.xml` is what the code generates for
 //! `scenes/benchmark.toml` now (regenerate with
 //! `UPDATE_GOLDEN=1 cargo test --release --test model_description_fmi3` and review the diff),

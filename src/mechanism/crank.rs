@@ -11,7 +11,7 @@ pub struct CrankInput {
     pub angle: f64,
     /// omega_k, rad/s.
     pub speed: f64,
-    /// alpha_k, rad/s^2 (from fmi2SetRealInputDerivatives; 0 otherwise).
+    /// alpha_k, rad/s^2 (the crank acceleration given with the inputs; 0 otherwise).
     pub acceleration: f64,
 }
 

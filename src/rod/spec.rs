@@ -92,7 +92,7 @@ pub struct RodSpec {
     /// Segments only: keep the axial springs E A / l (prismatic joints) between segments.
     #[serde(default)]
     pub axial_springs: bool,
-    /// |v_mid / L| beyond which `deflection_policy` applies, in (0, 1] (issue 14).
+    /// |v_mid / L| beyond which `deflection_policy` applies, in (0, 1].
     #[serde(
         default = "default_deflection_limit",
         skip_serializing_if = "is_default_deflection_limit"

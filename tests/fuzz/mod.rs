@@ -1,4 +1,4 @@
-//! The fuzz harness of the FMI 2.0 C boundary (issue 14): seeded random call sequences through
+//! The fuzz harness of the FMI 2.0 C boundary: seeded random call sequences through
 //! the exported functions, in process, judged by an oracle written from the standard and
 //! docs/fmu.md.
 

@@ -1,4 +1,4 @@
-"""The real-rod parameters of the contract (fmu-contract.md, "Real connecting rods"):
+"""The real-rod parameters of the contract (docs/fmu.md, "Real connecting rods"):
 rod.shear_modulus (138), rod.big_end.mass / .inertia (139, 140), rod.small_end.mass / .inertia
 (141, 142), on the FMU of scenes/automotive_rod.toml: present with their scene values, range
 checked with a message naming the variable, and acting on the model."""
