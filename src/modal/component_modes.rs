@@ -1,7 +1,8 @@
 //! The rod's component modes: mesh + reference conditions + eigenproblem + selection.
 //!
 //! Deformation field in the body frame: `u_f(x) = S(x) B_r Phi p = S_hat(x) p`
-//! (seed 000, eq. 4.4 and the modal transformation eq. 6.1).
+//! (O. P. Agrawal and A. A. Shabana, "Dynamic analysis of multibody systems using component
+//! modes", *Computers & Structures* 21(6), 1985: eq. 4.4 and the modal transformation eq. 6.1).
 
 use faer::Mat;
 
@@ -38,7 +39,7 @@ pub struct ComponentModes {
 
 impl ComponentModes {
     /// Preprocess: assemble, apply reference conditions, solve `K_rr a = w^2 M_rr a`
-    /// (seed 000, eq. 4.4), keep the selected modes.
+    /// (Agrawal and Shabana 1985, eq. 4.4), keep the selected modes.
     pub fn new(
         section: RodProperties,
         n_elements: usize,

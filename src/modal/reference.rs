@@ -1,6 +1,8 @@
 //! Reference conditions: linear constraints that remove the rigid-body modes of the element
-//! shape functions, `q_f = B_r q_r` (seed 000, eq. 3.9 and section 3.2; seed 001,
-//! "Reference conditions & the elimination of rigid body modes").
+//! shape functions, `q_f = B_r q_r` (O. P. Agrawal and A. A. Shabana, "Dynamic analysis of
+//! multibody systems using component modes", *Computers & Structures* 21(6), 1985, eq. 3.9 and
+//! section 3.2; J. O'Shea, "CDI Parametric Study: Analysis of the Small-Deformation Connecting
+//! Rod: Slider Crank Mechanism", "Reference conditions & the elimination of rigid body modes").
 
 use faer::Mat;
 
@@ -54,7 +56,8 @@ pub enum ReferenceConditions {
     SimplySupported,
     /// Free-free modes with the three rigid-body modes removed; frame at the centre of mass.
     /// The retained modes satisfy the mean-axis conditions (zero linear and angular momentum
-    /// of deformation; seed 000 section 3.2, eq. 3.6-3.7 and 5.3-5.4, and section 5.2).
+    /// of deformation; Agrawal and Shabana 1985, section 3.2, eq. 3.6-3.7 and 5.3-5.4, and
+    /// section 5.2).
     MeanAxis,
     /// All three coordinates of node `node` zero (node N/2 = midpoint, node 0 = cantilever at B);
     /// frame at that node.
