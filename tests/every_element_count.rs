@@ -194,6 +194,10 @@ fn simulation_reports_the_closed_form_at_fine_meshes() {
             let mut scene = Scene::benchmark();
             scene.rod.reference = kind;
             scene.rod.elements = n;
+            if kind == ReferenceKind::BodyFixedMid {
+                // Every frequency twice: three modes would keep half of the second pair.
+                scene.rod.modes = 4;
+            }
             match Simulation::new(&scene) {
                 Ok(sim) => {
                     let f = sim.frequencies_hz()[0];
@@ -234,7 +238,7 @@ fn soft_and_slender_rods_give_small_positive_frequencies() {
                     n,
                     reference,
                     MassKind::Consistent,
-                    &ModeSelection::Count(1),
+                    &ModeSelection::Count(0),
                 )
                 .unwrap();
                 let f = modes.all_frequencies_hz[0];
@@ -288,4 +292,36 @@ fn segment_chain_every_count() {
     println!(
         "segments N = {lo}..={hi}: worst error / 0.25 (k/N)^4 = {worst:.3} (first three bending modes)"
     );
+}
+
+/// `body_fixed_mid` has every frequency twice (the two halves, clamped at the midpoint, vibrate
+/// alike): a mode count that keeps half of a pair keeps an arbitrary shape and is refused,
+/// naming `rod.modes`; whole pairs give the closed form.
+#[test]
+fn body_fixed_mid_keeps_pairs_whole() {
+    let p = rod();
+    let exact = closed_form(&p, beta_l(ReferenceKind::BodyFixedMid)[0]);
+    for n in [2, 8, 64, 128] {
+        for modes in 1..=4 {
+            let mut scene = Scene::benchmark();
+            scene.rod.reference = ReferenceKind::BodyFixedMid;
+            scene.rod.elements = n;
+            scene.rod.modes = modes;
+            match Simulation::new(&scene) {
+                Ok(sim) => {
+                    assert!(modes % 2 == 0, "N = {n}, {modes} modes accepted");
+                    let f = sim.frequencies_hz();
+                    assert!((f[0] / exact - 1.0).abs() < 5e-3 && (f[1] / f[0] - 1.0).abs() < 1e-6);
+                }
+                Err(e) => {
+                    let text = e.to_string();
+                    assert!(modes % 2 == 1, "N = {n}, {modes} modes: {text}");
+                    assert!(
+                        text.contains("rod.modes") && text.contains("equal frequency"),
+                        "{text}"
+                    );
+                }
+            }
+        }
+    }
 }
