@@ -29,10 +29,10 @@
 //!
 //! Each test prints the worst error per reference condition (`--nocapture`).
 
-use flexrod::beam::mesh::MAX_ELEMENTS;
+use flexrod::beam::mesh::{least_elements, MAX_ELEMENTS};
 use flexrod::beam::{MassKind, RodProperties};
 use flexrod::modal::{ComponentModes, ModeSelection, ReferenceConditions, ReferenceKind};
-use flexrod::rod::segments::{SegmentRod, SEGMENT_RANGE};
+use flexrod::rod::segments::{least_segments, SegmentRod, SEGMENT_RANGE};
 use flexrod::scene::{RodModelKind, Scene};
 use flexrod::Simulation;
 use std::f64::consts::PI;
@@ -324,4 +324,53 @@ fn body_fixed_mid_keeps_pairs_whole() {
             }
         }
     }
+}
+
+/// The least counts that leave `K` natural frequencies (what an FMU declaring
+/// `rod.frequency[1..K]` needs): `least_elements` for the FFR rod under every reference
+/// condition, `least_segments` for the chain, against the models' own lists.
+#[test]
+fn least_counts_leave_the_declared_frequencies() {
+    let p = rod();
+    for k in 0..=12 {
+        let n = least_elements(k);
+        for kind in ReferenceKind::ALL {
+            let count = |n: usize| {
+                ReferenceConditions::from_kind(kind, n)
+                    .and_then(|r| {
+                        ComponentModes::new(p, n, r, MassKind::Consistent, &ModeSelection::Count(0))
+                    })
+                    .map(|m| m.all_frequencies_hz.len())
+            };
+            if let Ok(c) = count(n) {
+                assert!(c >= k, "{kind:?} K = {k}: {n} elements leave {c}");
+            }
+            if n > 1 {
+                if let Ok(c) = count(n - 1) {
+                    assert!(c < k, "{kind:?} K = {k}: {} elements leave {c}", n - 1);
+                }
+            }
+        }
+        for axial in [false, true] {
+            let n = least_segments(k, axial);
+            let count = |n: usize| {
+                let chain = SegmentRod::new(p, n, 0.0, axial).unwrap();
+                chain.bending_frequencies_hz().len() + chain.axial_frequencies_hz().len()
+            };
+            assert!(count(n) >= k, "segments K = {k}: {n} leave {}", count(n));
+            assert!(
+                n == 1 || count(n - 1) < k,
+                "segments K = {k}: {} suffice",
+                n - 1
+            );
+        }
+    }
+    assert_eq!(
+        (
+            least_elements(6),
+            least_segments(6, false),
+            least_segments(6, true)
+        ),
+        (2, 7, 5)
+    );
 }

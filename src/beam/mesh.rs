@@ -34,6 +34,15 @@ use crate::error::ModelError;
 /// cantilever; tests/abuse.rs builds and runs the limit.
 pub const MAX_ELEMENTS: usize = 128;
 
+/// The least number of Euler-Bernoulli elements that leaves at least `frequencies` natural
+/// frequencies: every reference condition leaves `3 N` of the `3 (N + 1)` nodal coordinates
+/// (interior coordinates of the shear-deformable element add more; `body_fixed_mid` also needs
+/// an even `N`, and refuses an odd one with a message). For the six frequencies of the default
+/// scene: 2.
+pub fn least_elements(frequencies: usize) -> usize {
+    frequencies.div_ceil(3).max(1)
+}
+
 /// The rod's mesh.
 #[derive(Clone, Debug)]
 pub struct RodMesh {
