@@ -61,7 +61,7 @@ pub fn generalized_symmetric_eigen(
 /// 8.3). Measured (tests/rod_exact_frequencies.rs, the stubby rod at 32 and 64 elements): the
 /// QR iteration on that `C` agrees with the stiffness-based form
 /// ([`generalized_symmetric_eigen_by_stiffness`]) to 1e-12, where faer 0.24's default
-/// (divide and conquer from order 128) lost the lowest eigenvalue (about 1e-5 relative at 32
+/// (divide and conquer from order 128) loses the lowest eigenvalue (about 1e-5 relative at 32
 /// elements, NaN at 64).
 pub fn generalized_symmetric_eigen_scaled(
     k: &Mat<f64>,
