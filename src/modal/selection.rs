@@ -12,7 +12,10 @@ pub enum ModeSelection {
     /// Modes by 0-based index into the sorted list, e.g. `[0, 1, 5]`.
     Indices(Vec<usize>),
     /// The lowest `count` modes, and then the lowest axial modes missing until at least
-    /// `axial` of the kept ones are axial (none added when `count` is 0: the rigid rod).
+    /// `axial` of the kept ones are axial (none added when `count` is 0: the rigid rod). The
+    /// selection of a scene's `rod.modes` and `rod.axial_modes`: modes of one frequency are
+    /// kept or left out together (a `count` that splits them is refused, an axial mode comes
+    /// with the modes of its frequency). The other selections keep what they name.
     CountWithAxial { count: usize, axial: usize },
 }
 
@@ -25,9 +28,7 @@ impl ModeSelection {
         axial_shares: &[f64],
     ) -> Result<Vec<usize>, ModelError> {
         let ModeSelection::CountWithAxial { count, axial } = self else {
-            let kept = self.select(frequencies_hz)?;
-            check_whole_clusters(&kept, frequencies_hz)?;
-            return Ok(kept);
+            return self.select(frequencies_hz);
         };
         let mut kept = ModeSelection::Count(*count).select(frequencies_hz)?;
         check_whole_clusters(&kept, frequencies_hz)?;
@@ -177,7 +178,8 @@ mod tests {
     fn equal_frequencies_stay_together() {
         let f = [10.0, 10.0, 20.0, 20.0 * (1.0 + 1e-7), 30.0];
         let shares = [0.0, 0.0, 1.0, 1.0, 0.0];
-        let count = |n| ModeSelection::Count(n).select_classified(&f, &shares);
+        let count =
+            |n| ModeSelection::CountWithAxial { count: n, axial: 0 }.select_classified(&f, &shares);
         assert_eq!(count(2).unwrap(), vec![0, 1]);
         assert_eq!(count(4).unwrap(), vec![0, 1, 2, 3]);
         for n in [1, 3] {
@@ -187,6 +189,13 @@ mod tests {
                 "{text}"
             );
         }
+        // The library's own count keeps what it names.
+        assert_eq!(
+            ModeSelection::Count(3)
+                .select_classified(&f, &shares)
+                .unwrap(),
+            vec![0, 1, 2]
+        );
         // An axial mode added by CountWithAxial brings its partner.
         let pick = ModeSelection::CountWithAxial { count: 2, axial: 1 }
             .select_classified(&f, &shares)
