@@ -183,8 +183,9 @@ fn ffr_lumped_mass_every_count() {
     }
 }
 
-/// The frequencies the FMU reports (`Simulation::frequencies_hz`) at the counts where the
-/// eigensolver once lost the lowest modes, for every reference condition.
+/// The frequencies the FMU reports (`Simulation::frequencies_hz`) on fine meshes (86 to 128
+/// elements: a divide-and-conquer eigensolver loses the lowest modes there, see
+/// `flexrod::modal::eigen`), for every reference condition.
 #[test]
 fn simulation_reports_the_closed_form_at_fine_meshes() {
     let p = rod();
