@@ -25,11 +25,23 @@ use crate::beam::MassKind;
 use crate::error::ModelError;
 
 /// Largest number of elements a mesh takes (`rod.elements`; the FMU declares it as the
-/// parameter's `max`). Measured (issue 14, `tests/abuse.rs`): 128 elements build in about
-/// 0.05 s and 20 MB and run the benchmark; from about 160 elements the reduced stiffness loses
-/// definiteness in double precision (Newton fails, or "reduced stiffness is indefinite" from
-/// 172), and 1024 elements took 13 s and 0.9 GB.
+/// parameter's `max`). Every count up to it gives the first three bending frequencies of the
+/// uniform rod within the discretization error of the Euler-Bernoulli closed forms under every
+/// reference condition (tests/every_element_count.rs). The bound is the cost of the dense
+/// preprocessing, `O(N^3)`: measured on the benchmark rod on a shared host, one eigenproblem
+/// takes about 0.3 s at 160 elements and 2 to 5 s at 384, where the round-off of the lowest
+/// eigenvalue (about `eps` times the spread `N^4` of the spectrum) reaches 2e-5 for the
+/// cantilever; tests/abuse.rs builds and runs the limit.
 pub const MAX_ELEMENTS: usize = 128;
+
+/// The least number of Euler-Bernoulli elements that leaves at least `frequencies` natural
+/// frequencies: every reference condition leaves `3 N` of the `3 (N + 1)` nodal coordinates
+/// (interior coordinates of the shear-deformable element add more; `body_fixed_mid` also needs
+/// an even `N`, and refuses an odd one with a message). For the six frequencies of the default
+/// scene: 2.
+pub fn least_elements(frequencies: usize) -> usize {
+    frequencies.div_ceil(3).max(1)
+}
 
 /// The rod's mesh.
 #[derive(Clone, Debug)]
@@ -63,7 +75,7 @@ impl RodMesh {
                 name: "rod.elements",
                 value: n_elements as f64,
                 allowed: format!(
-                    "an integer in 1..={MAX_ELEMENTS} beam elements (rod.model = \"ffr\"; more lose precision in the reduced stiffness)"
+                    "an integer in 1..={MAX_ELEMENTS} beam elements (rod.model = \"ffr\"; the preprocessing is dense, its cost grows as the cube of the count)"
                 ),
             });
         }

@@ -1,13 +1,15 @@
 //! The rod's component modes: mesh + reference conditions + eigenproblem + selection.
 //!
 //! Deformation field in the body frame: `u_f(x) = S(x) B_r Phi p = S_hat(x) p`
-//! (seed 000, eq. 4.4 and the modal transformation eq. 6.1).
+//! (O. P. Agrawal and A. A. Shabana, "Dynamic analysis of multibody systems using component
+//! modes", *Computers & Structures* 21(6), 1985: eq. 4.4 and the modal transformation eq. 6.1).
 
 use faer::Mat;
 
 use super::eigen::{
     generalized_symmetric_eigen, generalized_symmetric_eigen_by_stiffness,
     generalized_symmetric_eigen_by_stiffness_scaled, generalized_symmetric_eigen_scaled,
+    GeneralizedEigen,
 };
 use super::reference::ReferenceConditions;
 use super::selection::ModeSelection;
@@ -37,7 +39,7 @@ pub struct ComponentModes {
 
 impl ComponentModes {
     /// Preprocess: assemble, apply reference conditions, solve `K_rr a = w^2 M_rr a`
-    /// (seed 000, eq. 4.4), keep the selected modes.
+    /// (Agrawal and Shabana 1985, eq. 4.4), keep the selected modes.
     pub fn new(
         section: RodProperties,
         n_elements: usize,
@@ -89,72 +91,33 @@ impl ComponentModes {
             }
         }
         let (k, m) = mesh.assemble(mass_kind);
-        let basis = reference.basis(&mesh, &k, &m)?;
+        let basis = reference.basis(&mesh, &m)?;
         let b = &basis.b_r;
-        let (k_rr, m_rr) = match &basis.selection {
-            // B_r selects coordinates: the reduced matrices are submatrices.
-            Some(kept) => (
-                Mat::from_fn(kept.len(), kept.len(), |i, j| k[(kept[i], kept[j])]),
-                Mat::from_fn(kept.len(), kept.len(), |i, j| m[(kept[i], kept[j])]),
-            ),
-            None => (b.transpose() * &k * b, b.transpose() * &m * b),
-        };
-        // Rods with interior coordinates: the scaled QR form (modal::eigen, measured there).
-        let mut eig = if mesh.n_bubbles() > 0 {
-            let eig = generalized_symmetric_eigen_scaled(&k_rr, &m_rr)?;
-            // The mass-based form's absolute error is about eps lambda_max: when the spectrum
-            // spans more than 1e10 (a nearly rigid shear modulus) the stiffness-based form
-            // keeps the lowest modes accurate, where the reduced stiffness is definite.
-            let spread = match (eig.values.first(), eig.values.last()) {
-                (Some(&lo), Some(&hi)) => hi / lo.abs().max(f64::MIN_POSITIVE),
-                _ => 0.0,
-            };
-            match spread > 1e10 {
-                true => {
-                    generalized_symmetric_eigen_by_stiffness_scaled(&k_rr, &m_rr).unwrap_or(eig)
-                }
-                false => eig,
-            }
-        } else {
-            generalized_symmetric_eigen(&k_rr, &m_rr)?
-        };
-        let indefinite = |eig: &super::eigen::GeneralizedEigen| match eig.values.first() {
-            Some(&lowest) => lowest < -1e-9 * eig.values.last().copied().unwrap_or(1.0).abs(),
-            None => false,
-        };
-        if indefinite(&eig) {
-            // Round-off of an ill-conditioned mass matrix (a fine mesh of a stubby
-            // shear-deformable rod), or a truly indefinite stiffness: the stiffness-based form
-            // tells them apart (it fails on the latter).
-            if let Ok(by_stiffness) = generalized_symmetric_eigen_by_stiffness(&k_rr, &m_rr) {
-                eig = by_stiffness;
-            }
-        }
-        if let Some(&lowest) = eig.values.first() {
-            let top = eig.values.last().copied().unwrap_or(1.0).abs();
-            if lowest < -1e-9 * top {
-                return Err(ModelError::ReferenceConditions {
-                    message: format!("the reduced stiffness is indefinite (eigenvalue {lowest:e})"),
-                });
-            }
-        }
+        let (k_rr, m_rr) = basis.reduce(&k, &m);
+        let axial: Vec<bool> = basis
+            .kept
+            .iter()
+            .map(|&i| mesh.is_axial_coordinate(i))
+            .collect();
+        let eig = solve_reduced(&k_rr, &m_rr, mesh.n_bubbles() > 0, &axial)?;
+        check_spectrum(&eig, &mesh, &reference)?;
         let all_frequencies_hz: Vec<f64> = eig
             .values
             .iter()
-            .map(|&l| l.max(0.0).sqrt() / (2.0 * std::f64::consts::PI))
+            .map(|&l| l.sqrt() / (2.0 * std::f64::consts::PI))
             .collect();
         // Each mode in full coordinates, and its kinetic energy in the axial displacements
         // (node i's u at 3 i): s_u^T M_uu s_u / s^T M s.
         let full_shape = |j: usize| -> Vec<f64> {
-            match &basis.selection {
-                Some(kept) => {
+            match basis.selects {
+                true => {
                     let mut full = vec![0.0; b.nrows()];
-                    for (i, &row) in kept.iter().enumerate() {
+                    for (i, &row) in basis.kept.iter().enumerate() {
                         full[row] = eig.vectors[(i, j)];
                     }
                     full
                 }
-                None => (0..b.nrows())
+                false => (0..b.nrows())
                     .map(|r| {
                         (0..b.ncols())
                             .map(|c| b[(r, c)] * eig.vectors[(c, j)])
@@ -189,19 +152,19 @@ impl ComponentModes {
         let phi = Mat::from_fn(eig.vectors.nrows(), retained.len(), |i, j| {
             eig.vectors[(i, retained[j])]
         });
-        let shapes = match &basis.selection {
-            Some(kept) => {
+        let shapes = match basis.selects {
+            true => {
                 let mut full = Mat::zeros(b.nrows(), phi.ncols());
-                for (i, &row) in kept.iter().enumerate() {
+                for (i, &row) in basis.kept.iter().enumerate() {
                     for j in 0..phi.ncols() {
                         full[(row, j)] = phi[(i, j)];
                     }
                 }
                 full
             }
-            None => b * &phi,
+            false => b * &phi,
         };
-        let omega2 = retained.iter().map(|&i| eig.values[i].max(0.0)).collect();
+        let omega2 = retained.iter().map(|&i| eig.values[i]).collect();
         Ok(ComponentModes {
             mesh,
             reference,
@@ -249,4 +212,135 @@ impl ComponentModes {
         let dofs = self.mesh.element_dofs(e);
         nalgebra::DMatrix::from_fn(dofs.len(), self.n_modes(), |i, j| self.shapes[(dofs[i], j)])
     }
+}
+
+/// Relative resolution below which the lowest eigenvalue of the coupled solve counts as lost in
+/// the round-off of the highest: the eigenvalues of [`generalized_symmetric_eigen`] carry an
+/// absolute error of about `eps lambda_max`, so `lambda_1 >= 1e6 eps lambda_max` keeps
+/// `lambda_1` to about 1e-6 relative.
+const RESOLVED: f64 = 1e6 * f64::EPSILON;
+
+/// `K_rr a = lambda M_rr a` of the reduced rod, eigenvalues ascending, vectors
+/// `M_rr`-normalized. One coupled solve ([`solve_coupled`]); when its lowest eigenvalue is
+/// not resolved against its highest ([`RESOLVED`]: a slender section, whose axial modes sit
+/// `A L^2 / I` above the bending ones) and the axial and transverse coordinates decouple
+/// exactly in `K_rr` and `M_rr` (the straight rod: every element and end body here), the two
+/// blocks are solved apart, each against its own highest eigenvalue.
+fn solve_reduced(
+    k: &Mat<f64>,
+    m: &Mat<f64>,
+    bubbles: bool,
+    axial: &[bool],
+) -> Result<GeneralizedEigen, ModelError> {
+    let coupled = solve_coupled(k, m, bubbles);
+    if let Ok(eig) = &coupled {
+        let lowest = eig.values.first().copied().unwrap_or(1.0);
+        let highest = eig.values.last().copied().unwrap_or(1.0);
+        if lowest > RESOLVED * highest.abs() {
+            return coupled;
+        }
+    }
+    let ia: Vec<usize> = (0..axial.len()).filter(|&i| axial[i]).collect();
+    let ib: Vec<usize> = (0..axial.len()).filter(|&i| !axial[i]).collect();
+    let decoupled = ia.iter().all(|&i| {
+        ib.iter()
+            .all(|&j| k[(i, j)] == 0.0 && m[(i, j)] == 0.0 && k[(j, i)] == 0.0 && m[(j, i)] == 0.0)
+    });
+    if ia.is_empty() || ib.is_empty() || !decoupled {
+        return coupled;
+    }
+    let block = |idx: &[usize]| {
+        let sub = |a: &Mat<f64>| Mat::from_fn(idx.len(), idx.len(), |i, j| a[(idx[i], idx[j])]);
+        solve_coupled(&sub(k), &sub(m), bubbles)
+    };
+    let (Ok(ea), Ok(eb)) = (block(&ia), block(&ib)) else {
+        return coupled;
+    };
+    // Merge: every pair in the reduced coordinates, ascending.
+    let mut pairs: Vec<(f64, &[usize], &Mat<f64>, usize)> = (0..ia.len())
+        .map(|j| (ea.values[j], ia.as_slice(), &ea.vectors, j))
+        .chain((0..ib.len()).map(|j| (eb.values[j], ib.as_slice(), &eb.vectors, j)))
+        .collect();
+    pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let n = axial.len();
+    let mut vectors = Mat::zeros(n, n);
+    for (col, (_, idx, vecs, j)) in pairs.iter().enumerate() {
+        for (r, &row) in idx.iter().enumerate() {
+            vectors[(row, col)] = vecs[(r, *j)];
+        }
+    }
+    Ok(GeneralizedEigen {
+        values: pairs.iter().map(|p| p.0).collect(),
+        vectors,
+    })
+}
+
+/// One generalized eigenproblem of the reduced rod. Rods with interior coordinates: the
+/// scaled QR form ([`generalized_symmetric_eigen_scaled`], measured there), and the
+/// stiffness-based form when the spectrum spans more than 1e10 (a nearly rigid shear modulus:
+/// the mass-based form's absolute error is about `eps lambda_max`, the stiffness-based form
+/// keeps the lowest modes to `eps` where the reduced stiffness is definite). A negative lowest
+/// eigenvalue (round-off of an ill-conditioned mass matrix, or a truly indefinite stiffness)
+/// is retried in the stiffness-based form, which fails on the latter.
+fn solve_coupled(
+    k: &Mat<f64>,
+    m: &Mat<f64>,
+    bubbles: bool,
+) -> Result<GeneralizedEigen, ModelError> {
+    let mut eig = if bubbles {
+        let eig = generalized_symmetric_eigen_scaled(k, m)?;
+        let spread = match (eig.values.first(), eig.values.last()) {
+            (Some(&lo), Some(&hi)) => hi / lo.abs().max(f64::MIN_POSITIVE),
+            _ => 0.0,
+        };
+        match spread > 1e10 {
+            true => generalized_symmetric_eigen_by_stiffness_scaled(k, m).unwrap_or(eig),
+            false => eig,
+        }
+    } else {
+        generalized_symmetric_eigen(k, m)?
+    };
+    let indefinite = match eig.values.first() {
+        Some(&lowest) => lowest < -1e-9 * eig.values.last().copied().unwrap_or(1.0).abs(),
+        None => false,
+    };
+    if indefinite {
+        if let Ok(by_stiffness) = generalized_symmetric_eigen_by_stiffness(k, m) {
+            eig = by_stiffness;
+        }
+    }
+    Ok(eig)
+}
+
+/// Every eigenvalue of the reduced rod must be finite and positive: the reference conditions
+/// leave no rigid-body motion, so a zero, negative or non-finite value is round-off or a
+/// failed solve, never a frequency. The error names the rod's parameters.
+fn check_spectrum(
+    eig: &GeneralizedEigen,
+    mesh: &RodMesh,
+    reference: &ReferenceConditions,
+) -> Result<(), ModelError> {
+    let Some((k, &lambda)) = eig
+        .values
+        .iter()
+        .enumerate()
+        .find(|(_, l)| !(l.is_finite() && **l > 0.0))
+    else {
+        return Ok(());
+    };
+    let p = &mesh.section;
+    let highest = eig.values.iter().copied().fold(0.0, f64::max);
+    Err(ModelError::Numerical {
+        message: format!(
+            "natural frequency {} of the rod is not a finite positive value (eigenvalue {lambda:e} (rad/s)^2, the highest {highest:e}) for rod.length = {} m, rod.youngs_modulus = {:e} Pa, rod.density = {} kg/m^3, rod.area = {:e} m^2, rod.area_moment = {:e} m^4, rod.elements = {}, rod.reference = {}: double precision does not resolve this rod's spectrum; allowed: parameters whose eigenproblem is definite (a less slender section or fewer elements)",
+            k + 1,
+            p.length,
+            p.youngs_modulus,
+            p.density,
+            p.area,
+            p.area_moment,
+            mesh.n_elements,
+            reference.describe(mesh.n_elements),
+        ),
+    })
 }

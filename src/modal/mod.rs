@@ -1,7 +1,8 @@
-//! Component modes of the rod (seed 000, sections 3 and 4): reference conditions
-//! `q_f = B_r q_r` (eq. 3.9), the eigenproblem `K_rr a = w^2 M_rr a` (eq. 4.4), mode
-//! selection, and the inertia shape integrals of the retained modes (the "preprocessor" of
-//! seed 000, Fig. 4).
+//! Component modes of the rod (O. P. Agrawal and A. A. Shabana, "Dynamic analysis of multibody
+//! systems using component modes", *Computers & Structures* 21(6), 1985, sections 3 and 4):
+//! reference conditions `q_f = B_r q_r` (eq. 3.9), the eigenproblem `K_rr a = w^2 M_rr a`
+//! (eq. 4.4), mode selection, and the inertia shape integrals of the retained modes (the
+//! "preprocessor" of that paper, Fig. 4).
 
 pub mod component_modes;
 pub mod eigen;

@@ -1,10 +1,11 @@
 //! Reference conditions: linear constraints that remove the rigid-body modes of the element
-//! shape functions, `q_f = B_r q_r` (seed 000, eq. 3.9 and section 3.2; seed 001,
-//! "Reference conditions & the elimination of rigid body modes").
+//! shape functions, `q_f = B_r q_r` (O. P. Agrawal and A. A. Shabana, "Dynamic analysis of
+//! multibody systems using component modes", *Computers & Structures* 21(6), 1985, eq. 3.9 and
+//! section 3.2; J. O'Shea, "CDI Parametric Study: Analysis of the Small-Deformation Connecting
+//! Rod: Slider Crank Mechanism", "Reference conditions & the elimination of rigid body modes").
 
 use faer::Mat;
 
-use super::eigen::{generalized_symmetric_eigen, generalized_symmetric_eigen_scaled};
 use crate::beam::RodMesh;
 use crate::error::ModelError;
 use serde::{Deserialize, Serialize};
@@ -55,7 +56,8 @@ pub enum ReferenceConditions {
     SimplySupported,
     /// Free-free modes with the three rigid-body modes removed; frame at the centre of mass.
     /// The retained modes satisfy the mean-axis conditions (zero linear and angular momentum
-    /// of deformation; seed 000 section 3.2, eq. 3.6-3.7 and 5.3-5.4, and section 5.2).
+    /// of deformation; Agrawal and Shabana 1985, section 3.2, eq. 3.6-3.7 and 5.3-5.4, and
+    /// section 5.2).
     MeanAxis,
     /// All three coordinates of node `node` zero (node N/2 = midpoint, node 0 = cantilever at B);
     /// frame at that node.
@@ -65,15 +67,46 @@ pub enum ReferenceConditions {
     Constrained { coordinates: Vec<usize> },
 }
 
-/// The result of applying reference conditions to a mesh.
+/// The result of applying reference conditions to a mesh: `q_f = B_r q_r` with
+/// `B_r = P S`, `S` selecting the coordinates `kept` (n_full x n_reduced) and `P` either the
+/// identity (constrained coordinates) or the `M`-orthogonal projector away from the rigid-body
+/// motions (mean axis).
 pub struct ReferenceBasis {
     /// `B_r`, n_full x n_reduced.
     pub b_r: Mat<f64>,
-    /// When `B_r` only selects coordinates (constrained-coordinate reference conditions): the
-    /// kept coordinates, so that `B_r^T K B_r` is a submatrix (no products needed).
-    pub selection: Option<Vec<usize>>,
+    /// The coordinates `S` keeps, ascending (column `j` of `B_r` is `P e_kept[j]`).
+    pub kept: Vec<usize>,
+    /// Whether `B_r` only selects coordinates (`P = I`: constrained-coordinate reference
+    /// conditions), so that `B_r^T K B_r` is a submatrix (no products needed).
+    pub selects: bool,
+    /// Mean axis: `Y = (M R)^T S` (3 x n_reduced) and `(R^T M R)^-1`, for the reduced mass
+    /// matrix `S^T M S - Y^T (R^T M R)^-1 Y`.
+    rigid: Option<(Mat<f64>, Mat<f64>)>,
     /// Body-frame x of the B end.
     pub x_b: f64,
+}
+
+impl ReferenceBasis {
+    /// The reduced matrices `K_rr = B_r^T K B_r`, `M_rr = B_r^T M B_r`. For the mean axis
+    /// `K R = 0` (strain-free rigid motions) gives `K_rr = S^T K S` exactly, and
+    /// `M_rr = S^T M S - Y^T (R^T M R)^-1 Y` (the mass of the selected coordinates less its
+    /// rigid-body part).
+    pub fn reduce(&self, k: &Mat<f64>, m: &Mat<f64>) -> (Mat<f64>, Mat<f64>) {
+        let kept = &self.kept;
+        let r = kept.len();
+        let k_rr = Mat::from_fn(r, r, |i, j| k[(kept[i], kept[j])]);
+        let mut m_rr = Mat::from_fn(r, r, |i, j| m[(kept[i], kept[j])]);
+        if let Some((y, rmr_inv)) = &self.rigid {
+            let z = rmr_inv * y;
+            let correction = y.transpose() * &z;
+            for j in 0..r {
+                for i in 0..r {
+                    m_rr[(i, j)] -= 0.5 * (correction[(i, j)] + correction[(j, i)]);
+                }
+            }
+        }
+        (k_rr, m_rr)
+    }
 }
 
 impl ReferenceConditions {
@@ -124,6 +157,22 @@ impl ReferenceConditions {
         }
     }
 
+    /// The conditions in words, as a scene names them (`n_elements` tells the midpoint).
+    pub fn describe(&self, n_elements: usize) -> String {
+        match self {
+            ReferenceConditions::SimplySupported => ReferenceKind::SimplySupported.name().into(),
+            ReferenceConditions::MeanAxis => ReferenceKind::MeanAxis.name().into(),
+            ReferenceConditions::BodyFixed { node: 0 } => ReferenceKind::Cantilever.name().into(),
+            ReferenceConditions::BodyFixed { node } if 2 * node == n_elements => {
+                ReferenceKind::BodyFixedMid.name().into()
+            }
+            ReferenceConditions::BodyFixed { node } => format!("body-fixed at node {node}"),
+            ReferenceConditions::Constrained { coordinates } => {
+                format!("constrained coordinates {coordinates:?}")
+            }
+        }
+    }
+
     /// Body-frame x of the B end (where the frame sits relative to the rod).
     pub fn frame_x_b(&self, section_length: f64, n_elements: usize) -> f64 {
         match self {
@@ -137,72 +186,60 @@ impl ReferenceConditions {
 
     /// Build `B_r` for `mesh` (whose `x_b` must be [`Self::frame_x_b`]). Rejects sets that
     /// leave a rigid-body mode in or over-constrain the rod, saying which.
-    pub fn basis(
-        &self,
-        mesh: &RodMesh,
-        k: &Mat<f64>,
-        m: &Mat<f64>,
-    ) -> Result<ReferenceBasis, ModelError> {
+    pub fn basis(&self, mesh: &RodMesh, m: &Mat<f64>) -> Result<ReferenceBasis, ModelError> {
         let n = mesh.n_coordinates();
         let x_b = mesh.x_b;
+        let selection =
+            |fixed: &[usize]| -> Vec<usize> { (0..n).filter(|i| !fixed.contains(i)).collect() };
         match self.constrained(mesh) {
             Some(fixed) => {
                 check_constraint_set(mesh, &fixed)?;
-                let free: Vec<usize> = (0..n).filter(|i| !fixed.contains(i)).collect();
-                let b_r = Mat::from_fn(n, free.len(), |i, j| if free[j] == i { 1.0 } else { 0.0 });
+                let kept = selection(&fixed);
+                let b_r = Mat::from_fn(n, kept.len(), |i, j| if kept[j] == i { 1.0 } else { 0.0 });
                 Ok(ReferenceBasis {
                     b_r,
-                    selection: Some(free),
+                    kept,
+                    selects: true,
+                    rigid: None,
                     x_b,
                 })
             }
             None => {
                 // Mean axis: the elastic modes of the free-free rod span the M-orthogonal
-                // complement of the rigid-body modes.
-                let eig = if mesh.n_bubbles() > 0 {
-                    generalized_symmetric_eigen_scaled(k, m)?
-                } else {
-                    generalized_symmetric_eigen(k, m)?
-                };
-                let scale = eig
-                    .values
-                    .get(3)
-                    .copied()
-                    .unwrap_or(1.0)
-                    .abs()
-                    .max(f64::MIN_POSITIVE);
-                for (i, v) in eig.values.iter().take(3).enumerate() {
-                    if v.abs() > 1e-6 * scale {
-                        return Err(ModelError::Numerical {
-                            message: format!(
-                                "free-free rod: rigid-body eigenvalue {i} = {v:e} is not zero against the first elastic one {scale:e}"
-                            ),
-                        });
-                    }
-                }
-                let mut b_r = eig.vectors.subcols(3, n - 3).to_owned();
-                if mesh.n_bubbles() > 0 {
-                    // Project the rigid motions out once more (M-orthogonally,
-                    // `B_r -= R (R^T M R)^-1 R^T M B_r`): the eigenvectors of the scaled
-                    // solver leave about 1e-11 of linear momentum in the modes.
-                    let r = mesh.rigid_modes();
-                    let mr = m * &r;
-                    let rmr = r.transpose() * &mr;
-                    let coupling = mr.transpose() * &b_r;
-                    let rmr = nalgebra::Matrix3::from_fn(|i, j| rmr[(i, j)]);
-                    let rmr_inv = rmr.try_inverse().ok_or_else(|| ModelError::Numerical {
-                        message: "rigid-body mass matrix is singular".into(),
-                    })?;
-                    let x = Mat::from_fn(3, n - 3, |i, j| {
-                        (0..3)
-                            .map(|k| rmr_inv[(i, k)] * coupling[(k, j)])
-                            .sum::<f64>()
-                    });
-                    b_r = &b_r - &r * x;
+                // complement of the rigid-body motions R, `R^T M q_f = 0` (zero linear and
+                // angular momentum of deformation). A basis: `B_r = P S` with
+                // `P = I - R (R^T M R)^-1 R^T M` and `S` the coordinates left by any set that
+                // fixes the rigid motions (here u = v = 0 at B, v = 0 at C). Then `K_rr` is
+                // the constrained rod's stiffness and the free-free elastic modes follow from
+                // one positive definite eigenproblem, without rigid-body eigenvalues to tell
+                // from zero: `K P = K` because `K R = 0`, so `B_r^T K B_r = S^T K S`, and
+                // `B_r^T M B_r = S^T M S - Y^T (R^T M R)^-1 Y` ([`ReferenceBasis::reduce`]).
+                // The eigenvalues are those of the free-free rod's elastic modes, the vectors
+                // `B_r a` satisfy the mean-axis conditions by construction.
+                let last = mesh.n_elements;
+                let fixed = [0, 1, 3 * last + 1];
+                check_constraint_set(mesh, &fixed)?;
+                let kept = selection(&fixed);
+                let r = mesh.rigid_modes();
+                let mr = m * &r;
+                let rmr = r.transpose() * &mr;
+                let rmr = nalgebra::Matrix3::from_fn(|i, j| rmr[(i, j)]);
+                let rmr_inv = rmr.try_inverse().ok_or_else(|| ModelError::Numerical {
+                    message: "rigid-body mass matrix is singular".into(),
+                })?;
+                let rmr_inv = Mat::from_fn(3, 3, |i, j| rmr_inv[(i, j)]);
+                // Y = (M R)^T S; B_r = S - R (R^T M R)^-1 Y.
+                let y = Mat::from_fn(3, kept.len(), |i, j| mr[(kept[j], i)]);
+                let x = &rmr_inv * &y;
+                let mut b_r = &r * &x * -1.0;
+                for (j, &row) in kept.iter().enumerate() {
+                    b_r[(row, j)] += 1.0;
                 }
                 Ok(ReferenceBasis {
                     b_r,
-                    selection: None,
+                    kept,
+                    selects: false,
+                    rigid: Some((y, rmr_inv)),
                     x_b,
                 })
             }

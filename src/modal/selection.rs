@@ -12,7 +12,10 @@ pub enum ModeSelection {
     /// Modes by 0-based index into the sorted list, e.g. `[0, 1, 5]`.
     Indices(Vec<usize>),
     /// The lowest `count` modes, and then the lowest axial modes missing until at least
-    /// `axial` of the kept ones are axial (none added when `count` is 0: the rigid rod).
+    /// `axial` of the kept ones are axial (none added when `count` is 0: the rigid rod). The
+    /// selection of a scene's `rod.modes` and `rod.axial_modes`: modes of one frequency are
+    /// kept or left out together (a `count` that splits them is refused, an axial mode comes
+    /// with the modes of its frequency). The other selections keep what they name.
     CountWithAxial { count: usize, axial: usize },
 }
 
@@ -28,6 +31,7 @@ impl ModeSelection {
             return self.select(frequencies_hz);
         };
         let mut kept = ModeSelection::Count(*count).select(frequencies_hz)?;
+        check_whole_clusters(&kept, frequencies_hz)?;
         if *count == 0 {
             return Ok(kept);
         }
@@ -37,11 +41,17 @@ impl ModeSelection {
             if have >= *axial {
                 break;
             }
-            if is_axial(k) {
-                kept.push(k);
-                have += 1;
+            if is_axial(k) && !kept.contains(&k) {
+                // The mode with the modes of its frequency ("at least" `axial` axial modes).
+                for j in cluster(frequencies_hz, k) {
+                    if !kept.contains(&j) {
+                        kept.push(j);
+                        have += usize::from(is_axial(j));
+                    }
+                }
             }
         }
+        kept.sort_unstable();
         Ok(kept)
     }
 
@@ -96,6 +106,52 @@ impl ModeSelection {
     }
 }
 
+/// Relative difference below which two frequencies of the rod count as one (a multiple
+/// eigenvalue computed to round-off: about `eps lambda_max / lambda`, 1e-7 at most at the
+/// largest mesh).
+pub const EQUAL_FREQUENCIES: f64 = 5e-6;
+
+/// The indices of the modes whose frequency equals that of mode `k` (`frequencies_hz`
+/// ascending), `k` among them.
+fn cluster(frequencies_hz: &[f64], k: usize) -> std::ops::Range<usize> {
+    let f = frequencies_hz[k];
+    let equal = |g: f64| (g - f).abs() <= EQUAL_FREQUENCIES * f.abs().max(g.abs());
+    let mut lo = k;
+    while lo > 0 && equal(frequencies_hz[lo - 1]) {
+        lo -= 1;
+    }
+    let mut hi = k + 1;
+    while hi < frequencies_hz.len() && equal(frequencies_hz[hi]) {
+        hi += 1;
+    }
+    lo..hi
+}
+
+/// Modes of one frequency are kept or left out together: any combination of them is a mode
+/// too, so keeping some of them keeps an arbitrary shape (the rod clamped at its midpoint,
+/// `body_fixed_mid`, has every frequency twice: its halves vibrate alike).
+fn check_whole_clusters(kept: &[usize], frequencies_hz: &[f64]) -> Result<(), ModelError> {
+    for &k in kept {
+        let whole = cluster(frequencies_hz, k);
+        if let Some(missing) = whole.clone().find(|j| !kept.contains(j)) {
+            return Err(ModelError::InvalidParameter {
+                name: "rod.modes",
+                value: kept.len() as f64,
+                allowed: format!(
+                    "a selection that keeps modes of equal frequency together: modes {} to {} all have {:.6} Hz and mode {} is left out (with rod.reference = body_fixed_mid the two halves of the rod vibrate alike); e.g. rod.modes = {} or {}",
+                    whole.start + 1,
+                    whole.end,
+                    frequencies_hz[k],
+                    missing + 1,
+                    whole.start,
+                    whole.end
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -116,6 +172,35 @@ mod tests {
         // More axial modes than the rod has: all of them; the rigid rod stays rigid.
         assert_eq!(pick(1, 5), vec![0, 3, 4]);
         assert_eq!(pick(0, 1), Vec::<usize>::new());
+    }
+
+    #[test]
+    fn equal_frequencies_stay_together() {
+        let f = [10.0, 10.0, 20.0, 20.0 * (1.0 + 1e-7), 30.0];
+        let shares = [0.0, 0.0, 1.0, 1.0, 0.0];
+        let count =
+            |n| ModeSelection::CountWithAxial { count: n, axial: 0 }.select_classified(&f, &shares);
+        assert_eq!(count(2).unwrap(), vec![0, 1]);
+        assert_eq!(count(4).unwrap(), vec![0, 1, 2, 3]);
+        for n in [1, 3] {
+            let text = count(n).unwrap_err().to_string();
+            assert!(
+                text.contains("rod.modes") && text.contains("equal frequency"),
+                "{text}"
+            );
+        }
+        // The library's own count keeps what it names.
+        assert_eq!(
+            ModeSelection::Count(3)
+                .select_classified(&f, &shares)
+                .unwrap(),
+            vec![0, 1, 2]
+        );
+        // An axial mode added by CountWithAxial brings its partner.
+        let pick = ModeSelection::CountWithAxial { count: 2, axial: 1 }
+            .select_classified(&f, &shares)
+            .unwrap();
+        assert_eq!(pick, vec![0, 1, 2, 3]);
     }
 
     #[test]

@@ -13,8 +13,8 @@
 //!   t_C = 0` give `y_0 = t_B` and the massless `t_C` (2 N modes: N - 1 bending, N + 1 shear);
 //! - fixed-fixed axial (both pins also hold the ends along the rod): `x_B = 0`,
 //!   `x_C - L = sum_j s_j = 0` (N - 2 modes);
-//! - free-free axial (Huston 1991, the convergence table of
-//!   "Illustrations/convergence"): `x_B` and all
+//! - free-free axial (the convergence table of R. L. Huston, "Computer methods in flexible
+//!   multibody dynamics", *IJNME* 32, 1991, table II): `x_B` and all
 //!   `s_j` free; the rigid translation (`omega = 0`) is dropped (N - 1 modes).
 //!
 //! The free-free axial chain is `N` masses `m = rho A l` joined by `N - 1` springs
@@ -56,20 +56,41 @@ fn project(a: &Mat<f64>, t: &Mat<f64>) -> Mat<f64> {
 /// `K`: a fine chain's mass matrix spans `m l^2` of its segments to the end bodies' inertias, and
 /// the `M`-based form lost the lowest eigenvalue to round-off (a zero first frequency at 128
 /// segments of the benchmark rod with end inertias), the `K`-based form keeps it to `eps`.
+///
+/// Every value kept must be finite and positive (the end conditions leave no rigid motion): a
+/// zero, negative or non-finite eigenvalue is an error naming the chain, never a frequency.
 fn frequencies(
     k: &Mat<f64>,
     m: &Mat<f64>,
     drop_below: Option<f64>,
+    chain: &str,
 ) -> Result<Vec<f64>, ModelError> {
     let e = match drop_below {
         None => generalized_symmetric_eigen_by_stiffness(k, m)
             .or_else(|_| generalized_symmetric_eigen(k, m))?,
         Some(_) => generalized_symmetric_eigen(k, m)?,
     };
-    Ok(e.values
+    let kept: Vec<f64> = e
+        .values
         .iter()
-        .filter(|&&w2| drop_below.is_none_or(|tol| w2 > tol))
-        .map(|&w2| w2.max(0.0).sqrt() / (2.0 * std::f64::consts::PI))
+        .copied()
+        .filter(|&w2| drop_below.is_none_or(|tol| w2 > tol))
+        .collect();
+    if let Some((i, w2)) = kept
+        .iter()
+        .enumerate()
+        .find(|(_, w2)| !(w2.is_finite() && **w2 > 0.0))
+    {
+        return Err(ModelError::Numerical {
+            message: format!(
+                "{chain}: natural frequency {} is not a finite positive value (eigenvalue {w2:e} (rad/s)^2)",
+                i + 1
+            ),
+        });
+    }
+    Ok(kept
+        .iter()
+        .map(|&w2| w2.sqrt() / (2.0 * std::f64::consts::PI))
         .collect())
 }
 
@@ -96,6 +117,27 @@ impl LinearizedChain {
                 .map(|(e, k)| (rod.end_rotation_index(e), k, rod.end_springs()[e]))
                 .collect(),
         }
+    }
+
+    /// The chain in words for messages: its modes, `rod.elements`, the segment length and the
+    /// range of its joint springs.
+    fn describe(&self, modes: &str) -> String {
+        let range = |v: &[f64]| {
+            let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
+            let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            format!("{lo:e} to {hi:e}")
+        };
+        format!(
+            "segment chain ({modes}) with rod.elements = {} segments of {:e} m, rotational springs {} N m/rad{}",
+            self.n_seg,
+            self.segment_length,
+            range(&self.k_rot),
+            if self.axial {
+                format!(", axial springs {} N/m", range(&self.k_ax))
+            } else {
+                String::new()
+            }
+        )
     }
 
     /// Pinned-pinned bending frequencies, Hz (N - 1 of them; 2 N with shear slides, the
@@ -178,7 +220,12 @@ impl LinearizedChain {
                 0.0
             }
         });
-        frequencies(&project(&k, &t), &project(&m, &t), None)
+        frequencies(
+            &project(&k, &t),
+            &project(&m, &t),
+            None,
+            &self.describe("pinned-pinned bending"),
+        )
     }
 
     /// Fixed-fixed axial frequencies, Hz (N - 2 of them; needs axial springs).
@@ -200,7 +247,12 @@ impl LinearizedChain {
                 0.0
             }
         });
-        frequencies(&project(&k, &t), &project(&m, &t), None)
+        frequencies(
+            &project(&k, &t),
+            &project(&m, &t),
+            None,
+            &self.describe("fixed-fixed axial"),
+        )
     }
 
     /// Free-free axial frequencies, Hz (N - 1 of them; needs axial springs).
@@ -224,7 +276,7 @@ impl LinearizedChain {
         let k_min = self.k_ax.iter().cloned().fold(f64::INFINITY, f64::min);
         let k_over_m = k_min / self.mass[(0, 0)] * n as f64;
         let tol = 1e-6 * (std::f64::consts::PI / n as f64).powi(2) * k_over_m;
-        frequencies(&k, &m, Some(tol))
+        frequencies(&k, &m, Some(tol), &self.describe("free-free axial"))
     }
 }
 
