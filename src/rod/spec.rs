@@ -83,6 +83,15 @@ pub struct RodSpec {
     /// [`Self::min_axial_modes`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub axial_modes: Option<usize>,
+    /// Mass-loaded modes (FFR only): the slider's mass is added at C's axial coordinate in the
+    /// eigenproblem (not in the dynamics), so that the retained modes include the slider-rod
+    /// axial mode at its frequency in the mechanism ([`crate::modal::loaded`]).
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub loaded_modes: bool,
+    /// Keep every mode up to this frequency, Hz (FFR only), instead of the `modes` lowest:
+    /// the band the mechanism's excitation and its quasi-static response need.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mode_band_hz: Option<f64>,
     /// Consistent or lumped element mass (FFR only).
     #[serde(default)]
     pub mass: MassKind,
