@@ -216,6 +216,8 @@ fn auto_reports_the_path_it_takes() {
     );
     let mut free_modes = automotive.clone();
     free_modes.rod.loaded_modes = false;
+    free_modes.rod.mode_band_hz = None;
+    free_modes.rod.modes = 7;
     let sim = Simulation::new(&free_modes).unwrap();
     assert_eq!(
         sim.mechanism().integrator_name().0,

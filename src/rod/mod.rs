@@ -45,18 +45,29 @@ pub fn build(spec: &RodSpec, slider_mass: f64) -> Result<Box<dyn RodBody>, Model
                 false => Vec::new(),
             };
             let modes = ComponentModes::from_definition_loaded(
-                definition,
+                definition.clone(),
                 spec.elements,
-                reference,
+                reference.clone(),
                 spec.mass,
                 &selection,
                 &added,
             )?;
-            Ok(Box::new(ffr::FfrRod::new(
-                modes,
-                spec.damping_ratio,
-                spec.axial_stiffening,
-            )))
+            let rod = ffr::FfrRod::new(modes, spec.damping_ratio, spec.axial_stiffening);
+            if spec.mode_band_hz.is_none() {
+                return Ok(Box::new(rod));
+            }
+            // A band: the bending modes above it as residual flexibility.
+            let all = ComponentModes::from_definition_loaded(
+                definition,
+                spec.elements,
+                reference,
+                spec.mass,
+                &ModeSelection::Cutoff {
+                    max_hz: f64::INFINITY,
+                },
+                &added,
+            )?;
+            Ok(Box::new(rod.with_residual_flexibility(&all)))
         }
         RodModelKind::Segments => Ok(Box::new(segments::SegmentRod::from_definition(
             &definition,

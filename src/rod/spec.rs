@@ -251,6 +251,15 @@ impl RodSpec {
                 });
             }
         }
+        if let Some(band) = self.mode_band_hz {
+            if !(band.is_finite() && band > 0.0) {
+                return Err(ModelError::InvalidParameter {
+                    name: "rod.mode_band_hz",
+                    value: band,
+                    allowed: "a frequency > 0 Hz, or absent (rod.modes lowest modes)".into(),
+                });
+            }
+        }
         let l = self.deflection_limit;
         if !(l.is_finite() && l > 0.0 && l <= 1.0) {
             return Err(ModelError::InvalidParameter {
