@@ -11,6 +11,14 @@ fn main() {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/automotive_rod.toml");
     let scene = Scene::from_file(std::path::Path::new(path)).unwrap();
     let t = std::time::Instant::now();
+    for _ in 0..20 {
+        flexrod::Simulation::new(&scene).unwrap();
+    }
+    println!(
+        "Simulation::new: {:.3} ms each",
+        t.elapsed().as_secs_f64() * 1e3 / 20.0
+    );
+    let t = std::time::Instant::now();
     if std::env::var_os("ENGINE").is_some() {
         for _ in 0..20 {
             flexrod::drive::engine::EngineRun::automotive()

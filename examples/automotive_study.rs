@@ -210,6 +210,9 @@ fn main() {
                 s.solver.method = SolverMethod::Exponential;
             }),
         ),
+        ("shipped", Box::new(|_| {})),
+        ("shipped, tol 1e-2", Box::new(|s| s.solver.tolerance = 1e-2)),
+        ("shipped, tol 3e-3", Box::new(|s| s.solver.tolerance = 3e-3)),
     ];
     println!("| case | ms | steps | rhs | v_mid | FBx | FBy | FCx | FCy | torque | stress |");
     for (name, f) in cases {
