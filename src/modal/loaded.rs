@@ -147,3 +147,104 @@ impl ComponentModes {
 pub fn axial_coordinate_at_c(n_elements: usize) -> usize {
     3 * n_elements
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::beam::{EndBody, RodProperties};
+
+    fn rod() -> RodDefinition {
+        let mut def = RodDefinition::uniform(RodProperties {
+            length: 0.15,
+            youngs_modulus: 2e11,
+            density: 7800.0,
+            area: 2e-4,
+            area_moment: 1.5e-8,
+        });
+        def.small_end = EndBody {
+            mass: 0.05,
+            inertia: 1e-5,
+        };
+        def
+    }
+
+    fn modes(added: &[AddedMass], selection: ModeSelection) -> ComponentModes {
+        ComponentModes::from_definition_loaded(
+            rod(),
+            8,
+            ReferenceConditions::from_kind(crate::modal::ReferenceKind::SimplySupported, 8)
+                .unwrap(),
+            MassKind::Consistent,
+            &selection,
+            added,
+        )
+        .unwrap()
+    }
+
+    /// Without added mass the free modes; with it, `Phi^T (M + Delta M) Phi = I` and
+    /// `Phi^T K Phi = diag(w^2)`, and the rod's own modal mass is `I - Phi^T Delta M Phi`.
+    #[test]
+    fn loaded_modes_are_orthonormal_in_the_loaded_mass() {
+        let free = modes(&[], ModeSelection::Count(5));
+        let plain = ComponentModes::from_definition(
+            rod(),
+            8,
+            ReferenceConditions::from_kind(crate::modal::ReferenceKind::SimplySupported, 8)
+                .unwrap(),
+            MassKind::Consistent,
+            &ModeSelection::Count(5),
+        )
+        .unwrap();
+        assert_eq!(free.all_frequencies_hz, plain.all_frequencies_hz);
+        let c = axial_coordinate_at_c(8);
+        let added = [AddedMass {
+            coordinate: c,
+            mass: 0.5,
+        }];
+        let loaded = modes(&added, ModeSelection::Count(5));
+        let (k, m) = loaded.mesh.assemble(MassKind::Consistent);
+        let phi = &loaded.shapes;
+        let mut m_loaded = m.clone();
+        m_loaded[(c, c)] += 0.5;
+        let mm = phi.transpose() * &m_loaded * phi;
+        let kk = phi.transpose() * &k * phi;
+        for i in 0..5 {
+            for j in 0..5 {
+                let id = if i == j { 1.0 } else { 0.0 };
+                assert!((mm[(i, j)] - id).abs() < 1e-9, "M {i} {j}: {}", mm[(i, j)]);
+                let kd = if i == j { loaded.omega2[i] } else { 0.0 };
+                assert!(
+                    (kk[(i, j)] - kd).abs() < 1e-9 * loaded.omega2[4],
+                    "K {i} {j}: {}",
+                    kk[(i, j)]
+                );
+            }
+        }
+        // The first axial mode comes down with the mass at C; bending modes stay.
+        let first_axial = |cm: &ComponentModes| {
+            (0..cm.all_frequencies_hz.len())
+                .find(|&k| cm.is_axial(k))
+                .map(|k| cm.all_frequencies_hz[k])
+                .unwrap()
+        };
+        assert!(first_axial(&loaded) < 0.7 * first_axial(&free));
+        assert!((loaded.all_frequencies_hz[0] - free.all_frequencies_hz[0]).abs() < 1e-9);
+    }
+
+    #[test]
+    fn refuses_a_coordinate_outside_the_mesh() {
+        let r = ComponentModes::from_definition_loaded(
+            rod(),
+            8,
+            ReferenceConditions::from_kind(crate::modal::ReferenceKind::SimplySupported, 8)
+                .unwrap(),
+            MassKind::Consistent,
+            &ModeSelection::Count(2),
+            &[AddedMass {
+                coordinate: 10_000,
+                mass: 1.0,
+            }],
+        );
+        assert!(r.is_err());
+    }
+}
