@@ -97,10 +97,18 @@ fn right_hand_sides() -> [f64; 3] {
     out
 }
 
-/// `fmi2DoStep` at 1e-5 s in process, us a call: (no inputs, with `fmi2SetReal` of the crank).
+/// `fmi2DoStep` at 1e-5 s in process, us a call: (no inputs, with `fmi2SetReal` of the crank),
+/// of the default scene at 150 rad/s.
 fn do_step() -> [f64; 2] {
-    let scene = Scene::benchmark();
-    let guid = CString::new(ModelDescription::for_scene(&scene).unwrap().guid).unwrap();
+    do_step_of(&Scene::benchmark(), None, W)
+}
+
+/// As [`do_step`] for `scene` exported with its `resources/scene.toml` under `resources` (a
+/// file: URI; `None`: the compiled-in default scene), crank at `w` rad/s.
+fn do_step_of(scene: &Scene, resources: Option<&str>, w: f64) -> [f64; 2] {
+    let resources = resources.map(|r| CString::new(r).unwrap());
+    let location = resources.as_ref().map_or(ptr::null(), |r| r.as_ptr());
+    let guid = CString::new(ModelDescription::for_scene(scene).unwrap().guid).unwrap();
     let name = CString::new("speed").unwrap();
     let functions = fmi2CallbackFunctions {
         logger: None,
@@ -116,15 +124,7 @@ fn do_step() -> [f64; 2] {
         // SAFETY: valid NUL-terminated strings, a callback struct that outlives the instance,
         // NULL resource location (the compiled-in default scene, GUID checked).
         let comp = unsafe {
-            ffi::fmi2Instantiate(
-                name.as_ptr(),
-                1,
-                guid.as_ptr(),
-                ptr::null(),
-                &functions,
-                0,
-                0,
-            )
+            ffi::fmi2Instantiate(name.as_ptr(), 1, guid.as_ptr(), location, &functions, 0, 0)
         };
         assert!(!comp.is_null());
         // SAFETY: comp is a live instance.
@@ -137,7 +137,7 @@ fn do_step() -> [f64; 2] {
         let vr = [1u32, 2];
         let s = time(41, || {
             for _ in 0..calls {
-                let values = [W * t, W];
+                let values = [w * t, w];
                 // SAFETY: comp is live in StepComplete at time t; two references and values.
                 let status = unsafe {
                     if k == 1 {
@@ -156,7 +156,51 @@ fn do_step() -> [f64; 2] {
     out
 }
 
+fn automotive() -> Scene {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/automotive_rod.toml");
+    Scene::from_file(std::path::Path::new(path)).unwrap()
+}
+
+/// The automotive rod: two revolutions at 628.3 rad/s from the undeformed start in one
+/// communication step (ms, steps, right-hand sides); the engine run of
+/// `flexrod::drive::engine` (ramp to 6000 rpm, gas pulse, 60 ms: ms); `fmi2DoStep` at 1e-5 s
+/// with the crank set before every call (us).
+fn automotive_speed() -> (f64, u64, u64, f64, f64) {
+    let scene = automotive();
+    let w = scene.experiment.crank_speed;
+    let grid = [0.0, 4.0 * std::f64::consts::PI / w];
+    let mut sim = Simulation::new(&scene).unwrap();
+    let ms = 1e3
+        * time(41, || {
+            drive::run(&mut sim, &CrankDrive::Constant { speed: w }, 0.0, &grid).unwrap();
+        });
+    let stats = sim.stats();
+    let engine = 1e3
+        * time(11, || {
+            flexrod::drive::engine::EngineRun::automotive()
+                .run(&scene)
+                .unwrap();
+        });
+    let dir = std::env::temp_dir().join(format!("flexrod-speed-{}", std::process::id()));
+    let res = dir.join("resources");
+    std::fs::create_dir_all(&res).unwrap();
+    std::fs::write(
+        res.join("scene.toml"),
+        std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/scenes/automotive_rod.toml"
+        ))
+        .unwrap(),
+    )
+    .unwrap();
+    let uri = format!("file://{}", res.display());
+    let [_, step] = do_step_of(&scene, Some(&uri), w);
+    std::fs::remove_dir_all(&dir).ok();
+    (ms, stats.steps, stats.newton_iterations, engine, step)
+}
+
 fn main() {
+    let (a_ms, a_steps, a_rhs, a_engine, a_step) = automotive_speed();
     let (ms, steps, rhs, peak) = two_revolutions(&Scene::benchmark());
     let mut dopri = Scene::benchmark();
     dopri.solver.method = SolverMethod::Dopri5;
@@ -178,6 +222,9 @@ fn main() {
 | one right-hand side by the general partitioned evaluation (no closed form) | {rhs_general:.0} ns |
 | `fmi2DoStep` at a 1e-5 s communication step | {step:.2} us a call ({:.1} x real time) |
 | `fmi2SetReal` (crank angle and speed) + `fmi2DoStep` at 1e-5 s | {step_inputs:.2} us a call |
+| automotive rod (scenes/automotive_rod.toml: mass-loaded modes to 6 kHz, residual flexibility above, `auto`: exponential RK4(3), tolerance 1e-2), two revolutions at 628.3 rad/s from the undeformed start in one `fmi2DoStep` | {a_ms:.2} ms; {a_steps} steps, {a_rhs} right-hand sides |
+| automotive rod, the engine run (ramp to 6000 rpm, gas pulse, 60 ms, 1e-5 s grid) | {a_engine:.2} ms |
+| automotive rod, `fmi2SetReal` (crank angle and speed) + `fmi2DoStep` at 1e-5 s, 628.3 rad/s | {a_step:.2} us a call |
 ",
         simulated / (ms * 1e-3),
         1e-5 / (step * 1e-6),

@@ -196,8 +196,10 @@ fn runs_equal_the_constraint_based_formulation_at_a_converged_step() {
 }
 
 /// `auto` reports its choice: the closed form on the FFR rod (the exponential form where the
-/// modes leave the pins in place, the classic pair where they move them, as the automotive
-/// rod's axial modes move the piston), the general path otherwise.
+/// modes are the mechanism's own oscillators: they leave the pins in place, or they carry the
+/// piston as mass-loaded modes, as the shipped automotive rod's; the classic pair where free
+/// modes move the pins, as the automotive rod's free axial modes move the piston), the general
+/// path otherwise.
 #[test]
 fn auto_reports_the_path_it_takes() {
     let sim = Simulation::new(&Scene::benchmark()).unwrap();
@@ -210,9 +212,18 @@ fn auto_reports_the_path_it_takes() {
     let sim = Simulation::new(&automotive).unwrap();
     assert_eq!(
         sim.mechanism().integrator_name().0,
+        "exponential Runge-Kutta 4(3) (ETDRK4, modal oscillators exact) on minimal coordinates (closed form)"
+    );
+    let mut free_modes = automotive.clone();
+    free_modes.rod.loaded_modes = false;
+    free_modes.rod.mode_band_hz = None;
+    free_modes.rod.modes = 7;
+    let sim = Simulation::new(&free_modes).unwrap();
+    assert_eq!(
+        sim.mechanism().integrator_name().0,
         "Runge-Kutta 4(3) on minimal coordinates (closed form)"
     );
-    let mut forced = automotive.clone();
+    let mut forced = free_modes.clone();
     forced.solver.method = flexrod::scene::SolverMethod::Exponential;
     let sim = Simulation::new(&forced).unwrap();
     assert!(sim

@@ -11,7 +11,9 @@
 //!   stable to 2.8 times the Dormand-Prince step with four evaluations instead of six;
 //! - the exponential form of the RK4(3) pair ([`AdaptiveRungeKutta::exponential`]): ETDRK4 (Cox
 //!   and Matthews 2002) with each mode's oscillator exact ([`super::exponential`]), whose
-//!   steps no mode's frequency bounds; `auto` takes it where the modes leave the pins in place.
+//!   steps no mode's frequency bounds; `auto` takes it where the modes are the mechanism's own
+//!   oscillators (they leave the pins in place, or they carry the slider as mass-loaded modes:
+//!   `crate::mechanism::integrator_choice`).
 //!
 //! One step of size h: the stages (the last one at `t + h` on the new solution, reused as the
 //! first stage of the next step: "first same as last"), the higher-order solution propagated

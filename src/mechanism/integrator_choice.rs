@@ -5,8 +5,8 @@
 //! - `solver.method = "auto"`: error-controlled steps. On the FFR rod's modal coordinates
 //!   while the explicit stability step `2.5 / |lambda|_max` of the retained modes is at least
 //!   [`AUTO_EXPLICIT_MIN_STEP`]: the exponential form of the RK4(3) pair (ETDRK4, Cox and
-//!   Matthews 2002) where the modes leave the pins in place
-//!   ([`crate::rod::ffr::FfrKernel::pinned`]) on the closed-form minimal coordinates, the
+//!   Matthews 2002) where the modes are the mechanism's own oscillators
+//!   ([`modes_are_oscillators`]) on the closed-form minimal coordinates, the
 //!   classic RK4(3) pair elsewhere. Else (the segment chain, many or very stiff modes) the
 //!   adaptive generalized-alpha method.
 //! - `"dopri5"`, `"rk43"`: that pair, classic form, on the modal coordinates; refused without
@@ -17,14 +17,17 @@
 //! - `"rk4"`: the fixed-step classic RK4 with projection, its step capped at the stability
 //!   step; `"generalized_alpha"`: fixed steps of `solver.step`.
 //!
-//! Why the exponential form only where the modes leave the pins in place: the modes of the
-//! pinned rod are the mechanism's own linear oscillators (the reduced mass is `M_ff` at the
-//! undeformed configuration, whatever the crank angle and the slider mass). Where the modes
-//! move the pins (axial modes carrying the slider, modes of other reference conditions) they
-//! couple through the constraints and the split-off oscillators are not the mechanism's: on
-//! the automotive rod, whose axial modes carry the piston, the exponential form takes twice
-//! the steps of the classic pair (`cargo run --release --example exponential_choice`: 6388
-//! against 3204 for two revolutions at 628.3 rad/s).
+//! Why the exponential form only where the modes are the mechanism's own oscillators
+//! ([`modes_are_oscillators`]): the modes of the pinned rod are the mechanism's linear
+//! oscillators (the reduced mass is `M_ff` at the undeformed configuration, whatever the crank
+//! angle and the slider mass), and so are the mass-loaded modes that carry the slider
+//! (`crate::modal::loaded`) on the dead centres, and nearly so in between (the slider's share
+//! of the reduced mass grows as `1 / cos^2` of the rod's angle to its line). Split off with their
+//! effective modal mass ([`effective_modal_mass`]), the remainder is smooth and the step is set
+//! by the accuracy of the response. Free axial modes that carry the piston couple through the
+//! constraints instead: their split-off oscillators are not the mechanism's, and the exponential
+//! form took twice the steps of the classic pair on the automotive rod with free modes
+//! (`cargo run --release --example exponential_choice`).
 
 use super::spec::{SolverMethod, SolverSpec};
 use crate::error::ModelError;
@@ -89,14 +92,22 @@ pub struct MechanismFacts {
     /// ([`DaeSystem::has_reduced_rhs`]).
     pub closed_form: bool,
     /// The FFR rod's closed form exists ([`RodBody::ffr_kernel`]: 1 to
-    /// [`crate::rod::ffr::MAX_MODES`] modes), and whether its modes leave the pins in place
-    /// ([`crate::rod::ffr::FfrKernel::pinned`]).
-    pub kernel_pinned: Option<bool>,
+    /// [`crate::rod::ffr::MAX_MODES`] modes), and whether its modes are the mechanism's own
+    /// oscillators at the dead centres ([`modes_are_oscillators`]).
+    pub kernel_oscillators: Option<bool>,
+    /// The slider's mass, kg: it moves with C's axial displacement, so it adds to the modal
+    /// mass of the modes that move C ([`effective_modal_mass`]).
+    pub slider_mass: f64,
 }
 
 impl MechanismFacts {
     /// The facts of `rod` with damping ratio `damping_ratio` in the mechanism `system`.
-    pub fn of(rod: &dyn RodBody, damping_ratio: f64, system: &dyn DaeSystem) -> MechanismFacts {
+    pub fn of(
+        rod: &dyn RodBody,
+        damping_ratio: f64,
+        slider_mass: f64,
+        system: &dyn DaeSystem,
+    ) -> MechanismFacts {
         MechanismFacts {
             modes: rod
                 .elastic_coordinates()
@@ -105,7 +116,10 @@ impl MechanismFacts {
             highest_frequency_hz: rod.highest_frequency_hz(),
             damping_ratio,
             closed_form: system.has_reduced_rhs(),
-            kernel_pinned: rod.ffr_kernel().map(|k| k.pinned),
+            kernel_oscillators: rod
+                .ffr_kernel()
+                .map(|k| modes_are_oscillators(k, slider_mass)),
+            slider_mass,
         }
     }
 
@@ -161,13 +175,26 @@ impl IntegratorChoice {
     }
 }
 
+/// `auto` takes the exponential form whatever the stability step of the explicit pair: the
+/// closed form exists, its modes are the mechanism's own oscillators
+/// ([`modes_are_oscillators`]) and not overdamped (their propagator is exact, so the stiffest
+/// mode does not hold the step). Measured on the automotive rod with E and G times 1e4
+/// (tests/automotive_rigid_limit.rs): pin forces and crank torque within 3e-6 of the rigid
+/// mechanism's peaks, where adaptive generalized-alpha was 1.3 to 3.4 % off.
+fn exact_oscillators(facts: &MechanismFacts) -> bool {
+    facts.closed_form && facts.kernel_oscillators == Some(true) && facts.damping_ratio <= 1.0
+}
+
 /// The integrator for `solver` on a mechanism with `facts` (module documentation), or why
 /// the method asked for does not apply.
 pub fn choose(solver: &SolverSpec, facts: &MechanismFacts) -> Result<IntegratorChoice, ModelError> {
     let explicit_limit = facts.explicit_limit();
     let auto = solver.method == SolverMethod::Auto;
     let method = match solver.method {
-        SolverMethod::Auto if facts.modes.is_some() && explicit_limit >= AUTO_EXPLICIT_MIN_STEP => {
+        SolverMethod::Auto
+            if facts.modes.is_some()
+                && (explicit_limit >= AUTO_EXPLICIT_MIN_STEP || exact_oscillators(facts)) =>
+        {
             SolverMethod::Rk43
         }
         SolverMethod::Auto => return Ok(IntegratorChoice::GeneralizedAlpha { adaptive: true }),
@@ -183,7 +210,7 @@ pub fn choose(solver: &SolverSpec, facts: &MechanismFacts) -> Result<IntegratorC
                 });
             };
             let forced = method == SolverMethod::Exponential;
-            if forced && facts.kernel_pinned.is_none() {
+            if forced && facts.kernel_oscillators.is_none() {
                 return Err(ModelError::InvalidParameter {
                     name: "solver.method",
                     value: modes as f64,
@@ -200,7 +227,7 @@ pub fn choose(solver: &SolverSpec, facts: &MechanismFacts) -> Result<IntegratorC
                 });
             }
             let minimal = auto && facts.closed_form;
-            let exponential = match facts.kernel_pinned {
+            let exponential = match facts.kernel_oscillators {
                 Some(pinned) => forced || minimal && pinned,
                 None => false,
             };
@@ -224,6 +251,7 @@ pub fn choose(solver: &SolverSpec, facts: &MechanismFacts) -> Result<IntegratorC
 pub fn build(
     choice: IntegratorChoice,
     solver: &SolverSpec,
+    facts: &MechanismFacts,
     rod: &dyn RodBody,
     system: &dyn DaeSystem,
 ) -> Box<dyn Integrator> {
@@ -255,10 +283,8 @@ pub fn build(
             let kernel = rod.ffr_kernel().expect("the FFR rod's closed form");
             let oscillators = (0..kernel.n)
                 .map(|i| {
-                    Oscillator::new(
-                        kernel.stiffness[i] / kernel.m_ff[i][i],
-                        kernel.damping[i] / kernel.m_ff[i][i],
-                    )
+                    let mass = effective_modal_mass(kernel, facts.slider_mass, i);
+                    Oscillator::new(kernel.stiffness[i] / mass, kernel.damping[i] / mass)
                 })
                 .collect();
             Box::new(integrator.exponential(oscillators))
@@ -284,6 +310,30 @@ pub fn build(
     }
 }
 
+/// The modal mass of mode `i` in the mechanism at the dead centres, where the rod lies on the
+/// slider's line: the rod's own `M_ff,ii` and the slider, which moves with C's axial
+/// displacement, `m_s S_C,x,i^2` (the diagonal of the reduced mass `T^T M T` of
+/// `crate::mechanism::minimal` at the undeformed configuration there). For mass-loaded modes
+/// (`crate::modal::loaded`, the slider's mass added at C's axial coordinate) it is 1; for the
+/// modes of the pinned rod `M_ff,ii` (the slider does not move with them).
+pub fn effective_modal_mass(
+    kernel: &crate::rod::ffr::FfrKernel,
+    slider_mass: f64,
+    i: usize,
+) -> f64 {
+    kernel.m_ff[i][i] + slider_mass * kernel.s_c[0][i] * kernel.s_c[0][i]
+}
+
+/// Whether the kernel's modes are the mechanism's own linear oscillators at the undeformed
+/// configuration on the dead centres (reduced mass the identity there): the modes of the
+/// pinned rod ([`crate::rod::ffr::FfrKernel::pinned`]), and the modes whose
+/// [`effective_modal_mass`] is 1 (to 1e-6), the mass-loaded modes of `crate::modal::loaded`
+/// that carry the slider.
+pub fn modes_are_oscillators(kernel: &crate::rod::ffr::FfrKernel, slider_mass: f64) -> bool {
+    kernel.pinned
+        || (0..kernel.n).all(|i| (effective_modal_mass(kernel, slider_mass, i) - 1.0).abs() < 1e-6)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -295,7 +345,8 @@ mod tests {
             highest_frequency_hz: f_max,
             damping_ratio: 0.02,
             closed_form: true,
-            kernel_pinned: Some(pinned),
+            kernel_oscillators: Some(pinned),
+            slider_mass: 0.5,
         }
     }
 
@@ -304,7 +355,7 @@ mod tests {
         MechanismFacts {
             modes: Some(crate::rod::ffr::MAX_MODES + 2),
             closed_form: false,
-            kernel_pinned: None,
+            kernel_oscillators: None,
             ..ffr(f_max, false)
         }
     }
@@ -314,7 +365,7 @@ mod tests {
         MechanismFacts {
             modes: None,
             closed_form: false,
-            kernel_pinned: None,
+            kernel_oscillators: None,
             ..ffr(f_max, false)
         }
     }
@@ -357,16 +408,24 @@ mod tests {
 
     /// Up to the stability step [`AUTO_EXPLICIT_MIN_STEP`] the explicit pair, beyond it (and
     /// for an overdamped rod, whose fastest eigenvalue is above its frequency) adaptive
-    /// generalized-alpha, as for the segment chain.
+    /// generalized-alpha, as for the segment chain; the exponential form at any stiffness
+    /// where the modes are the mechanism's oscillators.
     #[test]
     fn auto_takes_adaptive_generalized_alpha_for_stiff_rods_and_the_segment_chain() {
         let auto = solver(SolverMethod::Auto);
         let alpha = IntegratorChoice::GeneralizedAlpha { adaptive: true };
         assert_eq!(
-            choose(&auto, &ffr(f_at_limit(0.999), true)).unwrap(),
+            choose(&auto, &ffr(f_at_limit(0.999), false)).unwrap(),
+            adaptive_rk(Pair::Rk43, false)
+        );
+        assert_eq!(
+            choose(&auto, &ffr(f_at_limit(1.001), false)).unwrap(),
+            alpha
+        );
+        assert_eq!(
+            choose(&auto, &ffr(f_at_limit(100.0), true)).unwrap(),
             adaptive_rk(Pair::Rk43, true)
         );
-        assert_eq!(choose(&auto, &ffr(f_at_limit(1.001), true)).unwrap(), alpha);
         let overdamped = MechanismFacts {
             damping_ratio: 1.5,
             ..ffr(f_at_limit(0.999), true)

@@ -50,6 +50,10 @@ use crate::error::ModelError;
 use crate::integrator::{DaeSystem, StepFailure};
 
 impl Mechanism {
+    fn gravity(&self) -> nalgebra::Vector2<f64> {
+        nalgebra::Vector2::from(self.spec.mechanism.gravity)
+    }
+
     /// The transverse deflection of the rod from the chord B -> C, m, positive to the left of
     /// B -> C, at `out.len()` = N equally spaced points `s_i = i L / (N - 1)` (the definition
     /// of `v_mid`, docs/physics.md "Output definitions"; the ends are 0 by definition, and
@@ -68,7 +72,9 @@ impl Mechanism {
             }
             if 2 * i + 1 == n {
                 // The output's own evaluation, so that the two agree to the last bit.
-                *v = self.rod.mid_deflection(q);
+                *v = self
+                    .rod
+                    .mid_deflection_dynamic(q, &state.dae.qdd, self.gravity());
                 continue;
             }
             let r = self
@@ -139,7 +145,7 @@ impl Mechanism {
         };
         let nr = self.rod.n_coordinates();
         let q = &state.dae.q;
-        let deflection = self.rod.mid_deflection(q);
+        let deflection = self.rod.mid_deflection_dynamic(q, qdd, self.gravity());
         let fb = [lambda[0], lambda[1]];
         let fc = [lambda[2], lambda[3]];
         let law = CrankLaw {

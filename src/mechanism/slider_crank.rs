@@ -110,9 +110,15 @@ impl Mechanism {
             gravity: Vector2::from(spec.mechanism.gravity),
             pin_cache: &probe_pins,
         };
-        let facts = MechanismFacts::of(rod.as_ref(), spec.rod.damping_ratio, &probe);
+        let facts = MechanismFacts::of(
+            rod.as_ref(),
+            spec.rod.damping_ratio,
+            spec.slider.mass,
+            &probe,
+        );
         let choice = integrator_choice::choose(&spec.solver, &facts)?;
-        let integrator = integrator_choice::build(choice, &spec.solver, rod.as_ref(), &probe);
+        let integrator =
+            integrator_choice::build(choice, &spec.solver, &facts, rod.as_ref(), &probe);
         let max_step = choice.max_step(&spec.solver);
         let m = probe.n_constraints();
         let backup = DaeState::zeros(n, m);

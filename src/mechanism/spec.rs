@@ -87,13 +87,16 @@ pub enum SolverMethod {
     Rk43,
     /// The exponential form of the RK4(3) pair (ETDRK4 with each mode's oscillator exact) on
     /// the FFR rod's closed-form minimal coordinates, also where `auto` would not take it
-    /// (modes that move the pins: there it usually needs more steps than [`SolverMethod::Rk43`]).
+    /// (free modes that move the pins: there it usually needs more steps than
+    /// [`SolverMethod::Rk43`]).
     Exponential,
-    /// Error-controlled and on the mechanism's own degrees of freedom where the retained modes
-    /// allow an explicit step (`2.5 / w_max >= 5e-6 s`): the exponential ETDRK4(3) form with
-    /// the modal oscillators exact where the modes leave the pins in place (simply supported
-    /// bending modes), else [`SolverMethod::Rk43`]; error-controlled generalized-alpha when the
-    /// rod is made stiff (many or very stiff modes) and for the segment chain.
+    /// Error-controlled and on the mechanism's own degrees of freedom: the exponential ETDRK4(3)
+    /// form with the modal oscillators exact where the modes are the mechanism's own
+    /// oscillators (they leave the pins in place, as simply supported bending modes, or carry
+    /// the slider as mass-loaded modes, `rod.loaded_modes`), at any stiffness; else, where the
+    /// retained modes allow an explicit step (`2.5 / w_max >= 5e-6 s`), [`SolverMethod::Rk43`];
+    /// error-controlled generalized-alpha for stiffer rods of other modes and for the segment
+    /// chain (`crate::mechanism::integrator_choice`).
     Auto,
 }
 

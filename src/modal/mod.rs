@@ -14,3 +14,4 @@ pub use component_modes::ComponentModes;
 pub use reference::{ReferenceConditions, ReferenceKind};
 pub use selection::ModeSelection;
 pub use shape_integrals::ShapeIntegrals;
+pub mod loaded;

@@ -100,6 +100,13 @@ pub trait RodBody: Send {
     fn mid_deflection(&self, q: &[f64]) -> f64 {
         chord_distance(self.points(q))
     }
+    /// The midpoint deflection output, m, with the accelerations `qdd` and gravity: the
+    /// positions' [`RodBody::mid_deflection`], plus the quasi-static response of modes left out
+    /// of the dynamics where the model keeps their residual flexibility (the FFR rod with a mode
+    /// band).
+    fn mid_deflection_dynamic(&self, q: &[f64], _qdd: &[f64], _gravity: Vector2<f64>) -> f64 {
+        self.mid_deflection(q)
+    }
     /// Jacobian `d r_p / d q` (2 x n) into `out`.
     fn point_jacobian(&self, p: RodPoint, q: &[f64], out: MatMut<'_, f64>);
     /// `(d/dt J_p) q'`: the velocity-product part of the point's acceleration.

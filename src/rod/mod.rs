@@ -19,6 +19,7 @@ pub use sections::SectionLoads;
 pub use spec::{DeflectionPolicy, RodModelKind, RodSpec};
 
 use crate::error::ModelError;
+use crate::modal::loaded::{axial_coordinate_at_c, AddedMass};
 use crate::modal::{ComponentModes, ModeSelection, ReferenceConditions};
 
 /// Build the rod model `spec` asks for: validates the section, preprocesses the modes (FFR)
@@ -29,21 +30,44 @@ pub fn build(spec: &RodSpec, slider_mass: f64) -> Result<Box<dyn RodBody>, Model
     match spec.model {
         RodModelKind::Ffr => {
             let reference = ReferenceConditions::from_kind(spec.reference, spec.elements)?;
-            let modes = ComponentModes::from_definition(
+            let selection = match spec.mode_band_hz {
+                Some(max_hz) => ModeSelection::Cutoff { max_hz },
+                None => ModeSelection::CountWithAxial {
+                    count: spec.modes,
+                    axial: spec.min_axial_modes(slider_mass),
+                },
+            };
+            let added = match spec.loaded_modes {
+                true => vec![AddedMass {
+                    coordinate: axial_coordinate_at_c(spec.elements),
+                    mass: slider_mass,
+                }],
+                false => Vec::new(),
+            };
+            let modes = ComponentModes::from_definition_loaded(
+                definition.clone(),
+                spec.elements,
+                reference.clone(),
+                spec.mass,
+                &selection,
+                &added,
+            )?;
+            let rod = ffr::FfrRod::new(modes, spec.damping_ratio, spec.axial_stiffening);
+            if spec.mode_band_hz.is_none() {
+                return Ok(Box::new(rod));
+            }
+            // A band: the bending modes above it as residual flexibility.
+            let all = ComponentModes::from_definition_loaded(
                 definition,
                 spec.elements,
                 reference,
                 spec.mass,
-                &ModeSelection::CountWithAxial {
-                    count: spec.modes,
-                    axial: spec.min_axial_modes(slider_mass),
+                &ModeSelection::Cutoff {
+                    max_hz: f64::INFINITY,
                 },
+                &added,
             )?;
-            Ok(Box::new(ffr::FfrRod::new(
-                modes,
-                spec.damping_ratio,
-                spec.axial_stiffening,
-            )))
+            Ok(Box::new(rod.with_residual_flexibility(&all)))
         }
         RodModelKind::Segments => Ok(Box::new(segments::SegmentRod::from_definition(
             &definition,

@@ -83,6 +83,15 @@ pub struct RodSpec {
     /// [`Self::min_axial_modes`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub axial_modes: Option<usize>,
+    /// Mass-loaded modes (FFR only): the slider's mass is added at C's axial coordinate in the
+    /// eigenproblem (not in the dynamics), so that the retained modes include the slider-rod
+    /// axial mode at its frequency in the mechanism ([`crate::modal::loaded`]).
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub loaded_modes: bool,
+    /// Keep every mode up to this frequency, Hz (FFR only), instead of the `modes` lowest:
+    /// the band the mechanism's excitation and its quasi-static response need.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mode_band_hz: Option<f64>,
     /// Consistent or lumped element mass (FFR only).
     #[serde(default)]
     pub mass: MassKind,
@@ -229,6 +238,15 @@ impl RodSpec {
                     name: "rod.axial_modes",
                     value: n as f64,
                     allowed: format!("0..={MAX_AXIAL_MODES}, or absent for automatic"),
+                });
+            }
+        }
+        if let Some(band) = self.mode_band_hz {
+            if !(band.is_finite() && band > 0.0) {
+                return Err(ModelError::InvalidParameter {
+                    name: "rod.mode_band_hz",
+                    value: band,
+                    allowed: "a frequency > 0 Hz, or absent (rod.modes lowest modes)".into(),
                 });
             }
         }

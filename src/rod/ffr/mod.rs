@@ -4,6 +4,7 @@
 
 pub mod kernel;
 pub mod points;
+pub mod residual;
 pub mod rod;
 pub mod sections;
 pub mod stiffening;

@@ -46,6 +46,9 @@ pub struct FfrRod {
     /// The shape integrals in fixed-size arrays (at most `MAX_MODES` modes), for the
     /// minimal-coordinate right-hand side.
     pub(super) kernel: Option<Box<super::kernel::FfrKernel>>,
+    /// Left-out modes whose quasi-static response the midpoint deflection adds
+    /// ([`super::residual`]; empty: none).
+    pub(super) residual: Vec<super::residual::ResidualMode>,
 }
 
 impl FfrRod {
@@ -80,9 +83,23 @@ impl FfrRod {
             mass,
             modes,
             kernel: None,
+            residual: Vec::new(),
         };
         rod.kernel = super::kernel::FfrKernel::new(&rod).map(Box::new);
         rod
+    }
+
+    /// With residual flexibility ([`super::residual`]): the bending modes of `all` (every
+    /// mode of the rod in the same basis) left out of the retained ones add their quasi-static
+    /// response to the midpoint deflection.
+    pub fn with_residual_flexibility(mut self, all: &ComponentModes) -> FfrRod {
+        self.residual = super::residual::residual_modes(all, &self.modes.retained);
+        self
+    }
+
+    /// The left-out modes that add their quasi-static response ([`Self::with_residual_flexibility`]).
+    pub fn residual_modes(&self) -> &[super::residual::ResidualMode] {
+        &self.residual
     }
 
     /// Number of modal coordinates.
@@ -324,6 +341,19 @@ impl RodBody for FfrRod {
         crate::rod::body::chord_distance(
             [RodPoint::B, RodPoint::C, RodPoint::Mid].map(|p| self.ubar(p, q)),
         )
+    }
+
+    /// With residual flexibility, the left-out modes' quasi-static deflection added
+    /// ([`super::residual::residual_deflection`]).
+    fn mid_deflection_dynamic(&self, q: &[f64], qdd: &[f64], gravity: Vector2<f64>) -> f64 {
+        self.mid_deflection(q)
+            + super::residual::residual_deflection(
+                &self.residual,
+                q[2],
+                Vector2::new(qdd[0], qdd[1]),
+                qdd[2],
+                gravity,
+            )
     }
 
     fn point_jacobian(&self, p: RodPoint, q: &[f64], mut out: MatMut<'_, f64>) {
