@@ -872,7 +872,7 @@ fn deflection_policy_at_work() {
     TABLE.add(
         "deflection_policy",
         format!(
-            "| E / 100 at 150 rad/s, rod.deflection_limit 0.05, each rod.deflection_policy (issue 14) | warn continues; discard / error refuse the step | {} |",
+            "| E / 100 at 150 rad/s, rod.deflection_limit 0.05, each rod.deflection_policy | warn continues; discard / error refuse the step | {} |",
             cells.join("; ")
         ),
     );

@@ -3,7 +3,7 @@
 //! Coordinates, in the element's own axis (which is parallel to the body frame's x axis):
 //! `e = [u1, v1, theta1, u2, v2, theta2]` (axial, transverse, slope at each node).
 //! Shape functions, with `xi = x / l` in [0, 1] (Shabana, *Dynamics of Multibody Systems*,
-//! eq. 6.13 restricted to the plane; seed 000, eq. 5.1-5.2):
+//! eq. 6.13 restricted to the plane; Agrawal and Shabana 1985, eq. 5.1-5.2):
 //! `u = (1 - xi) u1 + xi u2`,
 //! `v = (1 - 3 xi^2 + 2 xi^3) v1 + l (xi - 2 xi^2 + xi^3) theta1 + (3 xi^2 - 2 xi^3) v2 + l (xi^3 - xi^2) theta2`.
 //! Linear axial, cubic (Hermite) transverse.
@@ -110,7 +110,7 @@ impl BeamElement {
     /// Mass matrix, consistent (`rho A l / 420 [156 22l 54 -13l; ...]` for bending,
     /// `rho A l / 6 [2 1; 1 2]` axial; Przemieniecki eq. 11.19) or lumped
     /// (half the mass at each node, rotary inertia `m l^2 / 78` by HRZ diagonal scaling,
-    /// Hinton, Rock and Zienkiewicz 1976; seed 001 used a lumped scheme).
+    /// Hinton, Rock and Zienkiewicz 1976; the CDI benchmark note uses a lumped scheme).
     pub fn mass(&self, kind: MassKind) -> ElementMatrix {
         let l = self.length;
         let m = self.section.mass_per_length() * l;

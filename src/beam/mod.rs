@@ -1,6 +1,6 @@
 //! Planar beam (Euler-Bernoulli, or shear-deformable with a varying section): section
 //! properties and tables, the elements, Gauss quadrature, and the
-//! assembly of a straight rod (seed 001, "Deformable connecting rod"; Shabana, *Dynamics of
+//! assembly of a straight rod (the CDI benchmark note, "Deformable connecting rod"; Shabana, *Dynamics of
 //! Multibody Systems*, 4th ed., ch. 6).
 
 pub mod definition;

@@ -28,7 +28,7 @@ impl Default for SliderSpec {
     }
 }
 
-/// The `[mechanism]` table of a scene: the slider line and gravity (docs/real-rods.md, phase 2).
+/// The `[mechanism]` table of a scene: the slider line and gravity (docs/real-rods.md).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 pub struct MechanismTable {

@@ -1,5 +1,5 @@
 //! Inertia shape integrals of the retained modes, computed once (the "preprocessor" of
-//! seed 000, Fig. 4; Shabana, *Dynamics of Multibody Systems*, 4th ed., section 5.5).
+//! Agrawal and Shabana 1985, Fig. 4; Shabana, *Dynamics of Multibody Systems*, 4th ed., section 5.5).
 //!
 //! With `xbar(s) = (x_b + s, 0)` the undeformed position of the material point at arc length
 //! `s` from B in the body frame, `S_hat(s)` (2 x n) the modal shape matrix and

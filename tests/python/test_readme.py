@@ -1,7 +1,7 @@
 """The README's Python quick start runs as written.
 
 Every ```python block of README.md is executed, in order and in one namespace (like a reader
-pasting them into one session), in a temporary directory where `target/fmu/` is the checkout's
+pasting them into one interpreter), in a temporary directory where `target/fmu/` is the checkout's
 (the FMU built by `cargo run --release -p fmu`), with matplotlib's Agg backend. A block followed
 (after one line of prose) by a ```text block must print exactly that text; files a block says it
 wrote ("wrote NAME") must exist and not be empty.
