@@ -265,7 +265,7 @@ class Runner:
         self._rec = rec
 
         if want_series:
-            # Every output of the FMU at every communication point from t = dt on.
+            # Every output of the FMU at every communication point from t = 0 on.
             outputs = list(dict.fromkeys(list(outputs) + self.all_outputs))
             first = 0
         else:
@@ -524,13 +524,15 @@ def _one(kind, x, marks, arg, theta, props):
     if kind == "midrange":  # sigma_m = (max + min) / 2
         return float(np.max(x) + np.min(x)) / 2
     if kind == "goodman":
-        return goodman((np.max(x) - np.min(x)) / 2, (np.max(x) + np.min(x)) / 2, props["material"])
+        return float(goodman(float(np.max(x) - np.min(x)) / 2, float(np.max(x) + np.min(x)) / 2,
+                             props["material"]))
     if kind == "buckling_margin":  # critical load over the peak compression (tension > 0)
         c = -float(np.min(x))
         return critical_load(props) / c if c > 0 else math.inf
-    if kind == "at":  # value at a crank angle (degrees), in the first measured revolution
+    if kind == "at":  # value at a crank angle (degrees) of the cycle, first time in the window
+        period = 2 * math.pi * props.get("cycle", 1)
         a0 = theta[0]
-        target = a0 + (math.radians(arg) - a0) % (2 * math.pi)
+        target = a0 + (math.radians(arg) - a0) % period
         return float(np.interp(target, theta, x))
     if kind == "order":  # amplitude of engine order k over the measured whole revolutions
         lo, hi = marks[0], marks[-1]
@@ -569,7 +571,7 @@ def compute_metrics(metrics, series, marks, props=None):
                 j = int(np.argmax([_one("amplitude", x[:, j], marks, None, theta, props)
                                    for j in range(x.shape[1])]))
             out[m] = vals[j]
-    return out
+    return {k: float(v) for k, v in out.items()}
 
 
 def parse_metric(text):

@@ -390,7 +390,8 @@ class Spec:
         """What a worker needs to run and measure a run (after validate)."""
         return {"drive": self.drive, "metrics": self.metrics, "record": self.record,
                 "outputs": self.outputs(), "abort": self.abort, "timeout": self.timeout,
-                "gas": self.gas, "props": getattr(self, "props", {})}
+                "gas": self.gas,
+                "props": {**getattr(self, "props", {}), "cycle": float(self.gas.get("cycle", 2)) if self.gas else 1.0}}
 
     @staticmethod
     def _enum_items(v, types):
