@@ -187,7 +187,7 @@ def run_sweep(spec, out, scheduler=None, workers=None, chunks_per_worker=4, prog
         if old_cmp != meta:
             raise SpecError(f"{out} holds results of another FMU, drive, metric set or columns "
                             f"({old_cmp} vs {meta}); choose another --out or delete it")
-    meta.update(fmu_guid=md.guid, fmu_file=str(fmu_path), fmu_sha256=digest,
+    meta.update(fmu_guid=md.guid, fmu_file=os.path.relpath(Path(fmu_path).resolve(), out.resolve()), fmu_sha256=digest,
                 model=md.modelName, name=spec_obj.name)
     if spec_obj.path is not None:
         meta["spec"] = os.path.relpath(spec_obj.path, out.resolve())
