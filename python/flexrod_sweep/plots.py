@@ -164,6 +164,8 @@ def resonance_chart(spec, rows, out, cfg, units=None):
     for ax in axes:
         ax.grid(alpha=0.3)
         ax.set_xlim(xmin, xmax)
+        lo, hi = ax.get_ylim()  # room at the foot for the failed runs' strip, clear of data
+        ax.set_ylim(lo - 0.07 * (hi - lo), hi)
     fig.legend(loc="outside lower center", ncol=2, fontsize=8, frameon=False)
     title = cfg.get("title", f"{spec.name}: {metric} against {x}")
     if distinct:
@@ -203,12 +205,24 @@ def heatmaps(spec, rows, out, cfg, units=None):
         fig, ax = plt.subplots(figsize=(8, 5.6), layout="constrained")
         finite = zv[np.isfinite(zv)]
         pos = finite[finite > 0]
-        norm = LogNorm(vmin=max(pos.min(), 1e-12), vmax=pos.max()) if log and len(pos) else None
+        vmin, vmax = cfg.get("vmin"), cfg.get("vmax")
+        if log and len(pos):
+            norm = LogNorm(vmin=vmin or max(pos.min(), 1e-12), vmax=vmax or pos.max(), clip=False)
+        else:
+            from matplotlib.colors import Normalize
+
+            norm = Normalize(vmin=vmin, vmax=vmax) if vmin is not None or vmax is not None else None
+        extend = ("both" if vmin is not None and vmax is not None else "min" if vmin is not None
+                  else "max" if vmax is not None else "neither")
+        contours = cfg.get("contour")
+        contours = [] if contours is None else sorted(contours if isinstance(contours, list) else [contours])
         cmap = cfg.get("cmap", "viridis")
         handles = []
         if gridded:
             # Unevenly spaced (or categorical) y values: equal rows, labelled with the values.
-            cat_y = cat_names is not None or (len(ys) > 2 and np.ptp(np.diff(ys)) > 1e-9 * max(abs(ys[-1]), 1))
+            # (A few uneven values, e.g. damping ratios 0, 0.25, 0.5, 1 %; many values keep their
+            # true positions.)
+            cat_y = cat_names is not None or (2 < len(ys) <= 8 and np.ptp(np.diff(ys)) > 1e-9 * max(abs(ys[-1]), 1))
             ypos = {v: (j if cat_y else v) for j, v in enumerate(ys)}
             z = np.full((len(ys), len(xs)), np.nan)
             for a, b, c in zip(xv, yv, zv):
@@ -216,9 +230,11 @@ def heatmaps(spec, rows, out, cfg, units=None):
             py = np.array([ypos[v] for v in yv])
             ycoords = [ypos[v] for v in ys]
             mesh = ax.pcolormesh(_edges(xs), _edges(ycoords), z, shading="flat", cmap=cmap, norm=norm)
-            if cfg.get("contour") is not None and np.isfinite(z).sum() > 3:
-                ax.contour(xs, ycoords, z, levels=[cfg["contour"]], colors="w", linewidths=1.5,
-                           path_effects=stroke)
+            if contours and np.isfinite(z).sum() > 3:
+                cs = ax.contour(xs, ycoords, z, levels=contours, colors="w", linewidths=1.5,
+                                path_effects=stroke)
+                if len(contours) > 1:
+                    ax.clabel(cs, fmt="%g", fontsize=8)
             if cat_y:
                 ax.set_yticks(ycoords)
                 ax.set_yticklabels(cat_names if cat_names else [f"{v:g}" for v in ys])
@@ -232,18 +248,18 @@ def heatmaps(spec, rows, out, cfg, units=None):
                 tri = mtri.Triangulation(xv[good], yv[good])
                 levels = np.geomspace(pos.min(), pos.max(), 12) if norm is not None else 12
                 mesh = ax.tricontourf(tri, zv[good], levels=levels, cmap=cmap, norm=norm)
-                if cfg.get("contour") is not None:
-                    ax.tricontour(tri, zv[good], levels=[cfg["contour"]], colors="w", linewidths=1.5,
+                if contours:
+                    ax.tricontour(tri, zv[good], levels=contours, colors="w", linewidths=1.5,
                                   path_effects=stroke)
             else:
                 mesh = ax.scatter(xv, yv, c=zv, cmap=cmap, norm=norm)
             ax.plot(xv[good], yv[good], ".", color="k", ms=2)
             handles.append(Line2D([], [], ls="none", marker=".", color="k", ms=4,
                                   label=f"run ({good.sum()} finished)"))
-        fig.colorbar(mesh, ax=ax, label=_lab(metric, units))
-        if cfg.get("contour") is not None:
+        fig.colorbar(mesh, ax=ax, label=_lab(metric, units), extend=extend)
+        if contours:
             handles.append(Line2D([], [], color="w", lw=1.5, path_effects=stroke,
-                                  label=f"contour: {metric} = {cfg['contour']:g}"))
+                                  label=f"contour: {metric} = {', '.join(f'{c:g}' for c in contours)}"))
         warn = [(a, b) for a, b, s in zip(xv, py, status) if s == "warning"]
         if warn:
             ax.plot(*zip(*warn), ".", color="orange", ms=3)

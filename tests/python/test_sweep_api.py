@@ -210,3 +210,24 @@ measure_revolutions = 2
             if d.split(TMP_PREFIX)[1].split("_")[0].isdigit()
             and not os.path.exists(f"/proc/{d.split(TMP_PREFIX)[1].split('_')[0]}")]
     assert not left, left
+
+
+def test_charts_have_units_and_a_map_for_two_continuous_parameters(default_fmu, tmp_path):
+    """A resonance chart over a Latin hypercube in speed x slider mass becomes one contour map
+    (not a series per mass); every axis names its unit; failed runs are in the legend."""
+    spec = small(default_fmu, speeds=(100.0, 150.0, 200.0, 250.0, 300.0, 600.0))
+    spec["parameters"]["rod.model"] = "ffr"
+    spec["parameters"]["rod.deflection_policy"] = 2  # 600 rad/s: refused (discard)
+    spec["parameters"]["slider.mass"] = {"range": [0.0, 0.5]}
+    spec["sampling"] = {"samples": 8, "seed": 1}
+    spec["plots"] = {"resonance": {"x": "crank.speed", "metric": "max_abs(rod.deflection_rel)"},
+                     "heatmap": {"x": "crank.speed", "y": "slider.mass", "metric": "amplitude(crank.torque)",
+                                 "contour": 20.0, "file": "map.svg"}}
+    df = run_sweep(spec, tmp_path / "out", workers=0, progress=False)
+    assert len(df) == 48 and (df["status"] == "discard").any()
+    for name in ("resonance.svg", "map.svg"):
+        svg = (tmp_path / "out" / name).read_text()
+        for label in ("crank.speed (rad/s)", "slider.mass (kg)", "discard ("):
+            assert label in svg, (name, label)
+    assert "amplitude(crank.torque) (N.m)" in (tmp_path / "out" / "map.svg").read_text()
+    assert "contour: amplitude(crank.torque) = 20" in (tmp_path / "out" / "map.svg").read_text()
