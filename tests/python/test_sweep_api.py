@@ -17,7 +17,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from flexrod_sweep import SpecError, load_series, run_id, run_sweep
+from flexrod_sweep import Spec, SpecError, load_series, run_id, run_sweep
 from flexrod_sweep.runner import TMP_PREFIX, compute_metrics, critical_load, goodman, parse_metric
 
 
@@ -101,8 +101,9 @@ def test_timeout_ends_a_run_and_the_sweep_goes_on(default_fmu, tmp_path):
 def test_grown_grid_keeps_ids_and_runs_only_new_points(default_fmu, tmp_path):
     out = tmp_path / "out"
     first = run_sweep(small(default_fmu, speeds=(150.0, 300.0)), out, workers=0, progress=False, plots=False)
-    grown = run_sweep(small(default_fmu, speeds=(100.0, 150.0, 200.0, 300.0)), out, workers=0,
-                      progress=False, plots=False)
+    # (A Spec object this time: the third form run_sweep takes.)
+    grown = run_sweep(Spec(small(default_fmu, speeds=(100.0, 150.0, 200.0, 300.0)), tmp_path), out,
+                      workers=0, progress=False, plots=False)
     assert grown.attrs["ran"] == 4 and grown.attrs["skipped"] == 4
     assert len(grown) == 8 and grown["run"].is_unique
     assert list(grown["index"]) == list(range(8))

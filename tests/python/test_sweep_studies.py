@@ -41,30 +41,27 @@ def test_every_committed_study_is_checked():
     assert {"benchmark_resonance", "stability_map", "automotive_fatigue"} <= set(NAMES), NAMES
 
 
-@pytest.mark.parametrize("name", NAMES)
-def test_committed_study_matches_the_current_fmu(name, default_fmu, automotive_fmu, tmp_path):
+def stale(study, fmu, tmp_path, spec=None):
+    """What differs between the committed study in folder `study` and a rerun of a handful of
+    its rows with `fmu`: a list of lines (empty: the study is current)."""
     from fmpy import read_model_description
 
-    study = STUDIES / name
     meta = json.loads((study / "sweep.json").read_text())
-    regen = (f"cargo run --release -p fmu && .venv/bin/flexrod-sweep regenerate docs/sweeps/{name}"
-             " (then update docs/sweeps.md from the new results)")
-    fmu = {"FlexibleSliderCrank": default_fmu, "AutomotiveRod": automotive_fmu}[meta["model"]]
     guid = read_model_description(str(fmu)).guid
-    assert guid == meta["fmu_guid"], (
-        f"docs/sweeps/{name} was made by an FMU with GUID {meta['fmu_guid']}; the current FMU's is "
-        f"{guid} (another model description). Regenerate: {regen}")
+    if guid != meta["fmu_guid"]:
+        return [f"made by an FMU with GUID {meta['fmu_guid']}; the current FMU's is {guid} "
+                "(another model description)"]
     with open(study / "results.csv", newline="") as f:
         rows = list(csv.DictReader(f))
     chosen = pick(rows)
-    statuses = {r["status"] for r in rows}
-    assert statuses == {r["status"] for r in chosen}
-    spec = (study / meta["spec"]).resolve()
+    assert {r["status"] for r in rows} == {r["status"] for r in chosen}
+    spec = spec or (study / meta["spec"]).resolve()
     df = run_sweep(spec, tmp_path / "out", fmu=fmu, only=[r["run"] for r in chosen], workers=0,
                    progress=False, plots=False)
     now = df.set_index("run")
+    fixed = ("run", "index", "status", "message", "wall_time")
     numeric = [c for c in meta["columns"]
-               if c not in ("run", "index", "status", "message", "wall_time") and "(" in c or c.startswith("rod.frequency")]
+               if c not in fixed and ("(" in c or c.startswith("rod.frequency"))]
     scale = {c: max((abs(float(r[c])) for r in rows if math.isfinite(float(r[c]))), default=0.0)
              for c in numeric}
     problems = []
@@ -80,7 +77,47 @@ def test_committed_study_matches_the_current_fmu(name, default_fmu, automotive_f
                 continue
             if not (abs(a - b) <= RTOL * scale[c]):
                 problems.append(f"{where}: {c} = {a!r}, committed {b!r}")
+    return problems
+
+
+def fmu_of(meta, default_fmu, automotive_fmu):
+    return {"FlexibleSliderCrank": default_fmu, "AutomotiveRod": automotive_fmu}[meta["model"]]
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_committed_study_matches_the_current_fmu(name, default_fmu, automotive_fmu, tmp_path):
+    study = STUDIES / name
+    meta = json.loads((study / "sweep.json").read_text())
+    regen = (f"cargo run --release -p fmu && .venv/bin/flexrod-sweep regenerate docs/sweeps/{name}"
+             " (then update docs/sweeps.md from the new results)")
+    problems = stale(study, fmu_of(meta, default_fmu, automotive_fmu), tmp_path)
     assert not problems, (
-        f"docs/sweeps/{name} no longer matches the current FMU ({len(problems)} differences in "
-        f"{len(chosen)} rerun rows, tolerance {RTOL:g} of each column's largest value):\n  "
-        + "\n  ".join(problems[:10]) + f"\nRegenerate: {regen}")
+        f"docs/sweeps/{name} no longer matches the current FMU (tolerance {RTOL:g} of each column's "
+        "largest value):\n  " + "\n  ".join(problems[:10]) + f"\nRegenerate: {regen}")
+
+
+def test_a_changed_result_is_caught(default_fmu, tmp_path):
+    """The check itself: a copy of the stability study with one metric changed by 0.1 % and one
+    status changed is reported stale, naming both rows."""
+    import shutil
+
+    study = tmp_path / "study"
+    shutil.copytree(STUDIES / "stability_map", study)
+    with open(study / "results.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    chosen = pick(rows)
+    ok = next(r for r in chosen if r["status"] == "ok")
+    warn = next(r for r in chosen if r["status"] == "warning")
+    for r in rows:
+        if r["run"] == ok["run"]:
+            r["max_abs(rod.deflection_rel)"] = repr(float(r["max_abs(rod.deflection_rel)"]) * 1.001)
+        if r["run"] == warn["run"]:
+            r["status"] = "timeout"  # a status of its own: picked for the rerun
+    with open(study / "results.csv", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    spec = ROOT / "python" / "specs" / "stability_map.toml"
+    problems = stale(study, default_fmu, tmp_path, spec=spec)
+    assert any(ok["run"] in p and "max_abs(rod.deflection_rel)" in p for p in problems), problems
+    assert any(warn["run"] in p and "status warning" in p and "committed timeout" in p for p in problems), problems
