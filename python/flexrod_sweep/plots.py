@@ -234,7 +234,7 @@ def heatmaps(spec, rows, out, cfg, units=None):
                 cs = ax.contour(xs, ycoords, z, levels=contours, colors="w", linewidths=1.5,
                                 path_effects=stroke)
                 if len(contours) > 1:
-                    ax.clabel(cs, fmt="%g", fontsize=8)
+                    ax.clabel(cs, fmt="%g", fontsize=8, colors="k")
             if cat_y:
                 ax.set_yticks(ycoords)
                 ax.set_yticklabels(cat_names if cat_names else [f"{v:g}" for v in ys])

@@ -105,9 +105,11 @@ def units_of(md, spec):
     ratios)."""
     from .runner import DERIVED_UNITS, DIMENSIONLESS_KINDS, parse_metric
 
-    unit = {v.name: (v.unit or (v.declaredType.unit if v.declaredType is not None else None) or "")
-            for v in md.modelVariables}
-    unit = {k: ("1" if v in ("", None) and k in unit else v) for k, v in unit.items()}
+    unit = {}
+    for v in md.modelVariables:
+        u = v.unit or (getattr(v.declaredType, "unit", None) if v.declaredType is not None else None)
+        # A Real without a unit is a ratio ("1"); integers and enumerations have none.
+        unit[v.name] = u or ("1" if v.type == "Real" else "")
     unit.update(DERIVED_UNITS)
     unit.update({"gas.peak": "N", "gas.angle": "deg", "gas.width": "deg", "gas.cycle": "rev"})
     out = {n: unit.get(n, "") for n in spec.swept_names()}
