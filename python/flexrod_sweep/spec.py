@@ -4,7 +4,7 @@ against the FMU's modelDescription before any run starts.
 ```toml
 [fmu]
 path = "../../target/fmu/FlexibleSliderCrank.fmu"   # relative to the spec file
-# or: scene = "../../scenes/benchmark.toml"          # exported with cargo into OUT/fmu/
+# or: scene = "../../scenes/benchmark.toml"          # exported with cargo into target/sweep-fmu/NAME/
 # scene_overrides = { "rod.model" = "segments" }      # optional edits of the scene's TOML keys
 
 [parameters]              # FMU variable names; swept values are combined as a grid
@@ -30,7 +30,8 @@ gas = { peak = 38e3, angle = 15.0, width = 20.0, cycle = 2 }  # optional gas-for
 # slider.force: N, degrees after crank angle 0, degrees, revolutions per cycle; sweep its keys
 # as parameters "gas.peak" etc.
 
-[metrics]
+[metrics]                 # kinds: max_abs max min mean range rms growth amplitude midrange
+                          # goodman buckling_margin at(X, deg) order(X, k); docs/sweeps.md
 list = ["max_abs(rod.deflection_rel)", "mean(crank.torque)", "range(pinB.force_x)"]
 record = ["rod.frequency[1]"]        # calculated parameters read after initialization
 abort = { "rod.deflection_rel" = 0.5 }   # a run stops as "diverged" beyond this |value|
@@ -56,6 +57,9 @@ end_factor = 1.0          # K, effective length K L (1: pinned-pinned)
 [plots]
 resonance = { x = "crank.speed", metric = "max_abs(rod.deflection_rel)", frequency = "rod.frequency[1]", harmonics = [2, 3, 4, 5, 6] }
 heatmap = { x = "crank.speed", y = "rod.damping_ratio", metric = "growth(rod.deflection_rel)" }
+# resonance: normalized = true adds metric / Omega^2; heatmap: log = true, contour = 0.05 or
+# [2.0, 3.0], vmin, vmax (colour limits), cmap, title, file; frequency and harmonics mark
+# omega_1 / k on a crank-speed axis
 ```
 """
 
