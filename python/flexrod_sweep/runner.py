@@ -66,15 +66,27 @@ def remove_stale_folders(tmp=None):
     return n
 
 
-def release(digest=None):
-    """Free the runners of this process (of one FMU digest, or all) and remove their folders."""
+def release(digest=None, wait=10.0):
+    """Free the runners of this process (of one FMU digest, or all) and remove their folders.
+    A runner in the middle of a chunk is waited for up to `wait` seconds, else left to the exit
+    of the process (atexit) or to the next process's clean-up of stale folders."""
     with _LOCK:
-        for key in [k for k in _RUNNERS if digest is None or k[0] == digest]:
-            _RUNNERS.pop(key).close()
+        keys = [k for k in _RUNNERS if digest is None or k[0] == digest]
+    for key in keys:
+        runner = _RUNNERS.get(key)
+        if runner is None or not runner.busy.acquire(timeout=wait):
+            continue
+        try:
+            with _LOCK:
+                if _RUNNERS.get(key) is runner:
+                    del _RUNNERS[key]
+                    runner.close()
+        finally:
+            runner.busy.release()
     return os.getpid()
 
 
-atexit.register(release)
+atexit.register(release, None, 0.0)
 
 
 def get_runner(fmu_bytes_or_path):
@@ -122,6 +134,7 @@ class Runner:
         )
 
         self.unzipdir = unzipdir
+        self.busy = threading.Lock()  # held while a chunk runs (release waits for it)
         self.md = read_model_description(unzipdir)
         self.vars = {v.name: v for v in self.md.modelVariables}
         self.all_outputs = [v.name for v in self.md.modelVariables
@@ -604,6 +617,11 @@ def run_chunk(fmu, chunk, job):
     """A Dask task: runs of one chunk on this process's FMU instance. `chunk`: list of
     (run_id, fmu_values, csv_values). Returns a list of result rows (dicts)."""
     runner = get_runner(fmu)
+    with runner.busy:
+        return _run_rows(runner, chunk, job)
+
+
+def _run_rows(runner, chunk, job):
     rows = []
     metrics, record = job["metrics"], job["record"]
     for run_id, values, shown in chunk:

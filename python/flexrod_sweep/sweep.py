@@ -356,8 +356,9 @@ def _bar(total, progress):
 def _serial(fmu_bytes, todo, job, results_path, cols, progress):
     try:
         with _bar(len(todo), progress) as bar:
+            runner = _runner.get_runner(fmu_bytes)
             for item in todo:
-                rows = _runner.run_chunk(fmu_bytes, [item], job)
+                rows = _runner._run_rows(runner, [item], job)
                 _append(results_path, cols, rows)
                 bar.update(1)
     finally:
@@ -392,6 +393,7 @@ def _dask(fmu_bytes, todo, job, results_path, cols, progress, scheduler, workers
     else:
         client = Client(scheduler)
     digest = _runner.fmu_digest(fmu_bytes)
+    futures = []
     try:
         if cluster is not None:
             client.run(_ignore_sigint)
@@ -433,6 +435,8 @@ def _dask(fmu_bytes, todo, job, results_path, cols, progress, scheduler, workers
         for q in quiet:
             q.setLevel(logging.CRITICAL)
         try:
+            if futures:
+                client.cancel(futures)  # after Ctrl-C: no chunk starts any more
             client.run(_runner.release, digest)  # the workers' extraction folders
         except Exception:
             pass

@@ -182,6 +182,7 @@ transient_revolutions = 1
 measure_revolutions = 2
 """)
     out = tmp_path / "out"
+    before = set(glob.glob(os.path.join(tempfile.gettempdir(), TMP_PREFIX + "*")))
     proc = subprocess.Popen([sys.executable, "-m", "flexrod_sweep", str(spec), "--out", str(out),
                              "--workers", workers, "--no-progress", "--no-plots"],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
@@ -205,11 +206,11 @@ measure_revolutions = 2
     rows = pd.read_parquet(out / "results.parquet")
     assert 3 <= len(rows) < 60 and rows["run"].is_unique
     assert set(rows["status"]) <= {"ok", "warning"}
-    # No extraction folder of the interrupted process or its workers is left behind.
+    # No extraction folder of the interrupted process or its workers is left behind (folders
+    # made during the test whose process has ended).
     time.sleep(0.5)
-    left = [d for d in glob.glob(os.path.join(tempfile.gettempdir(), TMP_PREFIX + "*_*"))
-            if d.split(TMP_PREFIX)[1].split("_")[0].isdigit()
-            and not os.path.exists(f"/proc/{d.split(TMP_PREFIX)[1].split('_')[0]}")]
+    made = set(glob.glob(os.path.join(tempfile.gettempdir(), TMP_PREFIX + "*"))) - before
+    left = [d for d in made if not os.path.exists(f"/proc/{d.split(TMP_PREFIX)[1].split('_')[0]}")]
     assert not left, left
 
 
