@@ -80,6 +80,10 @@ def _fail_strip(ax, xs, statuses, color):
     from matplotlib.transforms import blended_transform_factory
 
     tr = blended_transform_factory(ax.transData, ax.transAxes)
+    # A grey band at the foot: the strip of runs without a value, outside the data's range.
+    from matplotlib.patches import Rectangle
+
+    ax.add_patch(Rectangle((0, 0), 1, 0.055, transform=ax.transAxes, color="0.92", zorder=0, lw=0))
     handles = []
     for st in sorted(set(statuses)):
         sel = [x for x, s in zip(xs, statuses) if s == st]
