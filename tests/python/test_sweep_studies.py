@@ -121,3 +121,43 @@ def test_a_changed_result_is_caught(default_fmu, tmp_path):
     problems = stale(study, default_fmu, tmp_path, spec=spec)
     assert any(ok["run"] in p and "max_abs(rod.deflection_rel)" in p for p in problems), problems
     assert any(warn["run"] in p and "status warning" in p and "committed timeout" in p for p in problems), problems
+
+
+def test_regenerate_makes_a_study_anew(default_fmu, tmp_path):
+    """`flexrod-sweep regenerate DIR` reruns every study under DIR from the spec its sweep.json
+    names: the same rows, the FMU's GUID recorded, the charts drawn again."""
+    import subprocess
+    import sys
+
+    spec = tmp_path / "spec.toml"
+    spec.write_text(f"""
+name = "tiny"
+[fmu]
+path = "{default_fmu}"
+[parameters]
+"crank.speed" = [120.0, 180.0]
+[drive]
+transient_revolutions = 1
+measure_revolutions = 1
+[metrics]
+list = ["max_abs(rod.deflection_rel)"]
+[plots]
+resonance = {{ x = "crank.speed", metric = "max_abs(rod.deflection_rel)" }}
+""")
+    study = tmp_path / "studies" / "tiny"
+    first = run_sweep(spec, study, workers=0, progress=False)
+    (study / "resonance.svg").unlink()
+    (study / "results.csv").write_text("stale\n")
+    res = subprocess.run([sys.executable, "-m", "flexrod_sweep", "regenerate", str(tmp_path / "studies"),
+                          "--workers", "0", "--no-progress"], capture_output=True, text=True, timeout=300)
+    assert res.returncode == 0, res.stderr
+    assert "2 runs: 2 ran" in res.stdout, res.stdout
+    meta = json.loads((study / "sweep.json").read_text())
+    from fmpy import read_model_description
+
+    assert meta["fmu_guid"] == read_model_description(str(default_fmu)).guid
+    assert (study / meta["spec"]).resolve() == spec.resolve()
+    assert (study / "resonance.svg").exists()
+    with open(study / "results.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert [r["max_abs(rod.deflection_rel)"] for r in rows] == [repr(x) for x in first["max_abs(rod.deflection_rel)"]]
