@@ -38,9 +38,7 @@ const ROOTS: &[&str] = &[
 /// - docs/report/*, docs/generated/report-*: `cargo run --release --bin report` (its text is in
 ///   src/bin/report);
 /// - docs/generated/extreme-cases.md: `FLEXROD_BLESS=1 cargo test --release --test extreme`;
-/// - docs/generated/fuzz-long.md: the long mode of tests/fuzz_fmi.rs (about an hour);
-/// - docs/sweeps/*/modelDescription.xml: the sweeps of docs/sweeps.md (the FMU's description
-///   comes from scenes/benchmark.toml).
+/// - docs/generated/fuzz-long.md: the long mode of tests/fuzz_fmi.rs (about an hour).
 const KNOWN_HITS: &[(&str, &str)] = &[
     ("docs/generated/extreme-cases.md", "issue 14"),
     ("docs/generated/fuzz-long.md", "commit 6fc5bd2"),
@@ -52,11 +50,6 @@ const KNOWN_HITS: &[(&str, &str)] = &[
     ("docs/report/report.md", "issue 11"),
     ("docs/robustness.md", "issue 14"),
     ("docs/robustness.md", "commit 6fc5bd2"),
-    (
-        "docs/sweeps/benchmark_resonance/modelDescription.xml",
-        "seed 001",
-    ),
-    ("docs/sweeps/stability_map/modelDescription.xml", "seed 001"),
 ];
 
 /// Files under `dir` (recursively) whose extension is one of `extensions`, sorted.

@@ -4,7 +4,7 @@ against the FMU's modelDescription before any run starts.
 ```toml
 [fmu]
 path = "../../target/fmu/FlexibleSliderCrank.fmu"   # relative to the spec file
-# or: scene = "../../scenes/benchmark.toml"          # exported with cargo into OUT/fmu/
+# or: scene = "../../scenes/benchmark.toml"          # exported with cargo into target/sweep-fmu/NAME/
 # scene_overrides = { "rod.model" = "segments" }      # optional edits of the scene's TOML keys
 
 [parameters]              # FMU variable names; swept values are combined as a grid
@@ -26,15 +26,40 @@ min_transient_time = 0.0  # s; the discarded span is the longer of the two
 measure_revolutions = 2
 step = 1e-4               # communication step, s
 # ramp: speed_from, speed_to, duration (metrics over the run after min_transient_time)
+gas = { peak = 38e3, angle = 15.0, width = 20.0, cycle = 2 }  # optional gas-force pulse on
+# slider.force: N, degrees after crank angle 0, degrees, revolutions per cycle; sweep its keys
+# as parameters "gas.peak" etc.
 
-[metrics]
+[metrics]                 # kinds: max_abs max min mean range rms growth amplitude midrange
+                          # goodman buckling_margin at(X, deg) order(X, k); docs/sweeps.md
 list = ["max_abs(rod.deflection_rel)", "mean(crank.torque)", "range(pinB.force_x)"]
 record = ["rod.frequency[1]"]        # calculated parameters read after initialization
 abort = { "rod.deflection_rel" = 0.5 }   # a run stops as "diverged" beyond this |value|
 
+[run]
+timeout = 30.0            # s of wall time per run: a run past it ends as status "timeout"
+
+[section]                 # the critical section, for the section.stress outputs (midpoint forces)
+area = 2.16e-4            # m2
+area_moment = 1.613e-8    # m4, bending in the mechanism's plane (the FMU's rod.area_moment)
+fibre_distance = 0.012    # m
+
+[material]                # for goodman(...) and Johnson's parabola in buckling_margin(...)
+endurance_strength = 3.0e8   # S_e, Pa (fully corrected)
+ultimate_strength = 8.5e8    # S_u, Pa
+yield_strength = 6.0e8       # S_y, Pa (optional)
+
+[buckling]                # for buckling_margin(...): the column; defaults from the FMU's parameters
+area_moment = 4.0e-9      # m4: the smaller of the in-plane and out-of-plane moments of area
+# area, length, youngs_modulus: default rod.area, rod.length, rod.youngs_modulus of the FMU
+end_factor = 1.0          # K, effective length K L (1: pinned-pinned)
+
 [plots]
 resonance = { x = "crank.speed", metric = "max_abs(rod.deflection_rel)", frequency = "rod.frequency[1]", harmonics = [2, 3, 4, 5, 6] }
 heatmap = { x = "crank.speed", y = "rod.damping_ratio", metric = "growth(rod.deflection_rel)" }
+# resonance: normalized = true adds metric / Omega^2; heatmap: log = true, contour = 0.05 or
+# [2.0, 3.0], vmin, vmax (colour limits), cmap, title, file; frequency and harmonics mark
+# omega_1 / k on a crank-speed axis
 ```
 """
 
@@ -47,7 +72,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .runner import DERIVED, parse_metric
+from .runner import DERIVED, DERIVED_PROPS, parse_metric
 
 
 class SpecError(Exception):
@@ -65,6 +90,28 @@ DRIVE_DEFAULTS = {
 }
 
 
+GAS_KEYS = ("peak", "angle", "width", "cycle")
+TABLES = {"fmu", "parameters", "sampling", "drive", "metrics", "plots", "name", "run", "section",
+          "material", "buckling"}
+
+
+def run_id(shown):
+    """The id of a run: a digest of its parameter values (names sorted), so that a run keeps its
+    id when the grid grows or is reordered."""
+    key = json.dumps({k: shown[k] for k in sorted(shown)}, sort_keys=True)
+    return hashlib.sha256(key.encode()).hexdigest()[:12]
+
+
+def as_spec(spec, base=None):
+    """A Spec from a TOML path, a dict of the same structure (relative paths against `base`,
+    default the current directory) or a Spec."""
+    if isinstance(spec, Spec):
+        return spec
+    if isinstance(spec, dict):
+        return Spec(spec, Path(base or ".").resolve(), None)
+    return load(spec)
+
+
 def load(path):
     path = Path(path)
     try:
@@ -75,7 +122,9 @@ def load(path):
         raw = tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
         raise SpecError(f"{path}: not valid TOML: {e}")
-    return Spec(raw, path.parent.resolve(), text)
+    spec = Spec(raw, path.parent.resolve(), text)
+    spec.path = path.resolve()
+    return spec
 
 
 class Spec:
@@ -83,7 +132,8 @@ class Spec:
         self.raw = raw
         self.base = base
         self.text = text
-        known = {"fmu", "parameters", "sampling", "drive", "metrics", "plots", "name"}
+        self.path = None
+        known = TABLES
         unknown = set(raw) - known
         if unknown:
             raise SpecError(f"unknown table(s) {sorted(unknown)}; allowed: {sorted(known)}")
@@ -96,7 +146,7 @@ class Spec:
         self.name = raw.get("name", "sweep")
 
         drive = dict(DRIVE_DEFAULTS)
-        extra = set(raw.get("drive", {})) - set(DRIVE_DEFAULTS) - {"speed_from", "speed_to", "duration"}
+        extra = set(raw.get("drive", {})) - set(DRIVE_DEFAULTS) - {"speed_from", "speed_to", "duration", "gas"}
         if extra:
             raise SpecError(f"[drive]: unknown key(s) {sorted(extra)}")
         drive.update(raw.get("drive", {}))
@@ -116,7 +166,30 @@ class Spec:
                 raise SpecError(f"[drive] {k} = {drive[k]!r} must be >= 0")
         if not (isinstance(drive["measure_revolutions"], int) and drive["measure_revolutions"] >= 1):
             raise SpecError("[drive] measure_revolutions must be an integer >= 1")
+        self.gas = drive.pop("gas", None)
+        if self.gas is not None:
+            bad = set(self.gas) - set(GAS_KEYS)
+            if bad or "peak" not in self.gas and "gas.peak" not in raw.get("parameters", {}):
+                raise SpecError(f"[drive] gas = {self.gas!r}: keys {', '.join(GAS_KEYS)} (peak required)")
         self.drive = drive
+        run = raw.get("run", {})
+        if set(run) - {"timeout"}:
+            raise SpecError(f"[run]: unknown key(s) {sorted(set(run) - {'timeout'})}; allowed: timeout")
+        self.timeout = run.get("timeout")
+        if self.timeout is not None and not (isinstance(self.timeout, (int, float)) and self.timeout > 0):
+            raise SpecError(f"[run] timeout = {self.timeout!r}: seconds of wall time per run, > 0")
+        self.section = dict(raw.get("section", {}))
+        self.material = dict(raw.get("material", {}))
+        self.buckling = dict(raw.get("buckling", {}))
+        for table, keys in (("section", {"area", "area_moment", "fibre_distance"}),
+                            ("material", {"endurance_strength", "ultimate_strength", "yield_strength"}),
+                            ("buckling", {"area", "area_moment", "length", "youngs_modulus", "end_factor"})):
+            d = getattr(self, table)
+            if set(d) - keys:
+                raise SpecError(f"[{table}]: unknown key(s) {sorted(set(d) - keys)}; allowed: {sorted(keys)}")
+            for k, v in d.items():
+                if not (isinstance(v, (int, float)) and not isinstance(v, bool) and v > 0):
+                    raise SpecError(f"[{table}] {k} = {v!r}: must be a number > 0")
 
         met = raw.get("metrics", {})
         self.metrics = list(met.get("list", ["max_abs(rod.deflection_rel)"]))
@@ -199,20 +272,34 @@ class Spec:
         return list(self.params)
 
     def definition_hash(self):
-        """Hash of what determines a run's result besides its values: FMU, drive, metrics."""
+        """Hash of what determines a run's result besides its values: drive, metrics and their
+        section, material and column properties (the FMU is recorded apart)."""
         d = {"drive": self.drive, "metrics": self.metrics, "record": self.record,
              "abort": self.abort}
+        for k in ("gas", "section", "material", "buckling"):
+            if getattr(self, k):
+                d[k] = getattr(self, k)
         return hashlib.sha256(json.dumps(d, sort_keys=True).encode()).hexdigest()[:16]
 
     # -- validation against the model description -------------------------------------------
 
     def validate(self, md):
         """Check every name and value against the FMU; returns the runs converted for the FMU:
-        list of (fmu_values, shown_values)."""
+        list of (fmu_values, shown_values). Also resolves the [buckling] column's defaults from
+        the FMU's parameters (self.props)."""
         variables = {v.name: v for v in md.modelVariables}
         types = {t.name: t for t in md.typeDefinitions}
         grid, ranges = self.axes()
         for name in self.params:
+            if name.startswith("gas."):
+                if self.gas is None:
+                    raise SpecError(f"parameter {name!r}: needs [drive] gas = {{...}} (the gas-force pulse)")
+                if name[4:] not in GAS_KEYS:
+                    raise SpecError(f"parameter {name!r}: gas keys are {', '.join('gas.' + k for k in GAS_KEYS)}")
+                for value in grid.get(name, list(ranges.get(name, ()))):
+                    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+                        raise SpecError(f"{name} = {value!r}: expected a number")
+                continue
             if name not in variables:
                 close = [n for n in variables if name.split(".")[-1] in n]
                 hint = f"; did you mean {', '.join(close[:4])}?" if close else ""
@@ -222,15 +309,44 @@ class Spec:
                 raise SpecError(f"{name!r} is a {v.causality} ({v.variability}): only parameters and inputs can be swept")
             if name in ("crank.angle",):
                 raise SpecError("crank.angle is driven by [drive]; sweep crank.speed instead")
+            if name == "slider.force" and self.gas is not None:
+                raise SpecError("slider.force is driven by [drive] gas; sweep gas.peak instead")
             values = grid.get(name, list(ranges.get(name, ())))
             for value in values:
                 self._check_value(v, types, value)
+        if self.gas is not None and "slider.force" not in variables:
+            raise SpecError("[drive] gas: the FMU has no slider.force input (scene [outputs] slider_force)")
+        start = {v.name: _num(v.start) for v in md.modelVariables if v.type == "Real"}
+        self.props = {}
+        if self.section:
+            self.props["section"] = dict(self.section)
+        if self.material:
+            self.props["material"] = dict(self.material)
         for m in self.metrics:
-            _, out = parse_metric(m)
+            kind, out, _ = parse_metric(m)
+            if kind == "goodman":
+                missing = [k for k in ("endurance_strength", "ultimate_strength") if k not in self.material]
+                if missing:
+                    raise SpecError(f"metric {m!r}: [material] needs {', '.join(missing)} (Pa)")
+            if kind == "buckling_margin":
+                b = dict(self.buckling)
+                for key, var in (("area", "rod.area"), ("area_moment", "rod.area_moment"),
+                                 ("length", "rod.length"), ("youngs_modulus", "rod.youngs_modulus")):
+                    if key not in b:
+                        if start.get(var) is None:
+                            raise SpecError(f"metric {m!r}: [buckling] {key} not given and the FMU has no {var}")
+                        b[key] = start[var]
+                b.setdefault("end_factor", 1.0)
+                self.props["buckling"] = b
             if out in DERIVED:
                 missing = [x for x in DERIVED[out] + ["crank.length"] if x not in variables]
                 if missing:
                     raise SpecError(f"metric {m!r}: the FMU lacks {missing}, which {out} needs")
+                need = [k for k in DERIVED_PROPS.get(out, []) if k not in self.section]
+                if need:
+                    raise SpecError(f"metric {m!r}: {out} needs [section] {', '.join(need)}")
+                continue
+            if out == "slider.force" and self.gas is not None:
                 continue
             if out not in variables or variables[out].causality != "output":
                 outs = [n for n, v in variables.items() if v.causality == "output"] + list(DERIVED)
@@ -250,13 +366,36 @@ class Spec:
                 raise SpecError("[drive] speed = 0 with kind = \"constant\": no revolution to measure")
         out = []
         for run in self.runs():
-            fmu_values = {n: self._convert(variables[n], types, x) for n, x in run.items()}
+            fmu_values = {n: (float(x) if n.startswith("gas.") else self._convert(variables[n], types, x))
+                          for n, x in run.items()}
             out.append((fmu_values, run))
         if self.drive["kind"] == "constant":
             for fmu_values, run in out:
                 if fmu_values.get("crank.speed", self.drive["speed"]) == 0:
                     raise SpecError(f"crank.speed = 0 in run {run}: no revolution to measure")
         return out
+
+    def outputs(self):
+        """The FMU outputs the metrics and abort limits read."""
+        outs = []
+        for m in self.metrics:
+            o = parse_metric(m)[1]
+            if o == "slider.force" and self.gas is not None:
+                continue
+            for x in DERIVED.get(o, [o]):
+                if x not in outs and x != "crank.angle":
+                    outs.append(x)
+        for o in self.abort:
+            if o not in outs:
+                outs.append(o)
+        return outs
+
+    def job(self):
+        """What a worker needs to run and measure a run (after validate)."""
+        return {"drive": self.drive, "metrics": self.metrics, "record": self.record,
+                "outputs": self.outputs(), "abort": self.abort, "timeout": self.timeout,
+                "gas": self.gas,
+                "props": {**getattr(self, "props", {}), "cycle": float(self.gas.get("cycle", 2)) if self.gas else 1.0}}
 
     @staticmethod
     def _enum_items(v, types):

@@ -118,8 +118,9 @@ def test_failed_runs_are_rows_and_sweep_resumes(default_fmu, tmp_path):
     text = text.replace("[150, 450, 4]", "[150, 600, 2]").replace('["ffr", "segments"]', '["ffr"]')
     spec = write_spec(tmp_path, text)
     out = tmp_path / "out"
-    rows, info = run_sweep(spec, out, workers=0, progress=False, plots=False)
-    assert info["ran"] == 4
+    df = run_sweep(spec, out, workers=0, progress=False, plots=False)
+    assert df.attrs["ran"] == 4
+    rows = read_rows(out / "results.csv")
     by = {(r["crank.speed"], r["crank.length"]): r for r in rows}
     assert by[("150.0", "0.1524")]["status"] == "ok"
     bad = by[("150.0", "0.4")]
@@ -128,16 +129,16 @@ def test_failed_runs_are_rows_and_sweep_resumes(default_fmu, tmp_path):
     div = by[("600.0", "0.1524")]
     assert div["status"] == "discard" and "rod.deflection_limit" in div["message"], div
     # Rerun: everything is finished, nothing runs.
-    rows2, info2 = run_sweep(spec, out, workers=0, progress=False, plots=False)
-    assert info2["ran"] == 0 and info2["skipped"] == 4
-    assert rows2 == rows
+    df2 = run_sweep(spec, out, workers=0, progress=False, plots=False)
+    assert df2.attrs["ran"] == 0 and df2.attrs["skipped"] == 4
+    assert read_rows(out / "results.csv") == rows
     # Lose two rows (an interrupted sweep): only those run again, with the same results.
     lines = (out / "results.csv").read_text().splitlines(keepends=True)
     (out / "results.csv").write_text("".join(lines[:3]))
-    rows3, info3 = run_sweep(spec, out, workers=0, progress=False, plots=False)
-    assert info3["ran"] == 2
+    df3 = run_sweep(spec, out, workers=0, progress=False, plots=False)
+    assert df3.attrs["ran"] == 2
     strip = lambda rs: [{k: v for k, v in r.items() if k != "wall_time"} for r in rs]
-    assert strip(rows3) == strip(rows)
+    assert strip(read_rows(out / "results.csv")) == strip(rows)
 
 
 def free_port():
@@ -207,5 +208,7 @@ heatmap = { x = "crank.speed", y = "rod.model", metric = "max_abs(rod.deflection
     assert (tmp_path / "out" / "resonance.svg").stat().st_size > 1000
     assert (tmp_path / "out" / "heatmap.svg").stat().st_size > 1000
     rows = read_rows(tmp_path / "out" / "results.csv")
-    assert [r["run"] for r in rows] == [str(i) for i in range(8)]
+    # Rows in the spec's order; run ids (digests of the parameter values) distinct.
+    assert [r["index"] for r in rows] == [str(i) for i in range(8)]
+    assert len({r["run"] for r in rows}) == 8
     assert all(float(r["rod.frequency[1]"]) > 100 for r in rows)
