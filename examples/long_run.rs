@@ -9,14 +9,20 @@
 //! `cargo run --release --example long_run [REVOLUTIONS]` (default 100,000: about 4,200 s of
 //! simulated time) prints the table; with `FLEXROD_BLESS=1` it also writes
 //! `docs/generated/long-run.md` (embedded in docs/solvers.md). Also prints the steps and
-//! right-hand sides per revolution of each run.
+//! right-hand sides per revolution of each run, and a second table: the amplitude's drift
+//! over 10,000 revolutions (1e-3 s step) at tolerances 1e-2, 3e-3 and 1e-3 with the
+//! exponential form's phase cap at each (`exponential_max_phase`), against a converged run.
 
 use flexrod::drive::CrankDrive;
+use flexrod::integrator::adaptive_runge_kutta::exponential_max_phase;
+use flexrod::mechanism::integrator_choice::LOCAL_TOLERANCE_FACTOR_RK4;
 use flexrod::{Scene, Simulation};
 
 const SPEED: f64 = 150.0;
 /// Revolutions in each window of the table.
 const WINDOW: usize = 100;
+/// Revolutions of the runs of the second table (the drift against the tolerance).
+const REVOLUTIONS_BY_TOLERANCE: usize = 10_000;
 
 /// The per-revolution peaks of `|v_mid/L|` on the communication grid `dt` (and, where
 /// `every > 1`, also on every `every`-th point of it), with the integrator's steps and
@@ -107,6 +113,23 @@ fn main() {
         r[2],
         reference.steps as f64 / revolutions as f64
     );
+    // The drift against the tolerance: 10,000 revolutions on the 1e-3 s grid.
+    let short = REVOLUTIONS_BY_TOLERANCE.min(revolutions);
+    let converged = long_run(1e-7, 1e-4, 10, short).coarse_peaks;
+    let r = windows(&converged);
+    text += &format!(
+        "\n| tolerance ({short} revolutions, 1e-3 s communication step) | largest w_1 h | steps a revolution | amplitude of the last {WINDOW} revolutions against the converged run's |\n|---|---|---|---|\n"
+    );
+    for tolerance in [1e-2, 3e-3, 1e-3] {
+        let run = long_run(tolerance, 1e-3, 1, short);
+        let w = windows(&run.peaks);
+        text += &format!(
+            "| {tolerance:e} | {:.2} | {:.1} | {:+.3} % |\n",
+            exponential_max_phase(tolerance * LOCAL_TOLERANCE_FACTOR_RK4),
+            run.steps as f64 / short as f64,
+            100.0 * (w[2] - r[2]) / r[2]
+        );
+    }
     print!("{text}");
     if std::env::var_os("FLEXROD_BLESS").is_some() {
         let path = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/generated/long-run.md");
