@@ -3,12 +3,12 @@
 //! on a 1e-3 s step, against a converged run (tolerance 1e-7) on the same communication points.
 //! The largest per-revolution peak of `|v_mid/L|` over 100 revolutions at the start, the middle
 //! and the end of the run (the motion's amplitude there, whatever the phase of the rod's free
-//! vibration) is within 0.05 % of the converged run's (measured: 0.01 % at most). Without the
-//! exponential form's tolerance-dependent phase cap (`exponential_max_phase` in
-//! src/integrator/adaptive_runge_kutta.rs) the amplitude drifted by 1 % in these 2,000
-//! revolutions, and by 10 % in 2,400 with the stages of Cox and Matthews (docs/solvers.md,
-//! "Long runs"). The 100,000-revolution table: `cargo run --release --example long_run`
-//! (docs/generated/long-run.md).
+//! vibration) is within 0.05 % of the converged run's (measured: 0.01 % at most). With the
+//! exponential form's phase cap at `w_1 h = 1` whatever the tolerance (instead of
+//! `exponential_max_phase` in src/integrator/adaptive_runge_kutta.rs) the amplitude drifts by
+//! 1 % in these 2,000 revolutions, and by 10 % in 2,400 with the stages of Cox and Matthews
+//! instead of Krogstad's (the cause: docs/solvers.md, "Long runs"). The 100,000-revolution
+//! table: `cargo run --release --example long_run` (docs/generated/long-run.md).
 
 use flexrod::drive::CrankDrive;
 use flexrod::{Scene, Simulation};
