@@ -7,6 +7,8 @@
 //! depend on the machine), `speed-minimal` with its times masked (its step and right-hand-side
 //! counts and the peak do not depend on the machine; its times do). With `FLEXROD_BLESS=1` the
 //! examples rewrite their fragments instead. (`rod-feature-costs`: `tests/rod_feature_costs.rs`.)
+//! `examples/long_run.rs` (`long-run`, byte for byte) runs for minutes: its test is ignored
+//! (`cargo test --release --test example_fragments long_run -- --ignored`).
 
 mod common;
 
@@ -97,6 +99,20 @@ fn speed_minimal_counts_are_current() {
         "docs/generated/speed-minimal.md is stale beyond its times (- the file, + what the \
          example computes now); `FLEXROD_BLESS=1 cargo run --release --example speed` rewrites \
          it:\n{}",
+        common::line_diff(&committed, &printed, 40)
+    );
+}
+
+#[test]
+#[ignore = "three runs of 100,000 revolutions (minutes)"]
+fn long_run_is_current() {
+    let Some((committed, printed)) = run_example("long_run", "long-run") else {
+        return;
+    };
+    assert!(
+        committed == printed,
+        "docs/generated/long-run.md is stale (- the file, + what the example computes now); \
+         `FLEXROD_BLESS=1 cargo run --release --example long_run` rewrites it:\n{}",
         common::line_diff(&committed, &printed, 40)
     );
 }
