@@ -4,8 +4,8 @@
 //!
 //! - `solver.method = "auto"`: error-controlled steps. On the FFR rod's modal coordinates
 //!   while the explicit stability step `2.5 / |lambda|_max` of the retained modes is at least
-//!   [`AUTO_EXPLICIT_MIN_STEP`]: the exponential form of the RK4(3) pair (ETDRK4, Cox and
-//!   Matthews 2002) where the modes are the mechanism's own oscillators
+//!   [`AUTO_EXPLICIT_MIN_STEP`]: the exponential form of the RK4(3) pair (ETDRK4 in
+//!   Krogstad's stages, 2005, with the weights of Cox and Matthews 2002) where the modes are the mechanism's own oscillators
 //!   ([`modes_are_oscillators`]) on the closed-form minimal coordinates, the
 //!   classic RK4(3) pair elsewhere. Else (the segment chain, many or very stiff modes) the
 //!   adaptive generalized-alpha method.
