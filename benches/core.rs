@@ -19,7 +19,7 @@ fn preprocessing(c: &mut Criterion) {
         |b| {
             b.iter(|| {
                 let m = ComponentModes::new(
-                    RodProperties::seed001_benchmark(),
+                    RodProperties::cdi_benchmark(),
                     black_box(64),
                     ReferenceConditions::SimplySupported,
                     MassKind::Consistent,

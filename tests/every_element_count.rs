@@ -55,7 +55,7 @@ fn beta_l(kind: ReferenceKind) -> [f64; 3] {
 }
 
 fn rod() -> RodProperties {
-    RodProperties::seed001_benchmark()
+    RodProperties::cdi_benchmark()
 }
 
 /// `f = (beta L)^2 / (2 pi) sqrt(E I / (rho A L^4))`, Hz.

@@ -9,7 +9,7 @@ use flexrod::scene::MassKind;
 use nalgebra::Vector2;
 
 fn bench() -> RodProperties {
-    RodProperties::seed001_benchmark()
+    RodProperties::cdi_benchmark()
 }
 
 fn modes(n: usize, reference: ReferenceConditions, kind: MassKind, count: usize) -> ComponentModes {

@@ -363,7 +363,7 @@ fn timoshenko_with_rigid_shear_is_the_rayleigh_beam() {
 /// Cantilever with tip mass and tip rotary inertia (the small end at C), clamped at B.
 #[test]
 fn cantilever_with_tip_mass_and_inertia_against_frequency_equation() {
-    let props = RodProperties::seed001_benchmark();
+    let props = RodProperties::cdi_benchmark();
     let (l, rho_a, ei) = (
         props.length,
         props.mass_per_length(),
@@ -409,7 +409,7 @@ fn cantilever_with_tip_mass_and_inertia_against_frequency_equation() {
 /// rod (checked: `(n pi / L)^2 sqrt(E I / rho A)`).
 #[test]
 fn pinned_rod_with_end_bodies_against_frequency_equation() {
-    let props = RodProperties::seed001_benchmark();
+    let props = RodProperties::cdi_benchmark();
     let (l, rho_a, ei) = (
         props.length,
         props.mass_per_length(),
@@ -492,7 +492,7 @@ fn pinned_rod_with_end_bodies_against_frequency_equation() {
 /// frequencies; FFR and segment chain.
 #[test]
 fn uniform_rod_through_the_table_equals_the_closed_form_path() {
-    let props = RodProperties::seed001_benchmark();
+    let props = RodProperties::cdi_benchmark();
     let table = SectionTable::new(
         props.length,
         &[
@@ -561,7 +561,7 @@ fn uniform_rod_through_the_table_equals_the_closed_form_path() {
 /// unit modal mass, and the segment chain's mass properties.
 #[test]
 fn end_bodies_and_taper_in_the_shape_integrals_and_the_chain() {
-    let props = RodProperties::seed001_benchmark();
+    let props = RodProperties::cdi_benchmark();
     let l = props.length;
     let table = SectionTable::new(
         l,

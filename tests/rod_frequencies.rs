@@ -11,7 +11,7 @@ use common::published_frequencies as published;
 fn rod(density: f64) -> RodProperties {
     RodProperties {
         density,
-        ..RodProperties::seed001_benchmark()
+        ..RodProperties::cdi_benchmark()
     }
 }
 

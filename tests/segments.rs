@@ -31,7 +31,7 @@ static SLIDER_CRANK: Fragment =
     Fragment::new("segments-slider-crank", "", &["convergence", "balances"]);
 
 fn benchmark_props() -> RodProperties {
-    RodProperties::seed001_benchmark()
+    RodProperties::cdi_benchmark()
 }
 
 /// A bent, stretched, moving state of a rod (deterministic pseudo-random).

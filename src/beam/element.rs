@@ -170,7 +170,7 @@ mod tests {
     fn element() -> BeamElement {
         BeamElement {
             length: 0.1524,
-            section: RodProperties::seed001_benchmark(),
+            section: RodProperties::cdi_benchmark(),
         }
     }
 

@@ -319,7 +319,7 @@ mod tests {
 
     #[test]
     fn assembled_mass_gives_rod_mass_for_translation() {
-        let mesh = RodMesh::new(RodProperties::seed001_benchmark(), 5, 0.0).unwrap();
+        let mesh = RodMesh::new(RodProperties::cdi_benchmark(), 5, 0.0).unwrap();
         for kind in [MassKind::Consistent, MassKind::Lumped] {
             let (_, m) = mesh.assemble(kind);
             let r = mesh.rigid_modes();
@@ -332,7 +332,7 @@ mod tests {
 
     #[test]
     fn locate_finds_element_and_xi() {
-        let mesh = RodMesh::new(RodProperties::seed001_benchmark(), 4, 0.0).unwrap();
+        let mesh = RodMesh::new(RodProperties::cdi_benchmark(), 4, 0.0).unwrap();
         let l = mesh.section.length;
         assert_eq!(mesh.locate(0.0), (0, 0.0));
         let (e, xi) = mesh.locate(l);
@@ -345,7 +345,7 @@ mod tests {
 
     #[test]
     fn zero_elements_is_rejected() {
-        let err = RodMesh::new(RodProperties::seed001_benchmark(), 0, 0.0).unwrap_err();
+        let err = RodMesh::new(RodProperties::cdi_benchmark(), 0, 0.0).unwrap_err();
         assert!(err.to_string().contains("rod.elements"));
     }
 }

@@ -50,7 +50,7 @@ pub struct RodProperties {
 impl RodProperties {
     /// The CDI benchmark note (J. O'Shea, "Analysis of the Small-Deformation Connecting Rod"),
     /// table 3: the benchmark connecting rod (each half 0.03781 kg, so rho = 7833.8).
-    pub fn seed001_benchmark() -> Self {
+    pub fn cdi_benchmark() -> Self {
         RodProperties {
             length: 0.3048,
             youngs_modulus: 2.068e11,

@@ -457,7 +457,7 @@ mod tests {
     use crate::beam::{MassKind, RodProperties};
 
     fn uniform() -> (RodProperties, SectionTable) {
-        let p = RodProperties::seed001_benchmark();
+        let p = RodProperties::cdi_benchmark();
         (p, SectionTable::uniform(p.length, p.area, p.area_moment))
     }
 
