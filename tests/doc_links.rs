@@ -42,7 +42,6 @@ const ROOTS: &[&str] = &[
 /// - docs/sweeps/*/modelDescription.xml: the sweeps of docs/sweeps.md (the FMU's description
 ///   comes from scenes/benchmark.toml).
 const KNOWN_HITS: &[(&str, &str)] = &[
-    ("docs/generated/extreme-cases.md", "issue 14"),
     ("docs/generated/fuzz-long.md", "commit 6fc5bd2"),
     ("docs/report/error_vs_runtime.svg", "issue 12"),
     ("docs/report/extreme.md", "issue 6"),
