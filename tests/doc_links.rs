@@ -43,13 +43,6 @@ const ROOTS: &[&str] = &[
 ///   comes from scenes/benchmark.toml).
 const KNOWN_HITS: &[(&str, &str)] = &[
     ("docs/generated/fuzz-long.md", "commit 6fc5bd2"),
-    ("docs/report/error_vs_runtime.svg", "issue 12"),
-    ("docs/report/extreme.md", "issue 6"),
-    ("docs/report/extreme.md", "issue 14"),
-    ("docs/report/report.md", "issue 6"),
-    ("docs/report/report.md", "seed 001"),
-    ("docs/report/report.md", "issue 11"),
-    ("docs/robustness.md", "issue 14"),
     ("docs/robustness.md", "commit 6fc5bd2"),
     (
         "docs/sweeps/benchmark_resonance/modelDescription.xml",
