@@ -234,3 +234,44 @@ impl EngineErrors {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mechanism::CrankLaw;
+
+    /// The continued input follows the ramp: the speed at every communication point to
+    /// round-off, the angle within `alpha_max h^2 / 12`; and each input starts where the law in
+    /// force is at that time (the same angle and speed as `CrankLaw::kinematics`).
+    #[test]
+    fn continued_input_follows_the_drive() {
+        let run = EngineRun::automotive();
+        let law = run.law();
+        let h = run.step;
+        let alpha_max = 0.5 * run.speed * std::f64::consts::PI / run.ramp;
+        let (mut input, mut worst_angle, mut worst_speed) = (law.at(0.0), 0.0f64, 0.0f64);
+        for k in 0..(run.stop / h).round() as usize {
+            let t = k as f64 * h;
+            let t_input = k.saturating_sub(1) as f64 * h;
+            let next = continued(input, t - t_input, law.at(t + h).speed, h);
+            if k > 0 {
+                let (angle, speed, _) = CrankLaw {
+                    length: run.speed,
+                    t_k: t_input,
+                    input,
+                }
+                .kinematics(t);
+                assert_eq!((next.angle, next.speed), (angle, speed), "t = {t}");
+            }
+            let exact = law.at(t);
+            worst_angle = worst_angle.max((next.angle - exact.angle).abs());
+            worst_speed = worst_speed.max((next.speed - exact.speed).abs());
+            input = next;
+        }
+        assert!(worst_speed < 1e-9 * run.speed, "speed off by {worst_speed}");
+        assert!(
+            worst_angle <= 1.01 * alpha_max * h * h / 12.0,
+            "angle off by {worst_angle}"
+        );
+    }
+}
