@@ -318,3 +318,40 @@ fn plots_against_crank_angle_in_degrees_with_plain_ticks() {
         }
     }
 }
+
+/// `flexrod modes` lists the modes the simulation uses: for the automotive rod the mass-loaded
+/// modes up to its band (the piston-rod axial mode at 3268.5 Hz among them) retained, and the
+/// bending modes above the band as static corrections; for the default scene the free modes by
+/// count.
+#[test]
+fn modes_lists_what_the_simulation_uses() {
+    let out = flexrod(&["modes", "scenes/automotive_rod.toml"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let stdout = text(&out.stdout);
+    assert!(stdout.contains("mass-loaded modes"), "{stdout}");
+    assert!(stdout.contains("3 modes retained"), "{stdout}");
+    let row = |mode: usize| {
+        stdout
+            .lines()
+            .find(|l| l.split_whitespace().next() == Some(&mode.to_string()))
+            .unwrap_or_else(|| panic!("mode {mode} listed:\n{stdout}"))
+            .to_string()
+    };
+    assert!(row(2).contains("3268.52") && row(2).contains("axial") && row(2).ends_with("retained"));
+    assert!(
+        row(4).contains("bending") && row(4).ends_with("static correction"),
+        "{}",
+        row(4)
+    );
+    assert!(
+        row(6).contains("axial") && row(6).ends_with("no"),
+        "{}",
+        row(6)
+    );
+    let default = text(&flexrod(&["modes"]).stdout);
+    assert!(
+        default.contains("free modes") && default.contains("rod.modes = 3"),
+        "{default}"
+    );
+    assert!(!default.contains("static correction"), "{default}");
+}

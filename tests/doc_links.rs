@@ -40,15 +40,7 @@ const ROOTS: &[&str] = &[
 /// - docs/generated/extreme-cases.md: `FLEXROD_BLESS=1 cargo test --release --test extreme`;
 /// - docs/generated/fuzz-long.md: the long mode of tests/fuzz_fmi.rs (about an hour).
 const KNOWN_HITS: &[(&str, &str)] = &[
-    ("docs/generated/extreme-cases.md", "issue 14"),
     ("docs/generated/fuzz-long.md", "commit 6fc5bd2"),
-    ("docs/report/error_vs_runtime.svg", "issue 12"),
-    ("docs/report/extreme.md", "issue 6"),
-    ("docs/report/extreme.md", "issue 14"),
-    ("docs/report/report.md", "issue 6"),
-    ("docs/report/report.md", "seed 001"),
-    ("docs/report/report.md", "issue 11"),
-    ("docs/robustness.md", "issue 14"),
     ("docs/robustness.md", "commit 6fc5bd2"),
 ];
 

@@ -212,6 +212,7 @@ impl Mechanism {
         let result = (|| {
             let positions_off = phi.iter().any(|x| x.abs() > position_noise);
             let mut velocities_off = positions_off;
+            let mut acceleration_only = false;
             if !velocities_off {
                 let previous = CrankLaw {
                     length: self.crank_length,
@@ -219,13 +220,26 @@ impl Mechanism {
                     input: state.previous_input,
                 };
                 let (_, v_old, a_old) = previous.pin(t);
-                velocities_off = (v_new - v_old).norm()
-                    > 1e-14 * (1.0 + v_new.norm()) + angle_noise * v_new.norm()
-                    || (a_new - a_old).norm()
-                        > 1e-12 * (1.0 + a_new.norm()) + angle_noise * a_new.norm();
+                let speed_off = (v_new - v_old).norm()
+                    > 1e-14 * (1.0 + v_new.norm()) + angle_noise * v_new.norm();
+                let acceleration_off = (a_new - a_old).norm()
+                    > 1e-12 * (1.0 + a_new.norm()) + angle_noise * a_new.norm();
+                velocities_off = speed_off || acceleration_off;
+                acceleration_only = !speed_off && acceleration_off;
             }
             if !velocities_off {
                 return Ok(false);
+            }
+            // A new crank acceleration that continues the law's angle and speed (a smooth
+            // motion sampled as a continuation, `drive::engine`): positions and velocities
+            // already keep the new law's constraints, nothing to project. An integrator on the
+            // closed-form minimal coordinates that evaluates its first stage (the step that
+            // follows, with its inputs new) solves the new accelerations itself.
+            if acceleration_only
+                && self.rod.ffr_kernel().is_some()
+                && self.integrator.dense_output()
+            {
+                return Ok(true);
             }
             // A change of the crank law (a sampled motion's new angle, speed or acceleration):
             // the M-weighted least change of positions and velocities, for the minimal

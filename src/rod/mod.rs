@@ -22,6 +22,28 @@ use crate::error::ModelError;
 use crate::modal::loaded::{axial_coordinate_at_c, AddedMass};
 use crate::modal::{ComponentModes, ModeSelection, ReferenceConditions};
 
+/// The FFR rod's choice of modes: which modes it retains (`rod.mode_band_hz`, else the
+/// `rod.modes` lowest with `rod.axial_modes`), and the masses added in the eigenproblem
+/// (`rod.loaded_modes`: the slider's `slider_mass`, kg, at C's axial coordinate). With a band,
+/// the bending modes above it are static corrections ([`ffr::residual::residual_indices`]).
+pub fn ffr_mode_choice(spec: &RodSpec, slider_mass: f64) -> (ModeSelection, Vec<AddedMass>) {
+    let selection = match spec.mode_band_hz {
+        Some(max_hz) => ModeSelection::Cutoff { max_hz },
+        None => ModeSelection::CountWithAxial {
+            count: spec.modes,
+            axial: spec.min_axial_modes(slider_mass),
+        },
+    };
+    let added = match spec.loaded_modes {
+        true => vec![AddedMass {
+            coordinate: axial_coordinate_at_c(spec.elements),
+            mass: slider_mass,
+        }],
+        false => Vec::new(),
+    };
+    (selection, added)
+}
+
 /// Build the rod model `spec` asks for: validates the section, preprocesses the modes (FFR)
 /// or the chain (segments). `slider_mass` (kg) decides the automatic axial mode
 /// ([`RodSpec::min_axial_modes`]).
@@ -30,20 +52,7 @@ pub fn build(spec: &RodSpec, slider_mass: f64) -> Result<Box<dyn RodBody>, Model
     match spec.model {
         RodModelKind::Ffr => {
             let reference = ReferenceConditions::from_kind(spec.reference, spec.elements)?;
-            let selection = match spec.mode_band_hz {
-                Some(max_hz) => ModeSelection::Cutoff { max_hz },
-                None => ModeSelection::CountWithAxial {
-                    count: spec.modes,
-                    axial: spec.min_axial_modes(slider_mass),
-                },
-            };
-            let added = match spec.loaded_modes {
-                true => vec![AddedMass {
-                    coordinate: axial_coordinate_at_c(spec.elements),
-                    mass: slider_mass,
-                }],
-                false => Vec::new(),
-            };
+            let (selection, added) = ffr_mode_choice(spec, slider_mass);
             let modes = ComponentModes::from_definition_loaded(
                 definition.clone(),
                 spec.elements,

@@ -1,6 +1,8 @@
 //! `flexrod`: the command-line tool of the core.
 //!
-//! - `flexrod modes [SCENE] [--csv FILE]`: the rod's frequency table and mode shapes.
+//! - `flexrod modes [SCENE] [--csv FILE]`: the rod's frequency table and mode shapes: the modes
+//!   the simulation uses (mass-loaded or free), which are retained and which are static
+//!   corrections.
 //! - `flexrod simulate [SCENE] [--speed W] [--revolutions N] [--ramp T] [--step H] [--input CSV]
 //!   [--out CSV] [--plot PREFIX]`: simulate the slider-crank, write every output at each
 //!   communication point, and plot v_mid/L and the pin forces against the crank angle in
@@ -22,6 +24,8 @@ mod svg_plot;
 use flexrod::drive::{self, communication_grid, CrankDrive};
 use flexrod::modal::shape_integrals::point_shape;
 use flexrod::modal::{ComponentModes, ModeSelection, ReferenceConditions};
+use flexrod::rod::ffr::residual::residual_indices;
+use flexrod::rod::ffr_mode_choice;
 use flexrod::scene::{RodModelKind, Scene};
 use flexrod::Simulation;
 
@@ -45,8 +49,8 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Print the rod's natural frequencies (bending or axial, which are retained) and write
-    /// its mode shapes.
+    /// Print the rod's natural frequencies as the simulation uses them (mass-loaded or free;
+    /// bending or axial; retained, static correction or left out) and write its mode shapes.
     Modes(ModesArgs),
     /// Simulate the slider-crank: print a summary, write every output at each communication
     /// point, plot v_mid/L and the pin forces against the crank angle.
@@ -183,7 +187,11 @@ fn modes(args: &ModesArgs) -> Result<(), Failure> {
     let definition = spec.rod.definition().map_err(|e| e.to_string())?;
     let reference = ReferenceConditions::from_kind(scene.rod.reference, scene.rod.elements)
         .map_err(|e| e.to_string())?;
-    let all = ComponentModes::from_definition(
+    // The modes the simulation uses: the same eigenproblem (mass-loaded with rod.loaded_modes)
+    // and the same selection (the band rod.mode_band_hz, else rod.modes lowest plus
+    // rod.axial_modes), and with a band the bending modes above it as static corrections.
+    let (selection, added) = ffr_mode_choice(&scene.rod, scene.slider.mass);
+    let all = ComponentModes::from_definition_loaded(
         definition,
         scene.rod.elements,
         reference,
@@ -191,34 +199,57 @@ fn modes(args: &ModesArgs) -> Result<(), Failure> {
         &ModeSelection::Cutoff {
             max_hz: f64::INFINITY,
         },
+        &added,
     )
     .map_err(|e| e.to_string())?;
-    // The selection the model makes (rod.modes lowest, plus axial modes: rod.axial_modes).
-    let kept = ModeSelection::CountWithAxial {
-        count: scene.rod.modes,
-        axial: scene.rod.min_axial_modes(scene.slider.mass),
-    }
-    .select_classified(&all.all_frequencies_hz, &all.all_axial_shares)
-    .map_err(|e| e.to_string())?;
+    let kept = selection
+        .select_classified(&all.all_frequencies_hz, &all.all_axial_shares)
+        .map_err(|e| e.to_string())?;
+    let corrections = match scene.rod.mode_band_hz {
+        Some(_) => residual_indices(&all, &kept),
+        None => Vec::new(),
+    };
+    let eigenproblem = match scene.rod.loaded_modes {
+        true => format!(
+            "mass-loaded modes (rod.loaded_modes: slider.mass = {} kg at C in the eigenproblem)",
+            scene.slider.mass
+        ),
+        false => "free modes".to_string(),
+    };
+    let chosen = match scene.rod.mode_band_hz {
+        Some(band) => format!(
+            "every mode up to rod.mode_band_hz = {band} Hz; {} bending modes above it as static corrections to v_mid",
+            corrections.len()
+        ),
+        None => format!(
+            "rod.modes = {}, at least {} axial",
+            scene.rod.modes,
+            scene.rod.min_axial_modes(scene.slider.mass)
+        ),
+    };
     println!(
-        "scene {}: {} elements, {:?} reference conditions, {:?} mass; {} modes retained of {} (rod.modes = {}, at least {} axial)",
+        "scene {}: {} elements, {:?} reference conditions, {:?} mass, {eigenproblem}; {} modes retained of {} ({chosen})",
         scene.name,
         scene.rod.elements,
         scene.rod.reference,
         scene.rod.mass,
         kept.len(),
         all.all_frequencies_hz.len(),
-        scene.rod.modes,
-        scene.rod.min_axial_modes(scene.slider.mass)
     );
-    println!("mode  frequency_hz  kind     axial_share  retained");
+    println!("mode  frequency_hz  kind     axial_share  used");
     for (k, f) in all.all_frequencies_hz.iter().enumerate() {
+        let used = if kept.contains(&k) {
+            "retained"
+        } else if corrections.contains(&k) {
+            "static correction"
+        } else {
+            "no"
+        };
         println!(
-            "{:>4}  {f:>12.4}  {:<7}  {:>11.3}  {}",
+            "{:>4}  {f:>12.4}  {:<7}  {:>11.3}  {used}",
             k + 1,
             if all.is_axial(k) { "axial" } else { "bending" },
             all.all_axial_shares[k],
-            if kept.contains(&k) { "yes" } else { "no" }
         );
     }
     if let Some(path) = &args.csv {

@@ -7,6 +7,7 @@ use super::ranges::{
     element_count, non_negative, policy_code, set_model, set_policy, set_reference, usize_to_i32,
     ELEMENTS_MAX,
 };
+use super::ranges::{loaded_modes_code, set_loaded_modes};
 use super::types::{Access, InitialDependencies, InputSlot, Value, ValueType};
 use super::{Interface, VariableId, VariableTable, FREQUENCY_VR_BASE};
 use crate::scene::Scene;
@@ -23,6 +24,33 @@ const FREQUENCY_KNOWNS: &[&str] = &[
     "rod.reference",
     "rod.model_index",
     "rod.reference_index",
+    "rod.shear_modulus",
+    "rod.big_end.mass",
+    "rod.big_end.inertia",
+    "rod.small_end.mass",
+    "rod.small_end.inertia",
+];
+
+/// [`FREQUENCY_KNOWNS`] of a scene that declares `rod.loaded_modes`: with mass-loaded modes the
+/// slider's mass is in the eigenproblem.
+const FREQUENCY_KNOWNS_LOADED: &[&str] = &[
+    "rod.length",
+    "rod.youngs_modulus",
+    "rod.density",
+    "rod.area",
+    "rod.area_moment",
+    "rod.model",
+    "rod.elements",
+    "rod.reference",
+    "rod.model_index",
+    "rod.reference_index",
+    "rod.shear_modulus",
+    "rod.big_end.mass",
+    "rod.big_end.inertia",
+    "rod.small_end.mass",
+    "rod.small_end.inertia",
+    "rod.loaded_modes",
+    "slider.mass",
 ];
 
 impl VariableTable {
@@ -282,15 +310,20 @@ impl VariableTable {
             set_reference,
             "Reference conditions (FFR)",
         );
-        b.integer_parameter(
-            "rod.modes",
-            113,
-            ValueType::Integer,
-            |s| usize_to_i32(s.rod.modes),
-            |s, v| non_negative(v).map(|n| s.rod.modes = n),
-            "Retained modes (FFR), lowest first",
-        );
-        b.bounds(Some(Value::Integer(0)), None);
+        // The retained modes: a count (`rod.modes`) or, in a scene with a mode band, every
+        // mode up to a frequency (`rod.mode_band_hz`, below). A scene declares the one it
+        // uses, so that no parameter is ignored.
+        if scene.rod.mode_band_hz.is_none() {
+            b.integer_parameter(
+                "rod.modes",
+                113,
+                ValueType::Integer,
+                |s| usize_to_i32(s.rod.modes),
+                |s, v| non_negative(v).map(|n| s.rod.modes = n),
+                "Retained modes (FFR), lowest first",
+            );
+            b.bounds(Some(Value::Integer(0)), None);
+        }
 
         // Slider line and gravity (`docs/fmu.md`, "Real connecting rods"), in scenes with a
         // `[mechanism]` table.
@@ -378,6 +411,33 @@ impl VariableTable {
             b.non_negative();
         }
 
+        // The modes chosen for the mechanism (`docs/fmu.md`, "Mode band and mass-loaded
+        // modes"), value references 143-144, in scenes with `rod.loaded_modes` or
+        // `rod.mode_band_hz`.
+        let loaded_declared = scene.rod.loaded_modes || scene.rod.mode_band_hz.is_some();
+        if loaded_declared {
+            b.integer_parameter(
+                "rod.loaded_modes",
+                143,
+                ValueType::Integer,
+                loaded_modes_code,
+                set_loaded_modes,
+                "Mass-loaded modes (FFR): 1 = the slider's mass at C in the eigenproblem (the slider-rod axial mode is a mode; rod.frequency[k] are the loaded frequencies), 0 = free modes",
+            );
+            b.bounds(Some(Value::Integer(0)), Some(Value::Integer(1)));
+        }
+        if scene.rod.mode_band_hz.is_some() {
+            b.real_parameter(
+                "rod.mode_band_hz",
+                144,
+                real("Hz"),
+                |s| s.rod.mode_band_hz.unwrap_or(f64::INFINITY),
+                |s, v| s.rod.mode_band_hz = Some(v),
+                "Mode band (FFR): every mode up to this frequency is retained, the bending modes above act as static corrections to rod.deflection; finite, > 0",
+            );
+            b.positive();
+        }
+
         // Integer twins of the Enumeration parameters: masters that ignore Enumeration
         // variables (libcosim, among others) can still switch the model and the reference
         // conditions. Same getter and setter as the Enumeration: one value, two names.
@@ -441,6 +501,11 @@ impl VariableTable {
         b.bounds(Some(Value::Integer(1)), Some(Value::Integer(3)));
 
         // Calculated parameters (with arrays: one array, see `interface`).
+        let frequency_knowns = if loaded_declared {
+            FREQUENCY_KNOWNS_LOADED
+        } else {
+            FREQUENCY_KNOWNS
+        };
         let scalar_frequencies = if interface.arrays { 0 } else { n_frequencies };
         for k in 1..=scalar_frequencies {
             b.calculated_parameter(
@@ -448,7 +513,7 @@ impl VariableTable {
                 FREQUENCY_VR_BASE + k as VariableId,
                 real("Hz"),
                 Access::Frequency(k - 1),
-                D::Named(FREQUENCY_KNOWNS),
+                D::Named(frequency_knowns),
                 format!(
                     "Natural frequency {k} of the rod under its reference conditions (retained or not)"
                 ),
@@ -465,7 +530,7 @@ impl VariableTable {
                 "Mass of the rod with its end bodies".into(),
             );
         }
-        super::interface::add_variables(&mut b, interface, n_frequencies, FREQUENCY_KNOWNS);
+        super::interface::add_variables(&mut b, interface, n_frequencies, frequency_knowns);
         b.finish()
     }
 }

@@ -68,6 +68,25 @@ pub fn set_policy(scene: &mut Scene, value: i32) -> Result<(), String> {
     }
 }
 
+/// `rod.loaded_modes` as an Integer: 0 free modes, 1 mass-loaded modes.
+pub fn loaded_modes_code(scene: &Scene) -> i32 {
+    i32::from(scene.rod.loaded_modes)
+}
+
+/// `rod.loaded_modes`: 0 (free modes), 1 (mass-loaded modes).
+pub fn set_loaded_modes(scene: &mut Scene, value: i32) -> Result<(), String> {
+    match value {
+        0 | 1 => {
+            scene.rod.loaded_modes = value == 1;
+            Ok(())
+        }
+        _ => Err(
+            "0 (free modes) or 1 (mass-loaded modes: the slider's mass at C in the eigenproblem)"
+                .to_string(),
+        ),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -110,5 +129,21 @@ mod tests {
         assert!(element_count(ELEMENTS_MAX + 1).is_err());
         assert!(element_count(-3).is_err());
         assert!(non_negative(-1).is_err());
+    }
+
+    #[test]
+    fn loaded_modes_codes() {
+        let mut scene = Scene::benchmark();
+        assert_eq!(loaded_modes_code(&scene), 0);
+        assert!(set_loaded_modes(&mut scene, 1).is_ok());
+        assert!(scene.rod.loaded_modes);
+        assert_eq!(loaded_modes_code(&scene), 1);
+        assert!(set_loaded_modes(&mut scene, 0).is_ok());
+        assert!(!scene.rod.loaded_modes);
+        for bad in [-1, 2, i32::MAX] {
+            assert!(set_loaded_modes(&mut scene, bad)
+                .unwrap_err()
+                .starts_with("0 (free modes) or 1"));
+        }
     }
 }

@@ -40,26 +40,44 @@ pub struct ResidualMode {
 /// come from) that are not among `retained` (indices into `all.all_frequencies_hz`).
 pub fn residual_modes(all: &ComponentModes, retained: &[usize]) -> Vec<ResidualMode> {
     let ig = ShapeIntegrals::new(all);
-    let scale = ig.mass.sqrt();
-    (0..all.n_modes())
-        .filter(|&j| {
-            let k = all.retained[j];
-            let pins = [
-                ig.s_b[(0, j)],
-                ig.s_b[(1, j)],
-                ig.s_c[(0, j)],
-                ig.s_c[(1, j)],
-            ]
-            .iter()
-            .fold(0.0f64, |a, x| a.max(x.abs()));
-            !retained.contains(&k) && !all.is_axial(k) && pins * scale <= PINNED_MOBILITY
-        })
+    residual_columns(all, &ig, retained)
         .map(|j| ResidualMode {
             omega2: all.omega2[j],
             i2: [ig.i2[(0, j)], ig.i2[(1, j)]],
             m_phi: -ig.i5[j] + ig.i_rot[j],
             s_mid_y: ig.s_mid[(1, j)],
         })
+        .collect()
+}
+
+/// The columns of `all` that are static corrections: left out of `retained`, bending, and
+/// leaving the pins in place.
+fn residual_columns<'a>(
+    all: &'a ComponentModes,
+    ig: &'a ShapeIntegrals,
+    retained: &'a [usize],
+) -> impl Iterator<Item = usize> + 'a {
+    let scale = ig.mass.sqrt();
+    (0..all.n_modes()).filter(move |&j| {
+        let k = all.retained[j];
+        let pins = [
+            ig.s_b[(0, j)],
+            ig.s_b[(1, j)],
+            ig.s_c[(0, j)],
+            ig.s_c[(1, j)],
+        ]
+        .iter()
+        .fold(0.0f64, |a, x| a.max(x.abs()));
+        !retained.contains(&k) && !all.is_axial(k) && pins * scale <= PINNED_MOBILITY
+    })
+}
+
+/// The modes [`residual_modes`] takes as static corrections, as indices into
+/// `all.all_frequencies_hz` (what `flexrod modes` lists).
+pub fn residual_indices(all: &ComponentModes, retained: &[usize]) -> Vec<usize> {
+    let ig = ShapeIntegrals::new(all);
+    residual_columns(all, &ig, retained)
+        .map(|j| all.retained[j])
         .collect()
 }
 

@@ -452,7 +452,16 @@ impl RodBody for FfrRod {
     }
 
     fn describe(&self) -> String {
-        format!("FFR rod, modes kept: {}", self.modes.summary())
+        let kept = format!("FFR rod, modes kept: {}", self.modes.summary());
+        let hz = |w2: f64| w2.sqrt() / (2.0 * std::f64::consts::PI);
+        let above = self.residual.iter().map(|r| hz(r.omega2));
+        match (above.clone().reduce(f64::min), above.reduce(f64::max)) {
+            (Some(lo), Some(hi)) => format!(
+                "{kept}; static corrections to v_mid: {} bending modes, {lo:.0} to {hi:.0} Hz",
+                self.residual.len()
+            ),
+            _ => kept,
+        }
     }
 
     fn length(&self) -> f64 {
