@@ -17,6 +17,10 @@ pub const LARGE_DEFLECTION_WARNING: f64 = 0.05;
 /// A longer communication step is refused with the state kept (`ModelError::TooMuchWork`).
 pub const MAX_INTERNAL_STEPS: u64 = 100_000;
 
+/// Largest `solver.max_halvings` (checked by the scene validation): a failed step is split
+/// into at most `2^20` pieces, the smallest `1e-6` of it.
+pub const MAX_HALVINGS: usize = 20;
+
 /// Largest magnitude of an accepted output, in its SI unit (N, N m, m, m/s): anything larger is
 /// a diverged integration, refused like a failed step.
 pub const MAX_OUTPUT_MAGNITUDE: f64 = 1e12;
@@ -61,7 +65,7 @@ impl Mechanism {
                 } else {
                     t_start + h * (k + 1) as f64 / n_sub as f64
                 };
-                self.step_with_halving(state, target, 0)?;
+                self.step_with_halving(state, target)?;
             }
             Ok(())
         })();
@@ -371,33 +375,44 @@ impl Mechanism {
         dae.amplitude = dae.amplitude.max(here);
     }
 
-    /// One internal step to `target`, split in halves on failure (recursively, `depth` deep).
+    /// One internal step to `target`, split in halves on failure, at most `solver.max_halvings`
+    /// levels deep. A loop over a fixed stack of pending targets (the second halves, the
+    /// deepest on top) takes the halves in the order a recursion would, with no call depth a
+    /// scene controls and no allocation.
     fn step_with_halving(
         &mut self,
         state: &mut MechanismState,
         target: f64,
-        depth: usize,
     ) -> Result<(), (f64, f64, String)> {
-        let h = target - state.dae.t;
-        let sys = dae_context(self.rod.as_ref(), &self.spec, state, &self.pin_cache);
-        match self.integrator.step(&sys, &mut state.dae, h) {
-            Ok(work) => {
-                state.dae.t = target;
-                state.stats.steps += 1;
-                state.stats.newton_iterations += work as u64;
-                Ok(())
-            }
-            Err(error) => {
-                state.stats.newton_iterations += error.work as u64;
-                if depth >= self.max_halvings {
-                    return Err((state.dae.t, h, error.failure.to_string()));
+        // At most one pending target per level: `MAX_HALVINGS + 1` entries, on the stack.
+        let max_depth = self.max_halvings.min(MAX_HALVINGS);
+        let mut pending = [(0.0, 0usize); MAX_HALVINGS + 1];
+        pending[0] = (target, 0);
+        let mut len = 1;
+        while len > 0 {
+            len -= 1;
+            let (target, depth) = pending[len];
+            let h = target - state.dae.t;
+            let sys = dae_context(self.rod.as_ref(), &self.spec, state, &self.pin_cache);
+            match self.integrator.step(&sys, &mut state.dae, h) {
+                Ok(work) => {
+                    state.dae.t = target;
+                    state.stats.steps += 1;
+                    state.stats.newton_iterations += work as u64;
                 }
-                state.stats.halvings += 1;
-                let mid = state.dae.t + 0.5 * h;
-                self.step_with_halving(state, mid, depth + 1)?;
-                self.step_with_halving(state, target, depth + 1)
+                Err(error) => {
+                    state.stats.newton_iterations += error.work as u64;
+                    if depth >= max_depth {
+                        return Err((state.dae.t, h, error.failure.to_string()));
+                    }
+                    state.stats.halvings += 1;
+                    pending[len] = (target, depth + 1);
+                    pending[len + 1] = (state.dae.t + 0.5 * h, depth + 1);
+                    len += 2;
+                }
             }
         }
+        Ok(())
     }
 
     /// The deflection policy (`rod.deflection_limit`, `rod.deflection_policy`) on the outputs
