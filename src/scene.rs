@@ -201,12 +201,10 @@ impl Scene {
             origin: origin.to_string(),
             message: e.to_string().trim().to_string(),
         })?;
-        scene
-            .validate_settings()
-            .map_err(|e| ModelError::Scene {
-                origin: origin.to_string(),
-                message: e.to_string(),
-            })?;
+        scene.validate_settings().map_err(|e| ModelError::Scene {
+            origin: origin.to_string(),
+            message: e.to_string(),
+        })?;
         Ok(scene)
     }
 

@@ -226,6 +226,10 @@ impl Simulation {
         state
             .read_bytes(&bytes[20..])
             .map_err(|m: String| bad(&m))?;
+        // The input windows of the set calls, for the law in force and the one before it.
+        check_input(state.input, state.slider_force).map_err(|e| bad(&e.to_string()))?;
+        check_input(state.previous_input, state.slider_force)
+            .map_err(|e| bad(&format!("the previous law: {e}")))?;
         self.state = state;
         Ok(())
     }

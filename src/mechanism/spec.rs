@@ -203,7 +203,13 @@ impl SolverSpec {
             });
         }
         let (low, high) = NEWTON_TOLERANCE_RANGE;
-        require_within("solver.newton_tolerance", self.newton_tolerance, low, high, "")?;
+        require_within(
+            "solver.newton_tolerance",
+            self.newton_tolerance,
+            low,
+            high,
+            "",
+        )?;
         if !(1..=MAX_NEWTON_ITERATIONS).contains(&self.max_newton_iterations) {
             return Err(ModelError::InvalidParameter {
                 name: "solver.max_newton_iterations",
