@@ -470,3 +470,46 @@ fn experiment_values_past_their_ranges_are_refused() {
     }
     assert!(Path::new(env!("CARGO_BIN_EXE_flexrod")).exists());
 }
+
+/// A section-table scene declares no uniform `rod.area` / `rod.area_moment`; `rod.elements`
+/// declares the least count that leaves the declared frequencies for the exported model, and
+/// the set call refuses a value outside the declared range (what the initialization would
+/// refuse later).
+#[test]
+fn declared_ranges_are_what_the_fmu_can_do() {
+    use flexrod::model::{Model, VariableTable};
+    use flexrod::scene::RodModelKind;
+    let automotive = Scene::from_file(Path::new("scenes/automotive_rod.toml")).unwrap();
+    for scene in [automotive] {
+        let d = ModelDescription::for_scene(&scene).unwrap();
+        assert!(d.table.by_name("rod.area").is_none());
+        assert!(d.table.by_name("rod.area_moment").is_none());
+        assert!(!d.xml.contains("\"rod.area\""));
+    }
+    let mut segments = Scene::benchmark();
+    segments.rod.model = RodModelKind::Segments;
+    segments.solver.method = SolverMethod::GeneralizedAlpha;
+    for (scene, least) in [(Scene::benchmark(), 2), (segments, 7)] {
+        let table = VariableTable::for_scene(&scene, flexrod::model::Interface::SCALARS).unwrap();
+        assert_eq!(table.frequency_count(), 6);
+        let v = table.by_name("rod.elements").unwrap();
+        assert_eq!(
+            v.min,
+            Some(flexrod::model::variables::Value::Integer(least)),
+            "{:?}",
+            scene.rod.model
+        );
+        let mut model = Model::new(scene.clone(), &table);
+        let (_, text) = model.set_integers(&[(v, least - 1)]).unwrap_err();
+        assert!(text.contains(&format!("{least}..=128")), "{text}");
+        model.set_integers(&[(v, least)]).unwrap();
+        model
+            .ensure_started(0.0, &table)
+            .unwrap_or_else(|e| panic!("{:?} with {least}: {e}", scene.rod.model));
+        println!(
+            "{:?}: rod.elements declared min {least}, {} refused at the set call: {text}",
+            scene.rod.model,
+            least - 1
+        );
+    }
+}

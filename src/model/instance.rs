@@ -4,7 +4,7 @@
 //! calls); it says nothing of how the interface reports the outcome.
 
 use super::inputs::Inputs;
-use super::variables::{Access, Variable, VariableTable};
+use super::variables::{Access, Value, Variable, VariableTable};
 use crate::error::ModelError;
 use crate::scene::Scene;
 use crate::simulation::{Simulation, Snapshot};
@@ -277,6 +277,13 @@ impl Model {
     pub fn set_integers(&mut self, items: &[(&Variable, i32)]) -> Result<(), (usize, String)> {
         let mut scene = self.scene.clone();
         for (k, &(v, n)) in items.iter().enumerate() {
+            // The declared range first (the setter's own may be wider: `rod.elements` declares
+            // the least count that leaves the declared frequencies for the exported model).
+            if let (Some(Value::Integer(low)), Some(Value::Integer(high))) = (&v.min, &v.max) {
+                if !(*low..=*high).contains(&n) {
+                    return Err((k, declared_range_text(v, *low, *high)));
+                }
+            }
             match v.access {
                 Access::IntegerParameter { set, .. } => set(&mut scene, n).map_err(|e| (k, e))?,
                 _ => return Err((k, format!("{} cannot be set as an Integer", v.name))),
@@ -431,6 +438,17 @@ impl Model {
             }
             _ => Simulation::new(scene).and_then(|mut scratch| f(&mut scratch)),
         }
+    }
+}
+
+/// The allowed values of an Integer parameter whose declared range refused a value.
+fn declared_range_text(v: &Variable, low: i32, high: i32) -> String {
+    if v.name == "rod.elements" {
+        format!(
+            "an integer in {low}..={high} (the declared range: the least count that leaves the declared rod.frequency values for the exported rod.model, up to the mesh limit)"
+        )
+    } else {
+        format!("an integer in {low}..={high} (the declared range)")
     }
 }
 
