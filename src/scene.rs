@@ -118,6 +118,10 @@ pub struct ExperimentSpec {
     pub crank_speed: f64,
 }
 
+/// The window of the crank speed, rad/s (95 000 rpm): `[experiment] crank_speed` and the input
+/// `crank.speed` (`simulation::INPUT_WINDOWS`).
+pub const CRANK_SPEED_WINDOW: f64 = 1e4;
+
 /// `[experiment]` start and stop time: within `+-EXPERIMENT_TIME_LIMIT` s.
 pub const EXPERIMENT_TIME_LIMIT: f64 = 1e6;
 /// `[experiment]` step_size range, s.
@@ -157,7 +161,7 @@ impl ExperimentSpec {
                 ),
             });
         }
-        let window = crate::simulation::INPUT_WINDOWS[1];
+        let window = CRANK_SPEED_WINDOW;
         require_within(
             "experiment.crank_speed",
             self.crank_speed,
