@@ -504,7 +504,7 @@ fn fmi3_sequence(rng: &mut Rng, ext: &mut Extended, v: &mut Violations, seq: u64
                     fmi3ExitInitializationMode(i),
                     vec![],
                 ),
-                2 | 3 | 4 => {
+                2..=4 => {
                     let h = if rng.one_in(5) {
                         rng.abusive_real()
                     } else {
