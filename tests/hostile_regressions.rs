@@ -511,3 +511,53 @@ fn declared_ranges_are_what_the_fmu_can_do() {
         );
     }
 }
+
+/// One communication step of a large model inside the declared ranges ends within the work
+/// budget: the FFR rod with 115 elements and 344 modes, soft and heavy (many internal steps of
+/// a costly model), and the stiffest 128-segment chain; each either completes or is refused
+/// at the work bound with the state kept, in bounded time.
+#[test]
+fn large_models_inside_the_declared_ranges_take_bounded_time_per_step() {
+    if is_child("large-models") {
+        let mut ffr = Scene::benchmark();
+        ffr.rod.elements = 115;
+        ffr.rod.modes = 344;
+        ffr.rod.youngs_modulus = 1e6;
+        ffr.rod.density = 1e5;
+        let mut segments = Scene::benchmark();
+        segments.rod.model = flexrod::scene::RodModelKind::Segments;
+        segments.rod.elements = 128;
+        segments.solver.method = SolverMethod::GeneralizedAlpha;
+        segments.rod.youngs_modulus = 1e17;
+        segments.rod.density = 10.0;
+        for (label, scene, h) in [("FFR 115/344", ffr, 1e-2), ("segments 128", segments, 0.1)] {
+            let mut sim = Simulation::new(&scene).expect("in range");
+            sim.start(
+                0.0,
+                CrankInput {
+                    angle: 0.0,
+                    speed: 150.0,
+                    acceleration: 0.0,
+                },
+                0.0,
+            )
+            .unwrap();
+            let t0 = Instant::now();
+            let r = sim.advance(h);
+            let took = t0.elapsed().as_secs_f64();
+            println!("{label}, h = {h} s: {took:.2} s, {r:?}");
+            match r {
+                Ok(_) => assert_eq!(sim.time(), h),
+                Err(flexrod::ModelError::TooMuchWork { .. }) => assert_eq!(sim.time(), 0.0),
+                Err(e) => panic!("{label}: {e}"),
+            }
+            assert!(took < 30.0, "{label}: {took} s");
+        }
+        return;
+    }
+    in_child(
+        "large_models_inside_the_declared_ranges_take_bounded_time_per_step",
+        "large-models",
+        Duration::from_secs(90),
+    );
+}
