@@ -187,7 +187,7 @@ fn forged_solver_case(key: &str, value: &str) {
 }
 
 /// `max_halvings = 100000` in a forged pre-initialization state and in a scene file: refused
-/// (the halving was a recursion 100000 calls deep: a stack overflow).
+/// (run in a child: 100000 levels of halving, were they reached, would take the process down).
 #[test]
 fn huge_max_halvings_is_refused_in_states_and_scene_files() {
     if is_child("halvings") {
@@ -205,8 +205,8 @@ fn huge_max_halvings_is_refused_in_states_and_scene_files() {
     );
 }
 
-/// `max_newton_iterations = 1e9` in a forged state and in a scene file: refused (one step
-/// ran past 60 s).
+/// `max_newton_iterations = 1e9` in a forged state and in a scene file: refused (run in a child
+/// with a time limit: a billion Newton iterations in one step would run for minutes).
 #[test]
 fn huge_max_newton_iterations_is_refused_in_states_and_scene_files() {
     if is_child("newton") {
