@@ -89,9 +89,9 @@ pub enum End {
     C,
 }
 
-/// Most `[[rod.section]]` stations a table may have. The model's preprocessing grows with the
-/// cube of the station count (every station splits the elements it falls in); at this many the
-/// initialization stays within the time docs/fmu.md states for the declared maxima.
+/// Most `[[rod.section]]` stations a table may have. The model's preprocessing grows steeply
+/// with the station count; at this many the initialization of the largest model stays within
+/// the time docs/fmu.md states for the declared maxima (`tests/work_bound.rs`).
 pub const MAX_STATIONS: usize = 256;
 
 /// Refuse a table of more than [`MAX_STATIONS`] stations (before anything is built from it).
