@@ -21,7 +21,7 @@ pub const MAX_INTERNAL_STEPS: u64 = 100_000;
 /// (a Newton iteration or a right-hand-side evaluation, accepted or not, plus one per internal
 /// step and one per halving), `n` the number of coordinates: an evaluation costs a dense
 /// product (`n^2`) and a dense solve (`n^3`), measured about equal at `n = 100`. The budget so
-/// bounds the time of one call about equally at every model size (342 evaluations at the
+/// bounds the time of one call about equally at every model size (340 evaluations at the
 /// largest FFR rod, n = 388; docs/fmu.md, "Time per call", gives the measured worst case);
 /// small models reach [`MAX_INTERNAL_STEPS`] first. A communication step that would need more
 /// is refused with the state kept.
