@@ -10,7 +10,7 @@
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
-use crate::error::ModelError;
+use crate::error::{require_within, ModelError};
 
 pub use crate::beam::MassKind;
 pub use crate::mechanism::spec::{
@@ -118,6 +118,60 @@ pub struct ExperimentSpec {
     pub crank_speed: f64,
 }
 
+/// The window of the crank speed, rad/s (95 000 rpm): `[experiment] crank_speed` and the input
+/// `crank.speed` (`simulation::INPUT_WINDOWS`).
+pub const CRANK_SPEED_WINDOW: f64 = 1e4;
+
+/// `[experiment]` start and stop time: within `+-EXPERIMENT_TIME_LIMIT` s.
+pub const EXPERIMENT_TIME_LIMIT: f64 = 1e6;
+/// `[experiment]` step_size range, s.
+pub const EXPERIMENT_STEP_RANGE: (f64, f64) = (1e-9, 1.0);
+
+impl ExperimentSpec {
+    /// Start and stop time finite, within `+-1e6` s and in order, the step in `[1e-9, 1]` s
+    /// and not longer than the run, the crank speed within its input window.
+    pub fn validate(&self) -> Result<(), ModelError> {
+        let limit = EXPERIMENT_TIME_LIMIT;
+        require_within("experiment.start_time", self.start_time, -limit, limit, "s")?;
+        if !(self.stop_time.is_finite()
+            && self.stop_time > self.start_time
+            && self.stop_time <= limit)
+        {
+            return Err(ModelError::InvalidParameter {
+                name: "experiment.stop_time",
+                value: self.stop_time,
+                allowed: format!(
+                    "a finite value in (start_time, {limit:e}] s, start_time = {} s",
+                    self.start_time
+                ),
+            });
+        }
+        let (low, high) = EXPERIMENT_STEP_RANGE;
+        let span = self.stop_time - self.start_time;
+        if !(self.step_size.is_finite()
+            && self.step_size >= low
+            && self.step_size <= high.min(span))
+        {
+            return Err(ModelError::InvalidParameter {
+                name: "experiment.step_size",
+                value: self.step_size,
+                allowed: format!(
+                    "a finite value in [{low:e}, {:e}] s (at most 1 s and at most stop_time - start_time)",
+                    high.min(span)
+                ),
+            });
+        }
+        let window = CRANK_SPEED_WINDOW;
+        require_within(
+            "experiment.crank_speed",
+            self.crank_speed,
+            -window,
+            window,
+            "rad/s",
+        )
+    }
+}
+
 impl Default for ExperimentSpec {
     fn default() -> Self {
         ExperimentSpec {
@@ -144,11 +198,29 @@ pub const DEFAULT_SCENE_TOML: &str = include_str!("../scenes/benchmark.toml");
 
 impl Scene {
     /// Parse a scene from TOML text; `origin` names the file in error messages.
+    /// The settings no importer can set are checked here ([`Scene::validate_settings`]); the
+    /// physical parameters when the model is built.
     pub fn from_toml_str(text: &str, origin: &str) -> Result<Scene, ModelError> {
-        toml::from_str(text).map_err(|e| ModelError::Scene {
+        let scene: Scene = toml::from_str(text).map_err(|e| ModelError::Scene {
             origin: origin.to_string(),
             message: e.to_string().trim().to_string(),
-        })
+        })?;
+        scene.validate_settings().map_err(|e| ModelError::Scene {
+            origin: origin.to_string(),
+            message: e.to_string(),
+        })?;
+        Ok(scene)
+    }
+
+    /// Check the keys an importer cannot set against their ranges (docs/fmu.md, "Input
+    /// windows"), before anything uses them: the `[solver]` settings but `solver.tolerance`
+    /// ([`SolverSpec::validate_settings`]), the number of `[[rod.section]]` stations
+    /// ([`crate::beam::MAX_STATIONS`]) and the `[experiment]`. Each error names the key and its
+    /// range.
+    pub fn validate_settings(&self) -> Result<(), ModelError> {
+        self.solver.validate_settings()?;
+        crate::beam::section_table::check_station_count(self.rod.section.len())?;
+        self.experiment.validate()
     }
 
     /// Read and parse a scene file.

@@ -43,7 +43,7 @@ pub struct InputSnapshot {
 /// Largest magnitudes of the inputs (past them no output can be trusted): crank
 /// angle 1e9 rad (the phase keeps 1e-7 rad), crank speed 1e4 rad/s (95 000 rpm), crank
 /// acceleration 1e8 rad/s^2, slider force 1e8 N.
-pub const INPUT_WINDOWS: [f64; 4] = [1e9, 1e4, 1e8, 1e8];
+pub const INPUT_WINDOWS: [f64; 4] = [1e9, crate::scene::CRANK_SPEED_WINDOW, 1e8, 1e8];
 
 impl Simulation {
     /// Build the model of `scene`: validate the parameters, preprocess the rod (modes,
@@ -226,6 +226,10 @@ impl Simulation {
         state
             .read_bytes(&bytes[20..])
             .map_err(|m: String| bad(&m))?;
+        // The input windows of the set calls, for the law in force and the one before it.
+        check_input(state.input, state.slider_force).map_err(|e| bad(&e.to_string()))?;
+        check_input(state.previous_input, state.slider_force)
+            .map_err(|e| bad(&format!("the previous law: {e}")))?;
         self.state = state;
         Ok(())
     }

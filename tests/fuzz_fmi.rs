@@ -1,4 +1,6 @@
-//! The FMI 2.0 C boundary fuzzed (harness in `tests/fuzz/`).
+//! The FMI C boundary fuzzed (harness in `tests/fuzz/`): FMI 2.0 call sequences, and per
+//! sequence the extended generators (forged pre-initialization states, in-range extremes with a
+//! wall-time oracle, freed and foreign handles, FMI 3.0 sequences; `tests/fuzz/extended.rs`).
 //!
 //! - `random_call_sequences_keep_the_contract`: seeded sequences of all 34 fmi2 functions in
 //!   legal and illegal orders, with the continuation-equivalence oracle (a twin instance gets
@@ -92,6 +94,7 @@ fn run_range(first: u64, n: u64, vars: &Vars) -> (Totals, Violations) {
     for seq in first..first + n {
         instance_free_calls(&mut rng, vars, &mut totals, &mut violations);
         sequence::run(seq, vars, &mut totals, &mut violations);
+        fuzz::extended::run(seq, vars, &mut totals.extended, &mut violations);
     }
     (totals, violations)
 }
@@ -137,6 +140,7 @@ fn random_call_sequences_keep_the_contract() {
         totals.segment_sequences += t.segment_sequences;
         totals.panics += t.panics;
         totals.unchanged_refusals += t.unchanged_refusals;
+        totals.extended.add(&t.extended);
         violations.count += v.count;
         violations.first.extend(v.first);
     }
@@ -156,6 +160,7 @@ fn random_call_sequences_keep_the_contract() {
         violations.count
     );
     println!("calls per function: {:?}", totals.counts.functions);
+    println!("extended generators: {:?}", totals.extended);
     for line in &violations.first {
         println!("  {line}");
     }
@@ -178,6 +183,18 @@ fn random_call_sequences_keep_the_contract() {
         totals.segment_sequences,
         totals.panics,
         violations.count,
+    );
+    let x = &totals.extended;
+    let figures = format!(
+        "{figures}. Per sequence also: {} forged pre-initialization states ({} refused with fmi2Error and a message, {} calls on the accepted ones), {} in-range extremes (every call within {} s), {} calls on freed or foreign handles (FMI 2.0 and FMI 3.0, every one an error), {} FMI 3.0 sequences of {} calls",
+        x.forged_states,
+        x.forged_refused,
+        x.forged_calls_after,
+        x.extremes,
+        fuzz::extended::WALL_LIMIT,
+        x.stale_handle_calls,
+        x.fmi3_sequences,
+        x.fmi3_calls,
     );
     if n == DEFAULT_SEQUENCES && first == 0 {
         common::generated::check_generated("fuzz-short", &format!("{figures}.\n"));

@@ -89,6 +89,23 @@ pub enum End {
     C,
 }
 
+/// Most `[[rod.section]]` stations a table may have. The model's preprocessing grows steeply
+/// with the station count; at this many the initialization of the largest model stays within
+/// the time docs/fmu.md states for the declared maxima (`tests/work_bound.rs`).
+pub const MAX_STATIONS: usize = 256;
+
+/// Refuse a table of more than [`MAX_STATIONS`] stations (before anything is built from it).
+pub fn check_station_count(count: usize) -> Result<(), ModelError> {
+    if count > MAX_STATIONS {
+        return Err(ModelError::InvalidParameter {
+            name: "rod.section",
+            value: count as f64,
+            allowed: format!("at most {MAX_STATIONS} [[rod.section]] stations"),
+        });
+    }
+    Ok(())
+}
+
 /// A validated station table over `[0, length]`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SectionTable {
@@ -121,6 +138,7 @@ impl SectionTable {
     /// area and fibre distance finite and > 0 where given.
     pub fn new(length: f64, stations: &[SectionStation]) -> Result<SectionTable, ModelError> {
         crate::error::require_positive("rod.length", length)?;
+        check_station_count(stations.len())?;
         if stations.is_empty() {
             return Err(ModelError::InvalidParameter {
                 name: "rod.section",

@@ -161,6 +161,78 @@ fn default_halvings() -> usize {
     6
 }
 
+/// The ranges of the `[solver]` keys (each checked by [`SolverSpec::validate`]; docs/fmu.md,
+/// "Input windows"): the internal step in s, the Newton tolerance, the iteration and halving
+/// counts. They bound the work of one internal step: at most `max_newton_iterations` Newton
+/// iterations, split at most `max_halvings` times.
+pub const SOLVER_STEP_RANGE: (f64, f64) = (1e-9, 1e-2);
+/// `solver.newton_tolerance`: any positive normal double up to 1e-2 (a tolerance Newton cannot
+/// meet fails the step, bounded by the iteration count).
+pub const NEWTON_TOLERANCE_RANGE: (f64, f64) = (f64::MIN_POSITIVE, 1e-2);
+/// `solver.max_newton_iterations`.
+pub const MAX_NEWTON_ITERATIONS: usize = 100;
+/// `solver.max_halvings` (the halving loop's stack holds one more).
+pub use super::stepping::MAX_HALVINGS;
+
+impl SolverSpec {
+    /// Check every `[solver]` key against its range (each error names the key and the range).
+    pub fn validate(&self) -> Result<(), ModelError> {
+        self.validate_settings()?;
+        let tol = self.tolerance;
+        // Below 1e-10 of the peak the error control asks for more than double precision can
+        // give over a run (at 5e-324 every step would refuse at the work bound).
+        if !(tol.is_finite() && (1e-10..=0.1).contains(&tol)) {
+            return Err(ModelError::InvalidParameter {
+                name: "solver.tolerance",
+                value: tol,
+                allowed: "[1e-10, 0.1]: the pointwise deflection error relative to its peak".into(),
+            });
+        }
+        Ok(())
+    }
+
+    /// The `[solver]` keys an importer cannot set (all but `solver.tolerance`, an FMU
+    /// parameter checked when the model is built): checked when a scene is read, from a file
+    /// or from a serialized state, before anything uses them.
+    pub fn validate_settings(&self) -> Result<(), ModelError> {
+        let (low, high) = SOLVER_STEP_RANGE;
+        require_within("solver.step", self.step, low, high, "s")?;
+        let rho = self.rho_inf;
+        if !(rho.is_finite() && (0.0..=1.0).contains(&rho)) {
+            return Err(ModelError::InvalidParameter {
+                name: "solver.rho_inf",
+                value: rho,
+                allowed: "[0, 1]".into(),
+            });
+        }
+        let (low, high) = NEWTON_TOLERANCE_RANGE;
+        require_within(
+            "solver.newton_tolerance",
+            self.newton_tolerance,
+            low,
+            high,
+            "",
+        )?;
+        if !(1..=MAX_NEWTON_ITERATIONS).contains(&self.max_newton_iterations) {
+            return Err(ModelError::InvalidParameter {
+                name: "solver.max_newton_iterations",
+                value: self.max_newton_iterations as f64,
+                allowed: format!("an integer in 1..={MAX_NEWTON_ITERATIONS}"),
+            });
+        }
+        if self.max_halvings > MAX_HALVINGS {
+            return Err(ModelError::InvalidParameter {
+                name: "solver.max_halvings",
+                value: self.max_halvings as f64,
+                allowed: format!(
+                    "an integer in 0..={MAX_HALVINGS} (a failed step split into at most 2^{MAX_HALVINGS} pieces)"
+                ),
+            });
+        }
+        Ok(())
+    }
+}
+
 /// Everything that defines the mechanism: the parts of a scene below the FMU's concerns.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MechanismSpec {
@@ -221,33 +293,7 @@ impl MechanismSpec {
                 });
             }
         }
-        require_positive("solver.step", self.solver.step)?;
-        let rho = self.solver.rho_inf;
-        if !(rho.is_finite() && (0.0..=1.0).contains(&rho)) {
-            return Err(ModelError::InvalidParameter {
-                name: "solver.rho_inf",
-                value: rho,
-                allowed: "[0, 1]".into(),
-            });
-        }
-        require_positive("solver.newton_tolerance", self.solver.newton_tolerance)?;
-        let tol = self.solver.tolerance;
-        // Below 1e-10 of the peak the error control asks for more than double precision can
-        // give over a run (at 5e-324 every step would refuse at the work bound).
-        if !(tol.is_finite() && (1e-10..=0.1).contains(&tol)) {
-            return Err(ModelError::InvalidParameter {
-                name: "solver.tolerance",
-                value: tol,
-                allowed: "[1e-10, 0.1]: the pointwise deflection error relative to its peak".into(),
-            });
-        }
-        if self.solver.max_newton_iterations == 0 {
-            return Err(ModelError::InvalidParameter {
-                name: "solver.max_newton_iterations",
-                value: 0.0,
-                allowed: ">= 1".into(),
-            });
-        }
+        self.solver.validate()?;
         Ok(())
     }
 }

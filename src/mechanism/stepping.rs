@@ -4,7 +4,7 @@
 
 use super::crank::CrankLaw;
 use super::slider_crank::{dae_context, AheadBackup, Mechanism, OutputSolve};
-use super::state::MechanismState;
+use super::state::{MechanismState, StepStats};
 use crate::error::ModelError;
 use crate::integrator::MAX_ADAPTIVE_STEP;
 use crate::rod::DeflectionPolicy;
@@ -16,6 +16,20 @@ pub const LARGE_DEFLECTION_WARNING: f64 = 0.05;
 /// accepted adaptive steps while it runs; about 1 to 10 s of work at the benchmark sizes).
 /// A longer communication step is refused with the state kept (`ModelError::TooMuchWork`).
 pub const MAX_INTERNAL_STEPS: u64 = 100_000;
+
+/// The work one communication step may do, in units of `n^2 (n + 100)` per counted evaluation
+/// (a Newton iteration or a right-hand-side evaluation, accepted or not, plus one per internal
+/// step and one per halving), `n` the number of coordinates: an evaluation costs a dense
+/// product (`n^2`) and a dense solve (`n^3`), measured about equal at `n = 100`. The budget so
+/// bounds the time of one call about equally at every model size (340 evaluations at the
+/// largest FFR rod, n = 388; docs/fmu.md, "Time per call", gives the measured worst case);
+/// small models reach [`MAX_INTERNAL_STEPS`] first. A communication step that would need more
+/// is refused with the state kept.
+pub const WORK_BUDGET: f64 = 2.5e10;
+
+/// Largest `solver.max_halvings` (checked by the scene validation): a failed step is split
+/// into at most `2^20` pieces, the smallest `1e-6` of it.
+pub const MAX_HALVINGS: usize = 20;
 
 /// Largest magnitude of an accepted output, in its SI unit (N, N m, m, m/s): anything larger is
 /// a diverged integration, refused like a failed step.
@@ -61,7 +75,7 @@ impl Mechanism {
                 } else {
                     t_start + h * (k + 1) as f64 / n_sub as f64
                 };
-                self.step_with_halving(state, target, 0)?;
+                self.step_with_halving(state, target, &backup_stats)?;
             }
             Ok(())
         })();
@@ -116,6 +130,18 @@ impl Mechanism {
                     step: h,
                     message: format!(
                         "the error control took {MAX_INTERNAL_STEPS} internal steps and reached only t = {t_fail} s of t = {t_end} s, allowed at most {MAX_INTERNAL_STEPS} per communication step"
+                    ),
+                })
+            }
+            Err((t_fail, _, reason)) if reason == OVER_BUDGET => {
+                restore(self, state);
+                let n = state.dae.q.len();
+                Err(ModelError::TooMuchWork {
+                    time: t_start,
+                    step: h,
+                    message: format!(
+                        "it reached only t = {t_fail} s of t = {t_end} s within the work budget of one call ({} evaluations for this model's {n} coordinates, WORK_BUDGET / (n^2 (n + 100))), allowed at most that much work per communication step",
+                        evaluations_allowed(n)
                     ),
                 })
             }
@@ -300,6 +326,7 @@ impl Mechanism {
         may_step_ahead: bool,
     ) -> Result<(), (f64, f64, String)> {
         let mut taken = 0u64;
+        let entry = state.stats;
         let dense = may_step_ahead && self.integrator.dense_output();
         while state.dae.t < t_end {
             if state.ahead.held {
@@ -327,6 +354,9 @@ impl Mechanism {
             }
             if taken >= MAX_INTERNAL_STEPS {
                 return Err((state.dae.t, t_end - state.dae.t, TOO_MANY_STEPS.to_string()));
+            }
+            if over_budget(state, &entry) {
+                return Err((state.dae.t, t_end - state.dae.t, OVER_BUDGET.to_string()));
             }
             taken += 1;
             let h_max = t_end - state.dae.t;
@@ -385,33 +415,48 @@ impl Mechanism {
         dae.amplitude = dae.amplitude.max(here);
     }
 
-    /// One internal step to `target`, split in halves on failure (recursively, `depth` deep).
+    /// One internal step to `target`, split in halves on failure, at most `solver.max_halvings`
+    /// levels deep. A loop over a fixed stack of pending targets (the second halves, the
+    /// deepest on top) takes the halves in the order a recursion would, with no call depth a
+    /// scene controls and no allocation.
     fn step_with_halving(
         &mut self,
         state: &mut MechanismState,
         target: f64,
-        depth: usize,
+        entry: &StepStats,
     ) -> Result<(), (f64, f64, String)> {
-        let h = target - state.dae.t;
-        let sys = dae_context(self.rod.as_ref(), &self.spec, state, &self.pin_cache);
-        match self.integrator.step(&sys, &mut state.dae, h) {
-            Ok(work) => {
-                state.dae.t = target;
-                state.stats.steps += 1;
-                state.stats.newton_iterations += work as u64;
-                Ok(())
+        // At most one pending target per level: `MAX_HALVINGS + 1` entries, on the stack.
+        let max_depth = self.max_halvings.min(MAX_HALVINGS);
+        let mut pending = [(0.0, 0usize); MAX_HALVINGS + 1];
+        pending[0] = (target, 0);
+        let mut len = 1;
+        while len > 0 {
+            len -= 1;
+            let (target, depth) = pending[len];
+            if over_budget(state, entry) {
+                return Err((state.dae.t, target - state.dae.t, OVER_BUDGET.to_string()));
             }
-            Err(error) => {
-                state.stats.newton_iterations += error.work as u64;
-                if depth >= self.max_halvings {
-                    return Err((state.dae.t, h, error.failure.to_string()));
+            let h = target - state.dae.t;
+            let sys = dae_context(self.rod.as_ref(), &self.spec, state, &self.pin_cache);
+            match self.integrator.step(&sys, &mut state.dae, h) {
+                Ok(work) => {
+                    state.dae.t = target;
+                    state.stats.steps += 1;
+                    state.stats.newton_iterations += work as u64;
                 }
-                state.stats.halvings += 1;
-                let mid = state.dae.t + 0.5 * h;
-                self.step_with_halving(state, mid, depth + 1)?;
-                self.step_with_halving(state, target, depth + 1)
+                Err(error) => {
+                    state.stats.newton_iterations += error.work as u64;
+                    if depth >= max_depth {
+                        return Err((state.dae.t, h, error.failure.to_string()));
+                    }
+                    state.stats.halvings += 1;
+                    pending[len] = (target, depth + 1);
+                    pending[len + 1] = (state.dae.t + 0.5 * h, depth + 1);
+                    len += 2;
+                }
             }
         }
+        Ok(())
     }
 
     /// The deflection policy (`rod.deflection_limit`, `rod.deflection_policy`) on the outputs
@@ -445,6 +490,22 @@ impl Mechanism {
             }),
         }
     }
+}
+
+/// The evaluations [`WORK_BUDGET`] allows one communication step of a model with `n`
+/// coordinates.
+pub fn evaluations_allowed(n: usize) -> u64 {
+    let n = n.max(1) as f64;
+    (WORK_BUDGET / (n * n * (n + 100.0))) as u64
+}
+
+/// Whether the work since `entry` (the statistics at the start of the communication step)
+/// has used up [`WORK_BUDGET`].
+fn over_budget(state: &MechanismState, entry: &StepStats) -> bool {
+    let evaluations = (state.stats.newton_iterations - entry.newton_iterations)
+        + (state.stats.steps - entry.steps)
+        + (state.stats.halvings - entry.halvings);
+    evaluations > evaluations_allowed(state.dae.q.len())
 }
 
 /// The round-off a master's crank angle carries (`omega t` has a few ulps of `|theta|`): 4 ulps
@@ -500,6 +561,7 @@ pub fn steps_past_is_cheaper(rest: f64, proposal: f64) -> bool {
 
 /// Reason of an adaptive loop stopped by [`MAX_INTERNAL_STEPS`] (turned into `TooMuchWork`).
 const TOO_MANY_STEPS: &str = "too many internal steps";
+const OVER_BUDGET: &str = "over the work budget";
 
 /// An accepted step's state and outputs must be finite and its outputs below
 /// [`MAX_OUTPUT_MAGNITUDE`]; else the integration diverged and the step is refused.

@@ -202,14 +202,28 @@ impl Inputs {
             source,
             force_changed,
         };
-        for (name, x) in [
-            ("crank.angle", inputs.angle),
-            ("crank.speed", inputs.speed),
-            ("slider.force", inputs.slider_force),
-            ("the crank acceleration", inputs.acceleration),
+        // The windows of the set calls ([`InputSlot::window`]): a state holds no input a
+        // set call would refuse.
+        for (name, x, slot) in [
+            ("crank.angle", inputs.angle, InputSlot::CrankAngle),
+            ("crank.speed", inputs.speed, InputSlot::CrankSpeed),
+            ("slider.force", inputs.slider_force, InputSlot::SliderForce),
+            (
+                "the crank acceleration",
+                inputs.acceleration,
+                InputSlot::CrankAcceleration,
+            ),
         ] {
+            let bound = slot.window();
             if !x.is_finite() {
-                return Err(format!("{name} is {x}, allowed a finite value"));
+                return Err(format!(
+                    "{name} is {x}, allowed a finite value with |value| <= {bound:e}"
+                ));
+            }
+            if x.abs() > bound {
+                return Err(format!(
+                    "{name} is {x:e}, allowed |value| <= {bound:e} in SI units (the input window of its set call)"
+                ));
             }
         }
         Ok(inputs)

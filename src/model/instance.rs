@@ -4,7 +4,7 @@
 //! calls); it says nothing of how the interface reports the outcome.
 
 use super::inputs::Inputs;
-use super::variables::{Access, Variable, VariableTable};
+use super::variables::{Access, Value, Variable, VariableTable};
 use crate::error::ModelError;
 use crate::scene::Scene;
 use crate::simulation::{Simulation, Snapshot};
@@ -277,9 +277,28 @@ impl Model {
     pub fn set_integers(&mut self, items: &[(&Variable, i32)]) -> Result<(), (usize, String)> {
         let mut scene = self.scene.clone();
         for (k, &(v, n)) in items.iter().enumerate() {
+            // The declared range holds at the set call. Where it is narrower than the setter's
+            // own (`rod.elements`: the least count that leaves the declared frequencies for the
+            // exported model), its text is the message; elsewhere the setter's, which names the
+            // items of an enumeration.
+            let declared = match (&v.min, &v.max) {
+                (Some(Value::Integer(low)), Some(Value::Integer(high)))
+                    if !(*low..=*high).contains(&n) =>
+                {
+                    Some(declared_range_text(v, *low, *high))
+                }
+                _ => None,
+            };
+            let narrower = NARROWER_THAN_THE_SETTER.contains(&v.name.as_str());
+            if let (Some(text), true) = (&declared, narrower) {
+                return Err((k, text.clone()));
+            }
             match v.access {
                 Access::IntegerParameter { set, .. } => set(&mut scene, n).map_err(|e| (k, e))?,
                 _ => return Err((k, format!("{} cannot be set as an Integer", v.name))),
+            }
+            if let Some(text) = declared {
+                return Err((k, text));
             }
         }
         if !items.is_empty() {
@@ -431,6 +450,20 @@ impl Model {
             }
             _ => Simulation::new(scene).and_then(|mut scratch| f(&mut scratch)),
         }
+    }
+}
+
+/// Integer parameters whose declared range is narrower than what their setter takes.
+const NARROWER_THAN_THE_SETTER: [&str; 1] = ["rod.elements"];
+
+/// The allowed values of an Integer parameter whose declared range refused a value.
+fn declared_range_text(v: &Variable, low: i32, high: i32) -> String {
+    if v.name == "rod.elements" {
+        format!(
+            "an integer in {low}..={high} (the declared range: the least count that leaves the declared rod.frequency values for the exported rod.model, up to the mesh limit)"
+        )
+    } else {
+        format!("an integer in {low}..={high} (the declared range)")
     }
 }
 

@@ -1,7 +1,10 @@
-//! The fuzz harness of the FMI 2.0 C boundary: seeded random call sequences through
-//! the exported functions, in process, judged by an oracle written from the standard and
-//! docs/fmu.md.
+//! The fuzz harness of the FMI C boundary: seeded random call sequences through the exported
+//! FMI 2.0 functions, in process, judged by an oracle written from the standard and
+//! docs/fmu.md, and per sequence the generators of [`extended`] (forged pre-initialization
+//! states, in-range extremes with a wall-time oracle, freed and foreign handles, FMI 3.0
+//! call sequences).
 
+pub mod extended;
 pub mod fmu;
 pub mod hostile;
 pub mod legal;

@@ -25,6 +25,8 @@ pub struct Totals {
     /// Legal steps refused with fmi2Error and the instance unchanged: the crank law reached
     /// an input window (a speed of 1e4 rad/s with an acceleration), or the work bound.
     pub unchanged_refusals: u64,
+    /// The generators of [`super::extended`].
+    pub extended: super::extended::Extended,
 }
 
 /// Run sequence number `seq` (its own seed); violations are added to `violations`.

@@ -60,7 +60,7 @@ def cli(*args, check=True):
     [
         (('"rod.damping_ratio" = 0.02', '"rod.dampingratio" = 0.02'), "unknown variable 'rod.dampingratio'"),
         (('"rod.damping_ratio" = 0.02', '"rod.damping_ratio" = [0.02, -0.01]'), "outside its range"),
-        (('"rod.damping_ratio" = 0.02', '"rod.elements" = [8, 5000]'), "outside its range [1.0, 128.0]"),
+        (('"rod.damping_ratio" = 0.02', '"rod.elements" = [8, 5000]'), "outside its range [2.0, 128.0]"),
         (('["ffr", "segments"]', '["ffr", "beam"]'), "not an item of RodModel"),
         (('{ linspace = [150, 450, 4] }', '[]'), "empty grid"),
         (('{ linspace = [150, 450, 4] }', '{ linspace = [150, 450, 0] }'), "empty grid"),

@@ -172,7 +172,7 @@ mod tests {
             "{xml}"
         );
         assert!(
-            xml.contains("<Integer min=\"1\" max=\"128\" start=\"8\"/>"),
+            xml.contains("<Integer min=\"2\" max=\"128\" start=\"8\"/>"),
             "{xml}"
         );
     }

@@ -3,10 +3,12 @@
 //! freeing components.
 
 use std::cell::UnsafeCell;
+use std::collections::BTreeMap;
 use std::ffi::{c_int, CString};
 use std::panic::AssertUnwindSafe;
 use std::ptr;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Mutex, MutexGuard};
 
 use super::convert::{lossy_text, text};
 use super::{
@@ -83,6 +85,70 @@ impl Component {
     }
 }
 
+/// The live components, by the handle given to the importer (FMI 2.0 and FMI 3.0 alike).
+///
+/// A handle is an opaque number, never dereferenced and never reused: every entry point looks
+/// it up here, so a freed handle (a second `fmi2FreeInstance`, a call after it) or a foreign
+/// pointer gets `fmi2Error` / `fmi3Error` (or nothing, for a free) instead of undefined
+/// behaviour. The component stays in its box while it is registered; a call marks it busy
+/// under the registry's lock, and a free removes it only when it is not busy, so no call ever
+/// holds a component that is being freed.
+struct Registry {
+    next: usize,
+    live: BTreeMap<usize, Registered>,
+}
+
+/// A registered component. The registry only moves the box between threads; the instance in
+/// it is used only by the call that set its busy flag.
+struct Registered(Box<Component>);
+
+// SAFETY: see `Registered`: the component is reached only through `dispatch` and `free`, which
+// serialize every use of its instance with the busy flag (set under the registry's lock); the
+// logger callbacks it holds are the importer's, which FMI lets any thread call for its instance.
+unsafe impl Send for Registered {}
+
+static REGISTRY: Mutex<Registry> = Mutex::new(Registry {
+    next: 0,
+    live: BTreeMap::new(),
+});
+
+/// The registry, also after a panic elsewhere while it was locked (it holds no invariant a
+/// panic can break: every change is one insert or one remove).
+fn registry() -> MutexGuard<'static, Registry> {
+    REGISTRY
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
+}
+
+/// Handles are multiples of 16 from 16 on (they look like aligned pointers to a host that
+/// prints them), never NULL and never reused.
+const HANDLE_STRIDE: usize = 16;
+
+fn register(component: Component) -> fmi2Component {
+    let mut registry = registry();
+    registry.next += 1;
+    let handle = registry.next.wrapping_mul(HANDLE_STRIDE);
+    registry
+        .live
+        .insert(handle, Registered(Box::new(component)));
+    handle as fmi2Component
+}
+
+/// The registered component of handle `c`, marked busy; `Err(None)` for an unknown handle,
+/// `Err(Some(component))` for one already busy (a nested or concurrent call).
+fn acquire(c: fmi2Component) -> Result<*const Component, Option<*const Component>> {
+    let registry = registry();
+    let Some(Registered(component)) = registry.live.get(&(c as usize)) else {
+        return Err(None);
+    };
+    let component: *const Component = &**component;
+    // SAFETY: registered, and it cannot be freed while the lock is held.
+    if unsafe { &*component }.busy.swap(true, Ordering::Acquire) {
+        return Err(Some(component));
+    }
+    Ok(component)
+}
+
 /// Clears the busy flag when the call ends (also if it unwinds).
 struct Busy<'a>(&'a AtomicBool);
 
@@ -98,18 +164,21 @@ pub unsafe fn dispatch(
     call: Call,
     f: impl FnOnce(&mut Instance) -> FmiResult<Status>,
 ) -> fmi2Status {
-    // SAFETY: c is NULL or a live pointer from fmi2Instantiate or fmi3InstantiateCoSimulation.
-    // Only a shared reference is made here: a nested call may hold one at the same time.
-    let Some(component) = (unsafe { c.cast::<Component>().as_ref() }) else {
-        return ERROR;
+    let component = match acquire(c) {
+        Ok(component) => component,
+        Err(None) => return ERROR,
+        Err(Some(busy)) => {
+            // SAFETY: registered and busy: the running call keeps it from being freed. Only a
+            // shared reference is made: that call may hold one at the same time.
+            let component = unsafe { &*busy };
+            component.report_busy(call.name(component.standard));
+            return ERROR;
+        }
     };
-    if component.busy.swap(true, Ordering::Acquire) {
-        component.report_busy(call.name(component.standard));
-        return ERROR;
-    }
+    // SAFETY: registered and marked busy by this call, so `free` leaves it alone until the
+    // flag is cleared (when `_busy` drops, after the last use of `instance`).
+    let component = unsafe { &*component };
     let _busy = Busy(&component.busy);
-    // SAFETY: this call set the busy flag, so no other `&mut Instance` exists until it is
-    // cleared (when `_busy` drops, after the last use of `instance`).
     let instance = unsafe { &mut *component.instance.get() };
     match guard::catch(AssertUnwindSafe(|| instance.run(call, f).code())) {
         Ok(code) => code,
@@ -187,7 +256,7 @@ pub unsafe fn create(
         })
     }));
     match created {
-        Ok(Some(component)) => Box::into_raw(Box::new(component)).cast(),
+        Ok(Some(component)) => register(component),
         _ => ptr::null_mut(),
     }
 }
@@ -229,24 +298,35 @@ pub unsafe fn instantiate(
     }
 }
 
-/// `fmi2FreeInstance` and `fmi3FreeInstance`.
+/// `fmi2FreeInstance` and `fmi3FreeInstance`. A handle that is not live (NULL, freed already,
+/// foreign) is ignored; a component with a call running (freed from inside a callback) is
+/// refused with a message.
 pub unsafe fn free(c: fmi2Component) {
-    // SAFETY: c is NULL or a live pointer from fmi2Instantiate or fmi3InstantiateCoSimulation.
-    let Some(component) = (unsafe { c.cast::<Component>().as_ref() }) else {
-        return;
+    let removed = {
+        let mut registry = registry();
+        let handle = c as usize;
+        match registry.live.get(&handle) {
+            None => return,
+            Some(Registered(component)) if component.busy.load(Ordering::Acquire) => {
+                let component: *const Component = &**component;
+                Err(component)
+            }
+            Some(_) => Ok(registry.live.remove(&handle)),
+        }
     };
-    if component.busy.swap(true, Ordering::Acquire) {
-        // Freed from inside a callback of a running call: refuse rather than free memory
-        // that call still uses.
-        let name = match component.standard {
-            Standard::Fmi2 => "fmi2FreeInstance",
-            Standard::Fmi3 => "fmi3FreeInstance",
-        };
-        component.report_busy(name);
-        return;
+    match removed {
+        Err(busy) => {
+            // SAFETY: registered and busy: the running call keeps it from being freed.
+            let component = unsafe { &*busy };
+            let name = match component.standard {
+                Standard::Fmi2 => "fmi2FreeInstance",
+                Standard::Fmi3 => "fmi3FreeInstance",
+            };
+            component.report_busy(name);
+        }
+        Ok(component) => {
+            // Dropped outside the registry's lock (the instance's drop may log).
+            let _ = guard::catch(AssertUnwindSafe(move || drop(component)));
+        }
     }
-    // SAFETY: c came from Box::into_raw at instantiation, no call is running on it (the busy
-    // flag), and it is freed once (FMI 2.0, FMI 3.0).
-    let component = unsafe { Box::from_raw(c.cast::<Component>()) };
-    let _ = guard::catch(AssertUnwindSafe(move || drop(component)));
 }

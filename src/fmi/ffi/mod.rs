@@ -7,9 +7,11 @@
 //! panics, logs failures and folds the status. An outer [`guard::catch`] makes sure no panic
 //! (not even one while logging) unwinds into the host.
 //!
-//! The safety contract of each function is the FMI 2.0 standard's: `c` is NULL or a pointer
-//! returned by `fmi2Instantiate` and not yet freed; arrays have the lengths passed with them;
-//! strings are NUL-terminated. NULL pointers are detected and reported.
+//! The safety contract of each function is the FMI 2.0 standard's for arrays (the lengths
+//! passed with them) and strings (NUL-terminated); NULL pointers are detected and reported.
+//! An `fmi2Component` / `fmi3Instance` is an opaque handle, never dereferenced: it is looked up
+//! in a registry of the live instances ([`component`]), so a freed, foreign or NULL handle
+//! gives an error (a free of one does nothing) rather than undefined behaviour.
 //!
 //! FMU state handles are opaque integers (never dereferenced), looked up per instance, so a
 //! stale or foreign handle gives an error (or a new handle where FMI allows one), not

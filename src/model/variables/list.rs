@@ -249,24 +249,28 @@ impl VariableTable {
             "Density rho",
         );
         b.positive();
-        b.real_parameter(
-            "rod.area",
-            104,
-            real("m2"),
-            |s| s.rod.area,
-            |s, v| s.rod.area = v,
-            "Cross-section area A",
-        );
-        b.positive();
-        b.real_parameter(
-            "rod.area_moment",
-            105,
-            real("m4"),
-            |s| s.rod.area_moment,
-            |s, v| s.rod.area_moment = v,
-            "Second moment of area I",
-        );
-        b.positive();
+        // A section table fixes the section: no uniform area or area moment.
+        let uniform = scene.rod.section.is_empty();
+        if uniform {
+            b.real_parameter(
+                "rod.area",
+                104,
+                real("m2"),
+                |s| s.rod.area,
+                |s, v| s.rod.area = v,
+                "Cross-section area A",
+            );
+            b.positive();
+            b.real_parameter(
+                "rod.area_moment",
+                105,
+                real("m4"),
+                |s| s.rod.area_moment,
+                |s, v| s.rod.area_moment = v,
+                "Second moment of area I",
+            );
+            b.positive();
+        }
         b.real_parameter(
             "rod.damping_ratio",
             106,
@@ -301,7 +305,10 @@ impl VariableTable {
             |s, v| element_count(v).map(|n| s.rod.elements = n),
             "Beam elements (FFR) or rigid segments (segments)",
         );
-        b.bounds(Some(Value::Integer(1)), Some(Value::Integer(ELEMENTS_MAX)));
+        b.bounds(
+            Some(Value::Integer(least_count(scene, n_frequencies))),
+            Some(Value::Integer(ELEMENTS_MAX)),
+        );
         b.integer_parameter(
             "rod.reference",
             112,
@@ -533,4 +540,19 @@ impl VariableTable {
         super::interface::add_variables(&mut b, interface, n_frequencies, frequency_knowns);
         b.finish()
     }
+}
+
+/// The declared minimum of `rod.elements`: the least count that leaves `frequencies` natural
+/// frequencies for the exported `rod.model` ([`crate::beam::mesh::least_elements`],
+/// [`crate::rod::segments::least_segments`]), at least 1 and never above the exported count.
+/// After `rod.model` is switched, the other model's least count is checked when the model is
+/// built (it may differ: 7 segments against 2 elements for six frequencies).
+fn least_count(scene: &Scene, frequencies: usize) -> i32 {
+    let least = match scene.rod.model {
+        crate::scene::RodModelKind::Ffr => crate::beam::mesh::least_elements(frequencies),
+        crate::scene::RodModelKind::Segments => {
+            crate::rod::segments::least_segments(frequencies, scene.rod.axial_springs)
+        }
+    };
+    usize_to_i32(least.clamp(1, scene.rod.elements.max(1)))
 }

@@ -16,10 +16,10 @@
 //! `fmi3InstantiateScheduledExecution` return NULL, and the functions of those two interfaces
 //! ([`interfaces`]) return `fmi3Error`.
 //!
-//! The safety contract of each function is the FMI 3.0 standard's: `instance` is NULL or a
-//! pointer returned by `fmi3InstantiateCoSimulation` and not yet freed; arrays have the
-//! lengths passed with them; strings are NUL-terminated. NULL pointers are detected and
-//! reported. Files: [`lifecycle`] (creation, initialization, unsupported modes), [`values`]
+//! The safety contract of each function is the FMI 3.0 standard's for arrays (the lengths
+//! passed with them) and strings (NUL-terminated); NULL pointers are detected and reported.
+//! `instance` is an opaque handle looked up in the registry of live instances (as for FMI 2.0):
+//! a freed, foreign or NULL one gives `fmi3Error`. Files: [`lifecycle`] (creation, initialization, unsupported modes), [`values`]
 //! (get and set of every FMI 3.0 type), [`interfaces`] (Model Exchange and Scheduled
 //! Execution), [`states`] (FMU states), [`stepping`] (`fmi3DoStep`,
 //! derivatives).

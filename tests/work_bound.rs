@@ -1,0 +1,173 @@
+//! The time of one call at the declared maxima, measured: the initialization (building the
+//! model and its start) and one communication step (what `fmi2DoStep` / `fmi3DoStep` runs)
+//! of the largest models, with a communication step long enough to use up the work budget
+//! (`flexrod::mechanism::WORK_BUDGET`). Machine-dependent, so ignored in the suite:
+//! `FLEXROD_BLESS=1 cargo test --release --test work_bound -- --ignored --nocapture` writes the
+//! fragment `worst-case-time` (docs/fmu.md, "Time per call"); without `FLEXROD_BLESS` it
+//! prints the table. A second test (in the suite) checks that the budget refuses such a step
+//! with the state kept.
+
+mod common;
+
+use std::time::Instant;
+
+use flexrod::beam::section_table::MAX_STATIONS;
+use flexrod::beam::SectionStation;
+use flexrod::mechanism::stepping::evaluations_allowed;
+use flexrod::scene::{RodModelKind, SolverMethod};
+use flexrod::{CrankInput, ModelError, Scene, Simulation};
+
+fn start(sim: &mut Simulation) {
+    sim.start(
+        0.0,
+        CrankInput {
+            angle: 0.0,
+            speed: 150.0,
+            acceleration: 0.0,
+        },
+        0.0,
+    )
+    .expect("starts");
+}
+
+/// The largest FFR rod: 128 elements, every mode retained, soft and heavy (many internal steps).
+fn largest_ffr() -> Scene {
+    let mut s = Scene::benchmark();
+    s.rod.elements = flexrod::beam::mesh::MAX_ELEMENTS;
+    s.rod.modes = 3 * s.rod.elements;
+    s.rod.youngs_modulus = 1e6;
+    s.rod.density = 1e5;
+    s
+}
+
+/// The largest segment chain: 128 segments, the stiffest rod.
+fn largest_segments() -> Scene {
+    let mut s = Scene::benchmark();
+    s.rod.model = RodModelKind::Segments;
+    s.rod.elements = flexrod::rod::segments::SEGMENT_RANGE.1;
+    s.solver.method = SolverMethod::GeneralizedAlpha;
+    s.rod.youngs_modulus = 1e17;
+    s.rod.density = 10.0;
+    s
+}
+
+/// `scene` with the most `[[rod.section]]` stations (the uniform section, tapered slightly).
+fn with_most_stations(mut s: Scene) -> Scene {
+    let (area, moment, length) = (s.rod.area, s.rod.area_moment, s.rod.length);
+    s.rod.section = (0..MAX_STATIONS)
+        .map(|k| {
+            let f = 1.0 + 0.1 * (k % 3) as f64;
+            SectionStation {
+                position: length * k as f64 / (MAX_STATIONS - 1) as f64,
+                area: area * f,
+                area_moment: moment * f,
+                shear_area: None,
+                fibre_distance: None,
+            }
+        })
+        .collect();
+    s.rod.area = 0.0;
+    s.rod.area_moment = 0.0;
+    s
+}
+
+/// Seconds to build and start `scene`, and the number of coordinates.
+fn initialization(scene: &Scene) -> (f64, Simulation) {
+    let t0 = Instant::now();
+    let mut sim = Simulation::new(scene).expect("the maxima build");
+    start(&mut sim);
+    (t0.elapsed().as_secs_f64(), sim)
+}
+
+/// Seconds of one communication step of `h`, and its outcome.
+fn one_step(sim: &mut Simulation, h: f64) -> (f64, Result<(), ModelError>) {
+    let t0 = Instant::now();
+    let r = sim.advance(h).map(|_| ());
+    (t0.elapsed().as_secs_f64(), r)
+}
+
+#[test]
+#[ignore]
+fn worst_case_time_per_call() {
+    let mut rows = Vec::new();
+    let mut worst_init: f64 = 0.0;
+    let mut worst_step: f64 = 0.0;
+    let mut mid = largest_ffr();
+    mid.rod.elements = 48;
+    mid.rod.modes = 3 * 48;
+    let mut fine = Scene::benchmark();
+    fine.solver.tolerance = 1e-10;
+    let mut soft_segments = largest_segments();
+    soft_segments.rod.youngs_modulus = 1e5;
+    soft_segments.rod.density = 1e5;
+    soft_segments.rod.deflection_policy = flexrod::scene::DeflectionPolicy::Warn;
+    for (label, scene, h) in [
+        ("default scene", Scene::benchmark(), 0.5),
+        ("default scene, solver.tolerance = 1e-10", fine, 0.5),
+        ("FFR, 48 elements, 144 modes", mid, 1e-2),
+        ("FFR, 128 elements, 384 modes", largest_ffr(), 1e-2),
+        (
+            "FFR, 128 elements, 384 modes, 256 stations",
+            with_most_stations(largest_ffr()),
+            1e-2,
+        ),
+        ("segments, 128", largest_segments(), 1e-2),
+        ("segments, 128, soft and heavy", soft_segments, 1e-2),
+        (
+            "segments, 128, 256 stations",
+            with_most_stations(largest_segments()),
+            1e-2,
+        ),
+    ] {
+        let (init, mut sim) = initialization(&scene);
+        let n = sim.state().dae.q.len();
+        let (step, outcome) = one_step(&mut sim, h);
+        worst_init = worst_init.max(init);
+        worst_step = worst_step.max(step);
+        let outcome = match outcome {
+            Ok(()) => "completed".to_string(),
+            Err(ModelError::TooMuchWork { .. }) => "refused at the work budget".to_string(),
+            Err(e) => {
+                println!("{label}: {e}");
+                "failed, the state kept".to_string()
+            }
+        };
+        println!("{label}: n = {n}, init {init:.2} s, step {step:.2} s, {outcome}");
+        rows.push(format!(
+            "| {label} | {n} | {} | {init:.2} | {step:.2} (h = {h} s: {outcome}) |",
+            evaluations_allowed(n)
+        ));
+    }
+    let markdown = format!(
+        "| model at the declared maxima | coordinates n | evaluations per call (budget) | initialization, s | one communication step h, s |\n|---|---:|---:|---:|---|\n{}\n\nWorst case measured: initialization {worst_init:.1} s, one communication step {worst_step:.1} s (one thread, release build; `FLEXROD_BLESS=1 cargo test --release --test work_bound -- --ignored --nocapture`).\n",
+        rows.join("\n")
+    );
+    print!("{markdown}");
+    if common::blessing() {
+        common::check_generated("worst-case-time", &markdown);
+    }
+}
+
+/// A communication step that needs more than the work budget is refused within the budget's
+/// time with the state kept, and smaller steps go on from the same state.
+#[test]
+fn the_work_budget_refuses_a_long_step_of_a_large_model_with_the_state_kept() {
+    let mut scene = largest_ffr();
+    scene.rod.elements = 48;
+    scene.rod.modes = 3 * 48;
+    let mut sim = Simulation::new(&scene).unwrap();
+    start(&mut sim);
+    let n = sim.state().dae.q.len();
+    let t0 = Instant::now();
+    let e = sim.advance(1.0).expect_err("over the budget");
+    let took = t0.elapsed().as_secs_f64();
+    println!(
+        "n = {n}, {} evaluations allowed: refused after {took:.2} s: {e}",
+        evaluations_allowed(n)
+    );
+    assert!(matches!(e, ModelError::TooMuchWork { .. }), "{e}");
+    assert!(e.to_string().contains("work budget"), "{e}");
+    assert_eq!(sim.time(), 0.0);
+    assert!(took < 20.0, "{took} s");
+    sim.advance(1e-4).expect("a small step goes on");
+}
