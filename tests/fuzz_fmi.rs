@@ -111,8 +111,6 @@ fn random_call_sequences_keep_the_contract() {
     let n = env_u64("FLEXROD_FUZZ_SEQUENCES", DEFAULT_SEQUENCES);
     let first = env_u64("FLEXROD_FUZZ_FIRST", 0);
     let threads = env_u64("FLEXROD_FUZZ_THREADS", 1).max(1);
-    // The code under test: the commit at the start (files may change while a long run runs).
-    let code = commit();
     let t0 = Instant::now();
     let results: Vec<(Totals, Violations)> = std::thread::scope(|s| {
         let handles: Vec<_> = (0..threads)
@@ -202,10 +200,9 @@ fn random_call_sequences_keep_the_contract() {
         common::generated::check_generated(
             "fuzz-long",
             &format!(
-                "{figures}; {:.0} s on {threads} thread(s) ({:.2} ms per sequence and thread), at commit {}.\n",
+                "{figures}; {:.0} s on {threads} thread(s) ({:.2} ms per sequence and thread).\n",
                 seconds,
                 seconds * threads as f64 / n as f64 * 1e3,
-                code
             ),
         );
     }
@@ -490,21 +487,6 @@ fn segment_chain_divergence_reproducer_gives_no_garbage() {
 }
 
 /// The commit the harness runs on (with "+changes" if the work tree differs from it).
-fn commit() -> String {
-    let git = |args: &[&str]| {
-        std::process::Command::new("git")
-            .args(args)
-            .current_dir(env!("CARGO_MANIFEST_DIR"))
-            .output()
-            .ok()
-            .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
-            .unwrap_or_default()
-    };
-    let head = git(&["rev-parse", "--short", "HEAD"]);
-    let dirty = !git(&["status", "--porcelain", "--untracked-files=no"]).is_empty();
-    format!("{head}{}", if dirty { "+changes" } else { "" })
-}
-
 fn rss_kb() -> u64 {
     let s = std::fs::read_to_string("/proc/self/status").unwrap();
     let line = s.lines().find(|l| l.starts_with("VmRSS")).unwrap();
