@@ -186,7 +186,11 @@ measure_revolutions = 40
     proc = subprocess.Popen([sys.executable, "-m", "flexrod_sweep", str(spec), "--out", str(out),
                              "--workers", workers, "--no-progress", "--no-plots"],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                            start_new_session=True)
+                            start_new_session=True,
+                            # A shell without job control (a CI script, `cmd &`) starts its
+                            # background jobs with SIGINT ignored, and a Python started so
+                            # ignores Ctrl-C: give the child the terminal's default.
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     try:
         deadline = time.time() + 120
         while time.time() < deadline:
