@@ -255,7 +255,7 @@ fn main() {
     );
     if let Some(folder) = &options.fragments {
         println!(
-            "wrote the fragments {}/report-*.md; `FLEXROD_BLESS=1 cargo test --release --test generated_fragments` copies them into README.md",
+            "wrote the fragments {}/report-*.md; `FLEXROD_BLESS=1 cargo test --release --test generated_fragments` copies them into the docs that embed them",
             folder.display()
         );
     }
