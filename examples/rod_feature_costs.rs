@@ -69,7 +69,7 @@ pub fn cases() -> Vec<(&'static str, Scene)> {
         (
             "without shear deformation",
             with(&|s| {
-                s.rod.shear_deformation = false;
+                s.rod.shear_deformation = flexrod::rod::PhysicsSwitch::Off;
                 s.rod.shear_modulus = None;
             }),
         ),
@@ -88,7 +88,7 @@ pub fn cases() -> Vec<(&'static str, Scene)> {
             "stress off and uniform, no shear, no end bodies (the plain rod)",
             with(&|s| {
                 uniform(s);
-                s.rod.shear_deformation = false;
+                s.rod.shear_deformation = flexrod::rod::PhysicsSwitch::Off;
                 s.rod.shear_modulus = None;
                 s.rod.big_end = Default::default();
                 s.rod.small_end = Default::default();
@@ -131,7 +131,7 @@ pub fn cases() -> Vec<(&'static str, Scene)> {
             with(&|s| {
                 s.rod.model = RodModelKind::Segments;
                 s.rod.elements = 32;
-                s.rod.shear_deformation = false;
+                s.rod.shear_deformation = flexrod::rod::PhysicsSwitch::Off;
                 s.rod.shear_modulus = None;
             }),
         ),

@@ -24,6 +24,9 @@ pub struct Simulation {
     /// Identifies the model in serialized states ([`Scene::fingerprint`]).
     fingerprint: u64,
     state: MechanismState,
+    /// The warning that `rod.error_estimate` passed `solver.tolerance` was given (once per
+    /// simulation).
+    error_estimate_warned: bool,
 }
 
 /// Magic bytes and version of serialized snapshots.
@@ -55,6 +58,7 @@ impl Simulation {
             mechanism,
             fingerprint: scene.fingerprint(),
             state,
+            error_estimate_warned: false,
         })
     }
 
@@ -68,7 +72,11 @@ impl Simulation {
     /// the integrator, in words.
     pub fn describe(&self) -> String {
         let (integrator, _) = self.mechanism.integrator_name();
-        format!("{}; integrator {integrator}", self.mechanism.rod.describe())
+        format!(
+            "{}; {}; integrator {integrator}",
+            self.mechanism.rod.describe(),
+            self.mechanism.physics.describe()
+        )
     }
 
     /// Consistent start at `t0`: rod undeformed, rigid coordinates and velocities
@@ -149,12 +157,35 @@ impl Simulation {
             });
         }
         self.mechanism.advance(&mut self.state, h)?;
+        let estimate = self.error_estimate();
+        let tolerance = self.mechanism.spec.solver.tolerance;
+        if estimate > tolerance && !self.error_estimate_warned {
+            self.error_estimate_warned = true;
+            self.state.warnings.push(format!(
+                "rod.error_estimate = {estimate:.2e} at t = {} s exceeds solver.tolerance = {tolerance:e} ({}; peak |v_mid/L| so far {:.3e})",
+                self.state.time,
+                self.mechanism.physics.describe(),
+                self.state.dae.amplitude
+            ));
+        }
         Ok(self.state.stats)
     }
 
     /// Outputs at the current time (docs/physics.md, "Output definitions").
     pub fn outputs(&self) -> Outputs {
-        self.state.outputs
+        Outputs {
+            error_estimate: self.error_estimate(),
+            ..self.state.outputs
+        }
+    }
+
+    /// `rod.error_estimate` now: the estimated pointwise error of `v_mid / L` relative to its
+    /// peak so far, model and integration together
+    /// ([`crate::rod::PhysicsChoice::error_estimate`]).
+    pub fn error_estimate(&self) -> f64 {
+        self.mechanism
+            .physics
+            .error_estimate(self.state.dae.amplitude)
     }
 
     /// Cumulative integrator counters.

@@ -132,7 +132,7 @@ fn automotive_rod_against_the_geometrically_exact_shear_beam() {
     };
     let euler_bernoulli_chain = |n: usize, axial: bool| {
         let mut s = chain(n, axial);
-        s.rod.shear_deformation = false;
+        s.rod.shear_deformation = flexrod::rod::PhysicsSwitch::Off;
         s.rod.shear_modulus = None;
         s
     };
@@ -291,7 +291,7 @@ fn automotive_rod_against_the_geometrically_exact_shear_beam() {
 fn chain_against_the_euler_bernoulli_limit() {
     let reference = reference_file("exudyn_automotive_rod_euler_bernoulli.csv");
     let no_shear = |s: &mut Scene| {
-        s.rod.shear_deformation = false;
+        s.rod.shear_deformation = flexrod::rod::PhysicsSwitch::Off;
         s.rod.shear_modulus = None;
     };
     let mut ffr = scene();

@@ -17,9 +17,27 @@ pub struct RodDefinition {
     /// Shear modulus G, Pa, when the rod is shear-deformable (Timoshenko); `None` =
     /// Euler-Bernoulli.
     pub shear_modulus: Option<f64>,
+    /// Shear area of the uniform rod, m^2 (`None`: `A / 1.2`); a table gives it per station.
+    pub uniform_shear_area: Option<f64>,
     /// Rigid body at B (big end) and at C (small end).
     pub big_end: EndBody,
     pub small_end: EndBody,
+}
+
+/// The shear modulus window: finite and at least the lower end of Young's modulus window
+/// (`PHYSICAL_RANGES`) a decade lower, `G = E / (2 (1 + nu))`; no upper end: a rigid-shear limit
+/// is the Rayleigh beam.
+pub fn check_shear_modulus(g: f64) -> Result<(), ModelError> {
+    let low = super::section::PHYSICAL_RANGES[1].0 / 10.0;
+    if g.is_finite() && g >= low {
+        Ok(())
+    } else {
+        Err(ModelError::InvalidParameter {
+            name: "rod.shear_modulus",
+            value: g,
+            allowed: format!("a finite value >= {low:e} Pa"),
+        })
+    }
 }
 
 impl RodDefinition {
@@ -29,6 +47,7 @@ impl RodDefinition {
             properties,
             table: None,
             shear_modulus: None,
+            uniform_shear_area: None,
             big_end: EndBody::default(),
             small_end: EndBody::default(),
         }
@@ -51,6 +70,7 @@ impl RodDefinition {
             },
             table: Some(table),
             shear_modulus: None,
+            uniform_shear_area: None,
             big_end: EndBody::default(),
             small_end: EndBody::default(),
         }
@@ -61,6 +81,7 @@ impl RodDefinition {
     pub fn is_plain(&self) -> bool {
         self.table.is_none()
             && self.shear_modulus.is_none()
+            && self.uniform_shear_area.is_none()
             && self.big_end.is_empty()
             && self.small_end.is_empty()
     }
@@ -73,7 +94,8 @@ impl RodDefinition {
                 self.properties.length,
                 self.properties.area,
                 self.properties.area_moment,
-            ),
+            )
+            .with_uniform_shear_area(self.uniform_shear_area),
         }
     }
 
@@ -81,16 +103,7 @@ impl RodDefinition {
     pub fn validate(&self) -> Result<(), ModelError> {
         self.properties.validate()?;
         if let Some(g) = self.shear_modulus {
-            // The lower end of Young's modulus window (`PHYSICAL_RANGES`) a decade lower,
-            // G = E / (2 (1 + nu)); no upper end: a rigid-shear limit is the Rayleigh beam.
-            let low = super::section::PHYSICAL_RANGES[1].0 / 10.0;
-            if !(g.is_finite() && g >= low) {
-                return Err(ModelError::InvalidParameter {
-                    name: "rod.shear_modulus",
-                    value: g,
-                    allowed: format!("a finite value >= {low:e} Pa"),
-                });
-            }
+            check_shear_modulus(g)?;
         }
         if let Some(t) = &self.table {
             t.validate_physical()?;

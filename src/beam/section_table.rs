@@ -237,6 +237,17 @@ impl SectionTable {
         }
     }
 
+    /// The same table with the shear area `shear_area` (m^2) at every station (`None`: each
+    /// station's own, default `A / 1.2`).
+    pub fn with_uniform_shear_area(mut self, shear_area: Option<f64>) -> SectionTable {
+        if shear_area.is_some() {
+            for st in &mut self.stations {
+                st.shear_area = shear_area;
+            }
+        }
+        self
+    }
+
     /// Rod length, m.
     pub fn length(&self) -> f64 {
         self.length

@@ -287,7 +287,11 @@ pub fn build(
                     Oscillator::new(kernel.stiffness[i] / mass, kernel.damping[i] / mass)
                 })
                 .collect();
-            Box::new(integrator.exponential(oscillators))
+            let mut integrator = integrator.exponential(oscillators);
+            for omega in rod.axial_circular_frequencies() {
+                integrator = integrator.cap_phase_on(omega);
+            }
+            Box::new(integrator)
         }
         IntegratorChoice::ExplicitRk4 { .. } => Box::new(ExplicitRk4::new(system)),
         IntegratorChoice::GeneralizedAlpha { adaptive } => {

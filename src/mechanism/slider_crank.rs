@@ -13,11 +13,14 @@ use super::spec::MechanismSpec;
 use super::state::MechanismState;
 use crate::error::ModelError;
 use crate::integrator::{ConstrainedSolve, DaeState, DaeSystem, Integrator, StepAhead};
-use crate::rod::RodBody;
+use crate::rod::{PhysicsChoice, RodBody};
 
 /// The slider-crank and its preprocessed rod.
 pub struct Mechanism {
+    /// The spec with the rod's `auto` settings resolved ([`crate::rod::physics_choice`]).
     pub spec: MechanismSpec,
+    /// What the `auto` settings chose, and the model's share of the error estimate.
+    pub physics: PhysicsChoice,
     pub rod: Box<dyn RodBody>,
     pub(super) crank_length: f64,
     pub(super) slider_mass: f64,
@@ -94,6 +97,12 @@ impl Mechanism {
     /// ([`super::integrator_choice`]).
     pub fn new(spec: &MechanismSpec) -> Result<Mechanism, ModelError> {
         spec.validate()?;
+        let (rod_spec, physics) =
+            crate::rod::physics_choice::choose(&spec.rod, spec.slider.mass, spec.solver.tolerance)?;
+        let spec = &MechanismSpec {
+            rod: rod_spec,
+            ..spec.clone()
+        };
         let rod = crate::rod::build(&spec.rod, spec.slider.mass)?;
         let n = rod.n_coordinates() + 1;
         let probe_pins = Cell::default();
@@ -131,6 +140,7 @@ impl Mechanism {
         };
         Ok(Mechanism {
             spec: spec.clone(),
+            physics,
             crank_length: spec.crank.length,
             slider_mass: spec.slider.mass,
             max_step,

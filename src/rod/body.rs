@@ -45,6 +45,11 @@ pub trait RodBody: Send {
     fn elastic_circular_frequencies(&self) -> Option<Vec<f64>> {
         None
     }
+    /// Circular frequencies (rad/s) of the retained axial modes (the FFR rod's; none
+    /// elsewhere): the integrator's exponential form caps its phase on them too.
+    fn axial_circular_frequencies(&self) -> Vec<f64> {
+        Vec::new()
+    }
     /// Indices of the body frame's origin `R` (x, y) and angle `phi` among the coordinates,
     /// where the model has one frame carrying all points (the FFR rod): a point is then
     /// `R + A(phi) u(q_elastic)`.

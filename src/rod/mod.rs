@@ -10,13 +10,15 @@
 
 pub mod body;
 pub mod ffr;
+pub mod physics_choice;
 pub mod sections;
 pub mod segments;
 pub mod spec;
 
 pub use body::{RodBody, RodPoint};
+pub use physics_choice::PhysicsChoice;
 pub use sections::SectionLoads;
-pub use spec::{DeflectionPolicy, RodModelKind, RodSpec};
+pub use spec::{DeflectionPolicy, PhysicsSwitch, RodModelKind, RodSpec};
 
 use crate::error::ModelError;
 use crate::modal::loaded::{axial_coordinate_at_c, AddedMass};
@@ -25,7 +27,7 @@ use crate::modal::{ComponentModes, ModeSelection, ReferenceConditions};
 /// The FFR rod's choice of modes: which modes it retains (`rod.mode_band_hz`, else the
 /// `rod.modes` lowest with `rod.axial_modes`), and the masses added in the eigenproblem
 /// (`rod.loaded_modes`: the slider's `slider_mass`, kg, at C's axial coordinate). With a band,
-/// the bending modes above it are static corrections ([`ffr::residual::residual_indices`]).
+/// the bending modes left out are static corrections ([`ffr::residual`]).
 pub fn ffr_mode_choice(spec: &RodSpec, slider_mass: f64) -> (ModeSelection, Vec<AddedMass>) {
     let selection = match spec.mode_band_hz {
         Some(max_hz) => ModeSelection::Cutoff { max_hz },
@@ -62,10 +64,8 @@ pub fn build(spec: &RodSpec, slider_mass: f64) -> Result<Box<dyn RodBody>, Model
                 &added,
             )?;
             let rod = ffr::FfrRod::new(modes, spec.damping_ratio, spec.axial_stiffening);
-            if spec.mode_band_hz.is_none() {
-                return Ok(Box::new(rod));
-            }
-            // A band: the bending modes above it as residual flexibility.
+            // The bending modes left out as residual flexibility (static corrections to
+            // v_mid, [`ffr::residual`]), with a band or a count of modes alike.
             let all = ComponentModes::from_definition_loaded(
                 definition,
                 spec.elements,

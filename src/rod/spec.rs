@@ -54,12 +54,25 @@ pub struct RodSpec {
     /// Station table `[[rod.section]]` of a rod whose section varies (empty = uniform rod).
     #[serde(default, rename = "section", skip_serializing_if = "Vec::is_empty")]
     pub section: Vec<SectionStation>,
-    /// Timoshenko beam (shear flexibility and rotary inertia) instead of Euler-Bernoulli.
-    #[serde(default, skip_serializing_if = "is_false")]
-    pub shear_deformation: bool,
-    /// Shear modulus G, Pa (default E / 2.6); used with `shear_deformation`.
+    /// Timoshenko beam (shear flexibility and rotary inertia) instead of Euler-Bernoulli:
+    /// `on`, `off`, or `auto` (default: on where it changes the outputs by more than
+    /// `solver.tolerance`, [`crate::rod::physics_choice`]). `true` / `false` read as on / off.
+    #[serde(default, skip_serializing_if = "PhysicsSwitch::is_auto")]
+    pub shear_deformation: PhysicsSwitch,
+    /// Shear modulus G, Pa (default E / 2.6); used where shear deformation is on.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shear_modulus: Option<f64>,
+    /// Shear area A_s, m^2, of the uniform rod (default A / 1.2; a section table gives it per
+    /// station).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shear_area: Option<f64>,
+    /// Axial dynamics: the slider-rod axial mode among the retained modes, on mass-loaded modes
+    /// (FFR), or the axial springs between segments (segments): `on`, `off`, or `auto`
+    /// (default: on where that mode lies in the band the retained bending modes span,
+    /// [`crate::rod::physics_choice`]). With `off` the scene's `axial_modes`, `loaded_modes`
+    /// and `axial_springs` keys decide alone.
+    #[serde(default, skip_serializing_if = "PhysicsSwitch::is_auto")]
+    pub axial_dynamics: PhysicsSwitch,
     /// Rigid body attached at B (`[rod.big_end]`: mass kg, inertia kg m^2 about B).
     #[serde(default, skip_serializing_if = "EndBody::is_empty")]
     pub big_end: EndBody,
@@ -161,6 +174,74 @@ impl DeflectionPolicy {
     }
 }
 
+/// A part of the physics a user can force on or off, or leave to the model (`auto`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PhysicsSwitch {
+    /// Chosen at initialization from the rod's own numbers and `solver.tolerance`.
+    #[default]
+    Auto,
+    On,
+    Off,
+}
+
+impl PhysicsSwitch {
+    /// Every setting, in the order of the FMU's enumeration items and Integer codes (1-based).
+    pub const ALL: [PhysicsSwitch; 3] =
+        [PhysicsSwitch::Auto, PhysicsSwitch::On, PhysicsSwitch::Off];
+
+    /// The name in scenes, enumeration items and messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            PhysicsSwitch::Auto => "auto",
+            PhysicsSwitch::On => "on",
+            PhysicsSwitch::Off => "off",
+        }
+    }
+
+    /// `On` for true, `Off` for false.
+    pub fn from_bool(on: bool) -> PhysicsSwitch {
+        if on {
+            PhysicsSwitch::On
+        } else {
+            PhysicsSwitch::Off
+        }
+    }
+
+    /// Whether the part is in (after [`crate::rod::physics_choice`] resolved `auto`; an
+    /// unresolved `auto` counts as on).
+    pub fn is_on(self) -> bool {
+        self != PhysicsSwitch::Off
+    }
+
+    fn is_auto(&self) -> bool {
+        *self == PhysicsSwitch::Auto
+    }
+}
+
+impl<'de> Deserialize<'de> for PhysicsSwitch {
+    /// `"auto"`, `"on"`, `"off"`, or a boolean (`true` = on, `false` = off).
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        #[derive(Deserialize)]
+        #[serde(untagged)]
+        enum Raw {
+            Flag(bool),
+            Name(String),
+        }
+        match Raw::deserialize(d)? {
+            Raw::Flag(b) => Ok(PhysicsSwitch::from_bool(b)),
+            Raw::Name(name) => PhysicsSwitch::ALL
+                .into_iter()
+                .find(|k| k.name() == name)
+                .ok_or_else(|| {
+                    serde::de::Error::custom(format!(
+                        "unknown setting {name:?}: expected \"auto\", \"on\", \"off\", true or false"
+                    ))
+                }),
+        }
+    }
+}
+
 /// Default shear modulus as a fraction of Young's modulus, `G = E / 2.6` (isotropic, Poisson's
 /// ratio 0.3: `G = E / (2 (1 + nu))`).
 pub const DEFAULT_SHEAR_MODULUS_FACTOR: f64 = 1.0 / 2.6;
@@ -187,9 +268,10 @@ impl RodSpec {
         }
     }
 
-    /// The shear modulus in use: `Some(G)` (given, or `E / 2.6`) with shear deformation on.
+    /// The shear modulus in use: `Some(G)` (given, or `E / 2.6`) with shear deformation on
+    /// (or `auto`, not yet resolved).
     pub fn effective_shear_modulus(&self) -> Option<f64> {
-        self.shear_deformation.then(|| {
+        self.shear_deformation.is_on().then(|| {
             self.shear_modulus
                 .unwrap_or(self.youngs_modulus * DEFAULT_SHEAR_MODULUS_FACTOR)
         })
@@ -216,14 +298,29 @@ impl RodSpec {
             let table = SectionTable::new(self.length, &self.section)?;
             RodDefinition::with_table(self.properties(), table)
         };
-        if self.shear_modulus.is_some() && !self.shear_deformation {
-            return Err(ModelError::InvalidParameter {
-                name: "rod.shear_modulus",
-                value: self.shear_modulus.unwrap_or(f64::NAN),
-                allowed: "only with rod.shear_deformation = true".into(),
-            });
+        if let Some(a_s) = self.shear_area {
+            if !self.section.is_empty() {
+                return Err(ModelError::InvalidParameter {
+                    name: "rod.shear_area",
+                    value: a_s,
+                    allowed: "left out when [[rod.section]] stations are given (each station carries its shear_area)".into(),
+                });
+            }
+            let a = self.area;
+            if !(a_s.is_finite() && a_s > 0.0 && a_s <= a) {
+                return Err(ModelError::InvalidParameter {
+                    name: "rod.shear_area",
+                    value: a_s,
+                    allowed: format!("in (0, rod.area] = (0, {a:e}] m2"),
+                });
+            }
+        }
+        if let Some(g) = self.shear_modulus {
+            // Checked whether or not shear is in, so that a bad value is refused when set.
+            crate::beam::definition::check_shear_modulus(g)?;
         }
         def.shear_modulus = self.effective_shear_modulus();
+        def.uniform_shear_area = self.shear_area;
         def.big_end = self.big_end;
         def.small_end = self.small_end;
         def.validate()?;

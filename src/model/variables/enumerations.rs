@@ -2,6 +2,7 @@
 //! (`RodModelKind::ALL`, `ReferenceKind::ALL` with `name()`), numbered 1, 2, ... in that
 //! order; only the items' descriptions are written here.
 
+use crate::rod::PhysicsSwitch;
 use crate::scene::{ReferenceKind, RodModelKind};
 
 /// One item of an enumeration type.
@@ -53,6 +54,22 @@ impl Kind for ReferenceKind {
                 "All coordinates of the middle node zero (even number of elements)"
             }
             ReferenceKind::Cantilever => "All coordinates of the B node zero",
+        }
+    }
+}
+
+impl Kind for PhysicsSwitch {
+    const ALL: &'static [Self] = &PhysicsSwitch::ALL;
+    fn name(self) -> &'static str {
+        PhysicsSwitch::name(self)
+    }
+    fn description(self) -> &'static str {
+        match self {
+            PhysicsSwitch::Auto => {
+                "Chosen at initialization from the rod's numbers and solver.tolerance (logged)"
+            }
+            PhysicsSwitch::On => "In the model",
+            PhysicsSwitch::Off => "Left out",
         }
     }
 }
@@ -151,8 +168,15 @@ pub static ROD_REFERENCE: EnumerationType = EnumerationType {
     items: items::<ReferenceKind>,
 };
 
+/// `rod.shear_deformation`, `rod.axial_dynamics`.
+pub static PHYSICS_SWITCH: EnumerationType = EnumerationType {
+    name: "PhysicsSwitch",
+    description: "A part of the rod's physics: chosen by the model (auto), on or off",
+    items: items::<PhysicsSwitch>,
+};
+
 /// Every enumeration type, in `TypeDefinitions` order.
-pub static ENUMERATION_TYPES: [&EnumerationType; 2] = [&ROD_MODEL, &ROD_REFERENCE];
+pub static ENUMERATION_TYPES: [&EnumerationType; 3] = [&ROD_MODEL, &ROD_REFERENCE, &PHYSICS_SWITCH];
 
 #[cfg(test)]
 mod tests {

@@ -2,17 +2,19 @@
 //! bounds and where its value lives. Names, units and signs are those of `docs/fmu.md`.
 
 use super::builder::{real, Builder, DIMENSIONLESS, RAD, RAD_PER_S};
-use super::enumerations::{self, ROD_MODEL, ROD_REFERENCE};
+use super::enumerations::{self, PHYSICS_SWITCH, ROD_MODEL, ROD_REFERENCE};
 use super::ranges::{
-    element_count, non_negative, policy_code, set_model, set_policy, set_reference, usize_to_i32,
-    ELEMENTS_MAX,
+    element_count, non_negative, policy_code, set_axial_dynamics, set_model, set_policy,
+    set_reference, set_shear_deformation, usize_to_i32, ELEMENTS_MAX,
 };
 use super::ranges::{loaded_modes_code, set_loaded_modes};
 use super::types::{Access, InitialDependencies, InputSlot, Value, ValueType};
 use super::{Interface, VariableId, VariableTable, FREQUENCY_VR_BASE};
 use crate::scene::Scene;
 
-/// Parameters the rod's natural frequencies depend on.
+/// Parameters the rod's natural frequencies depend on (names a scene does not declare are
+/// left out of the description's dependencies): the rod, the model class the `auto` settings
+/// choose (from the slider's mass and the tolerance too), the mass-loaded modes.
 const FREQUENCY_KNOWNS: &[&str] = &[
     "rod.length",
     "rod.youngs_modulus",
@@ -22,35 +24,23 @@ const FREQUENCY_KNOWNS: &[&str] = &[
     "rod.model",
     "rod.elements",
     "rod.reference",
+    "rod.modes",
     "rod.model_index",
     "rod.reference_index",
     "rod.shear_modulus",
-    "rod.big_end.mass",
-    "rod.big_end.inertia",
-    "rod.small_end.mass",
-    "rod.small_end.inertia",
-];
-
-/// [`FREQUENCY_KNOWNS`] of a scene that declares `rod.loaded_modes`: with mass-loaded modes the
-/// slider's mass is in the eigenproblem.
-const FREQUENCY_KNOWNS_LOADED: &[&str] = &[
-    "rod.length",
-    "rod.youngs_modulus",
-    "rod.density",
-    "rod.area",
-    "rod.area_moment",
-    "rod.model",
-    "rod.elements",
-    "rod.reference",
-    "rod.model_index",
-    "rod.reference_index",
-    "rod.shear_modulus",
+    "rod.shear_area",
+    "rod.shear_deformation",
+    "rod.shear_deformation_index",
+    "rod.axial_dynamics",
+    "rod.axial_dynamics_index",
     "rod.big_end.mass",
     "rod.big_end.inertia",
     "rod.small_end.mass",
     "rod.small_end.inertia",
     "rod.loaded_modes",
+    "rod.mode_band_hz",
     "slider.mass",
+    "solver.tolerance",
 ];
 
 impl VariableTable {
@@ -111,6 +101,14 @@ impl VariableTable {
             |o| o.deflection_rel,
             D::None,
             "v_mid / L",
+        );
+        b.output(
+            "rod.error_estimate",
+            19,
+            DIMENSIONLESS,
+            |o| o.error_estimate,
+            D::All,
+            "Estimated pointwise error of v_mid / L relative to its peak so far, model and integration together (one warning when it passes solver.tolerance)",
         );
         if out.pin_forces {
             b.output(
@@ -361,62 +359,81 @@ impl VariableTable {
             );
         }
 
-        // The rod's shear modulus and end bodies (`docs/fmu.md`, "Real connecting rods"),
-        // value references 138-142: G in shear-deformable scenes, the end bodies in scenes with
-        // a section table or an end body (the scenes that report rod.mass).
-        if scene.rod.shear_deformation {
+        // The rod's shear deformation and end bodies (`docs/fmu.md`, "Real connecting rods" and
+        // "Model class and error estimate"), value references 138-142 and 145-149, in every
+        // FMU: any rod can be entered with only physical parameters.
+        b.real_parameter(
+            "rod.shear_modulus",
+            138,
+            real("Pa"),
+            |s| s.rod.shear_modulus.unwrap_or(s.rod.youngs_modulus / 2.6),
+            |s, v| s.rod.shear_modulus = Some(v),
+            "Shear modulus G, used where shear deformation is on (default E / 2.6)",
+        );
+        b.positive();
+        if uniform {
             b.real_parameter(
-                "rod.shear_modulus",
-                138,
-                real("Pa"),
-                |s| s.rod.shear_modulus.unwrap_or(s.rod.youngs_modulus / 2.6),
-                |s, v| s.rod.shear_modulus = Some(v),
-                "Shear modulus G of the shear-deformable rod (default E / 2.6)",
+                "rod.shear_area",
+                145,
+                real("m2"),
+                |s| s.rod.shear_area.unwrap_or(s.rod.area / 1.2),
+                |s, v| s.rod.shear_area = Some(v),
+                "Shear area A_s of the uniform rod, in (0, rod.area] (default A / 1.2, a rectangle)",
             );
             b.positive();
         }
-        let real_rod = &scene.rod;
-        if !real_rod.section.is_empty()
-            || !real_rod.big_end.is_empty()
-            || !real_rod.small_end.is_empty()
-        {
-            b.real_parameter(
-                "rod.big_end.mass",
-                139,
-                real("kg"),
-                |s| s.rod.big_end.mass,
-                |s, v| s.rod.big_end.mass = v,
-                "Mass of the big end (rigid body at B)",
-            );
-            b.non_negative();
-            b.real_parameter(
-                "rod.big_end.inertia",
-                140,
-                real("kg.m2"),
-                |s| s.rod.big_end.inertia,
-                |s, v| s.rod.big_end.inertia = v,
-                "Rotary inertia of the big end about B",
-            );
-            b.non_negative();
-            b.real_parameter(
-                "rod.small_end.mass",
-                141,
-                real("kg"),
-                |s| s.rod.small_end.mass,
-                |s, v| s.rod.small_end.mass = v,
-                "Mass of the small end (rigid body at C)",
-            );
-            b.non_negative();
-            b.real_parameter(
-                "rod.small_end.inertia",
-                142,
-                real("kg.m2"),
-                |s| s.rod.small_end.inertia,
-                |s, v| s.rod.small_end.inertia = v,
-                "Rotary inertia of the small end about C",
-            );
-            b.non_negative();
-        }
+        b.integer_parameter(
+            "rod.shear_deformation",
+            146,
+            ValueType::Enumeration(&PHYSICS_SWITCH),
+            |s| enumerations::code(s.rod.shear_deformation),
+            set_shear_deformation,
+            "Shear deformation and rotary inertia (Timoshenko): auto (on where their estimated effect on v_mid/L exceeds solver.tolerance), on or off",
+        );
+        b.integer_parameter(
+            "rod.axial_dynamics",
+            148,
+            ValueType::Enumeration(&PHYSICS_SWITCH),
+            |s| enumerations::code(s.rod.axial_dynamics),
+            set_axial_dynamics,
+            "Axial dynamics (the slider-rod axial mode): auto (on where it lies within 2.5 x the highest retained bending mode, or the masses at C reach the rod's), on or off",
+        );
+        b.real_parameter(
+            "rod.big_end.mass",
+            139,
+            real("kg"),
+            |s| s.rod.big_end.mass,
+            |s, v| s.rod.big_end.mass = v,
+            "Mass of the big end (rigid body at B)",
+        );
+        b.non_negative();
+        b.real_parameter(
+            "rod.big_end.inertia",
+            140,
+            real("kg.m2"),
+            |s| s.rod.big_end.inertia,
+            |s, v| s.rod.big_end.inertia = v,
+            "Rotary inertia of the big end about B",
+        );
+        b.non_negative();
+        b.real_parameter(
+            "rod.small_end.mass",
+            141,
+            real("kg"),
+            |s| s.rod.small_end.mass,
+            |s, v| s.rod.small_end.mass = v,
+            "Mass of the small end (rigid body at C)",
+        );
+        b.non_negative();
+        b.real_parameter(
+            "rod.small_end.inertia",
+            142,
+            real("kg.m2"),
+            |s| s.rod.small_end.inertia,
+            |s, v| s.rod.small_end.inertia = v,
+            "Rotary inertia of the small end about C",
+        );
+        b.non_negative();
 
         // The modes chosen for the mechanism (`docs/fmu.md`, "Mode band and mass-loaded
         // modes"), value references 143-144, in scenes with `rod.loaded_modes` or
@@ -473,6 +490,34 @@ impl VariableTable {
             Some(Value::Integer(ROD_REFERENCE.max_code())),
         );
 
+        for (name, vr, get, set) in [
+            (
+                "rod.shear_deformation",
+                147,
+                (|s: &Scene| enumerations::code(s.rod.shear_deformation)) as fn(&Scene) -> i32,
+                set_shear_deformation as fn(&mut Scene, i32) -> Result<(), String>,
+            ),
+            (
+                "rod.axial_dynamics",
+                149,
+                |s: &Scene| enumerations::code(s.rod.axial_dynamics),
+                set_axial_dynamics,
+            ),
+        ] {
+            b.integer_parameter(
+                &format!("{name}_index"),
+                vr,
+                ValueType::Integer,
+                get,
+                set,
+                &PHYSICS_SWITCH.twin_description(name),
+            );
+            b.bounds(
+                Some(Value::Integer(1)),
+                Some(Value::Integer(PHYSICS_SWITCH.max_code())),
+            );
+        }
+
         // The integrator's accuracy: the error control chooses the internal steps.
         b.real_parameter(
             "solver.tolerance",
@@ -508,11 +553,7 @@ impl VariableTable {
         b.bounds(Some(Value::Integer(1)), Some(Value::Integer(3)));
 
         // Calculated parameters (with arrays: one array, see `interface`).
-        let frequency_knowns = if loaded_declared {
-            FREQUENCY_KNOWNS_LOADED
-        } else {
-            FREQUENCY_KNOWNS
-        };
+        let frequency_knowns = FREQUENCY_KNOWNS;
         let scalar_frequencies = if interface.arrays { 0 } else { n_frequencies };
         for k in 1..=scalar_frequencies {
             b.calculated_parameter(
@@ -526,14 +567,19 @@ impl VariableTable {
                 ),
             );
         }
-        let rod = &scene.rod;
-        if !rod.section.is_empty() || !rod.big_end.is_empty() || !rod.small_end.is_empty() {
+        {
             b.calculated_parameter(
                 "rod.mass".into(),
                 134,
                 real("kg"),
                 Access::RodMass,
-                D::Named(&["rod.length", "rod.density"]),
+                D::Named(&[
+                    "rod.length",
+                    "rod.density",
+                    "rod.area",
+                    "rod.big_end.mass",
+                    "rod.small_end.mass",
+                ]),
                 "Mass of the rod with its end bodies".into(),
             );
         }

@@ -2,8 +2,9 @@
 //! carries the allowed values for the message; the physical ranges are checked when the model
 //! is built (`Simulation::new`).
 
-use super::enumerations::{self, EnumerationType, Kind, ROD_MODEL, ROD_REFERENCE};
+use super::enumerations::{self, EnumerationType, Kind, PHYSICS_SWITCH, ROD_MODEL, ROD_REFERENCE};
 use crate::beam::mesh::MAX_ELEMENTS;
+use crate::rod::PhysicsSwitch;
 use crate::scene::{DeflectionPolicy, ReferenceKind, RodModelKind, Scene};
 
 /// `rod.elements`: the largest value, as the Integer of the `max` attribute.
@@ -37,6 +38,18 @@ fn kind<K: Kind>(ty: &EnumerationType, value: i32) -> Result<K, String> {
 /// `rod.model`: 1 (ffr), 2 (segments).
 pub fn set_model(scene: &mut Scene, value: i32) -> Result<(), String> {
     scene.rod.model = kind::<RodModelKind>(&ROD_MODEL, value)?;
+    Ok(())
+}
+
+/// `rod.shear_deformation`: 1 (auto), 2 (on), 3 (off).
+pub fn set_shear_deformation(scene: &mut Scene, value: i32) -> Result<(), String> {
+    scene.rod.shear_deformation = kind::<PhysicsSwitch>(&PHYSICS_SWITCH, value)?;
+    Ok(())
+}
+
+/// `rod.axial_dynamics`: 1 (auto), 2 (on), 3 (off).
+pub fn set_axial_dynamics(scene: &mut Scene, value: i32) -> Result<(), String> {
+    scene.rod.axial_dynamics = kind::<PhysicsSwitch>(&PHYSICS_SWITCH, value)?;
     Ok(())
 }
 

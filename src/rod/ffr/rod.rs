@@ -49,6 +49,30 @@ pub struct FfrRod {
     /// Left-out modes whose quasi-static response the midpoint deflection adds
     /// ([`super::residual`]; empty: none).
     pub(super) residual: Vec<super::residual::ResidualMode>,
+    /// Per retained mode, the factor on its error-control scale
+    /// ([`crate::rod::RodBody::coordinate_scale`]): `(w_1 / w_k)^2` for an axial mode `k`
+    /// with `w_1` the lowest retained bending frequency, 1 for bending modes.
+    pub(super) axial_scale_ratio: Vec<f64>,
+}
+
+/// `(w_1 / w_k)^2` for each retained axial mode `k` (`w_1`: the lowest retained bending
+/// frequency; none retained: 1), 1 for the bending modes.
+fn axial_scale_ratios(modes: &ComponentModes) -> Vec<f64> {
+    let axial = |j: usize| modes.is_axial(modes.retained[j]);
+    let count = modes.retained.len();
+    let first_bending = (0..count)
+        .filter(|&j| !axial(j))
+        .map(|j| modes.omega2[j])
+        .fold(f64::INFINITY, f64::min);
+    (0..count)
+        .map(|j| {
+            if axial(j) && first_bending.is_finite() && modes.omega2[j] > 0.0 {
+                (first_bending / modes.omega2[j]).min(1.0)
+            } else {
+                1.0
+            }
+        })
+        .collect()
 }
 
 impl FfrRod {
@@ -69,7 +93,9 @@ impl FfrRod {
             Some([g_a, _]) => (g_a.clone(), 1.0),
         };
         let mass = integrals.mass;
+        let axial_scale_ratio = axial_scale_ratios(&modes);
         let mut rod = FfrRod {
+            axial_scale_ratio,
             sampling: super::sections::Sampling::new(&modes),
             acceleration_stiffness,
             coupling_scale,
@@ -165,7 +191,17 @@ impl RodBody for FfrRod {
             0 | 1 => self.length,
             2 => 1.0,
             // Unit modal mass: a displacement d is a modal amplitude of about d sqrt(m).
-            _ => self.length * self.mass.sqrt(),
+            // An axial mode moves v_mid only through the axial force it carries into bending:
+            // its scale is the amplitude whose elastic force w_k^2 p matches that of the first
+            // bending mode's scale, `(w_1 / w_k)^2` of it.
+            k => {
+                let scale = self.length * self.mass.sqrt();
+                let mode = k - 3;
+                match self.axial_scale_ratio.get(mode) {
+                    Some(&r) => scale * r,
+                    None => scale,
+                }
+            }
         }
     }
 
@@ -206,6 +242,13 @@ impl RodBody for FfrRod {
 
     fn elastic_circular_frequencies(&self) -> Option<Vec<f64>> {
         Some(self.stiffness.iter().map(|w2| w2.sqrt()).collect())
+    }
+
+    fn axial_circular_frequencies(&self) -> Vec<f64> {
+        (0..self.n)
+            .filter(|&j| self.modes.is_axial(self.modes.retained[j]))
+            .map(|j| self.stiffness[j].sqrt())
+            .collect()
     }
 
     fn elastic_coordinates(&self) -> Option<std::ops::Range<usize>> {

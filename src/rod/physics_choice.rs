@@ -1,0 +1,313 @@
+//! The model class chosen from the rod's own numbers: shear deformation and rotary inertia
+//! (`rod.shear_deformation`), axial dynamics (`rod.axial_dynamics`), and the model's share of
+//! the error estimate (`rod.error_estimate`). `auto` settings are resolved here, once, when the
+//! model is built; `on` and `off` are the user's.
+//!
+//! # Shear deformation and rotary inertia
+//! For a simply supported Timoshenko beam, mode n's frequency relative to the Euler-Bernoulli
+//! beam's is, to first order in the slenderness,
+//! `w_T^2 / w_EB^2 = 1 - (n pi r / L)^2 (1 + E / (k G))`, `r^2 = I / A`, `k A = A_s`
+//! (S. P. Timoshenko, "On the correction for shear of the differential equation for transverse
+//! vibrations of prismatic bars", Philosophical Magazine 41, 1921; S. M. Han, H. Benaroya and
+//! T. Wei, "Dynamics of transversely vibrating beams using four engineering theories", Journal
+//! of Sound and Vibration 225(5), 1999, eq. 60), and the compliance of the quasi-static first
+//! mode grows by `(pi r / L)^2 E / (k G)`. The effect on `v_mid / L`, relative to its peak, is
+//! taken as twice the first mode's relative change of `w^2`:
+//! `e_shear = 2 (pi r / L)^2 (1 + E / (k G))`. The factor 2 stands for the dynamic response
+//! (mode 3, the ringing, the amplification of the crank harmonics): over random rods of
+//! slenderness 8 to 60 in the slider-crank, the measured effect of switching shear on was 0.5 to
+//! 1.6 times `e_shear` in smooth starts (docs/verification.md, "Any rod"). `auto` switches shear
+//! and rotary inertia on where `e_shear > solver.tolerance`.
+//!
+//! # Axial dynamics
+//! The slider-rod axial mode: the rod pinned axially at B, the masses at C (slider and small end,
+//! `M`) on its free end; `beta tan(beta) = m / M` with `m` the rod's mass, `f_ax = beta c /
+//! (2 pi L)`, `c = sqrt(E / rho)` (a bar with a tip mass: S. S. Rao, *Vibration of Continuous
+//! Systems*, 2007, section 9.4, case "fixed-mass"); `beta = pi / 2` without a mass at C. `auto`
+//! keeps it (FFR: as a mass-loaded mode, [`crate::modal::loaded`]; segments: the axial springs)
+//! where it lies below [`AXIAL_BAND_FACTOR`] times the highest retained bending mode (the band
+//! the start, the gas force and the retained modes excite), or where the masses at C reach the
+//! rod's mass ([`super::spec::AXIAL_MODE_MASS_RATIO`]).
+
+use super::spec::{PhysicsSwitch, RodModelKind, RodSpec, AXIAL_MODE_MASS_RATIO};
+use crate::beam::section_table::DEFAULT_SHEAR_AREA_FACTOR;
+use crate::error::ModelError;
+use std::f64::consts::PI;
+
+/// The slider-rod axial mode is kept by `auto` below this multiple of the highest retained
+/// bending frequency.
+pub const AXIAL_BAND_FACTOR: f64 = 2.5;
+
+/// The integration's share of the error estimate, as a multiple of `solver.tolerance` (the
+/// error control holds the pointwise error of `v_mid / L` below the tolerance; over random
+/// parameter sets it is typically a fraction of it, tests/error_control.rs).
+pub const INTEGRATION_SHARE: f64 = 0.5;
+
+/// The coefficient of `peak^2` in the error estimate ([`PhysicsChoice::error_estimate`]).
+pub const NONLINEAR_COEFFICIENT: f64 = 1.0;
+
+/// What `auto` chose, and the numbers it chose on.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PhysicsChoice {
+    /// Shear deformation and rotary inertia in the model.
+    pub shear: bool,
+    /// The setting it came from.
+    pub shear_setting: PhysicsSwitch,
+    /// `e_shear`: the estimated effect of shear and rotary inertia on `v_mid / L`, relative to
+    /// its peak (module docs).
+    pub shear_effect: f64,
+    /// Axial dynamics in the model.
+    pub axial: bool,
+    pub axial_setting: PhysicsSwitch,
+    /// The slider-rod axial frequency, Hz.
+    pub axial_hz: f64,
+    /// The highest retained bending frequency (estimate: the simply supported rod's mode
+    /// `modes`, or the mode band), Hz.
+    pub band_top_hz: f64,
+    /// The tolerance the choice was made for.
+    pub tolerance: f64,
+}
+
+impl PhysicsChoice {
+    /// The model's share of the error estimate, relative to the peak of `v_mid / L`: the
+    /// effect of what is left out (shear and rotary inertia where off).
+    pub fn model_error(&self) -> f64 {
+        if self.shear {
+            0.0
+        } else {
+            self.shear_effect
+        }
+    }
+
+    /// `rod.error_estimate`: the estimated pointwise error of `v_mid / L` relative to its
+    /// peak, model and integration together, for a motion whose peak `|v_mid / L|` so far is
+    /// `peak`: [`Self::model_error`] + [`INTEGRATION_SHARE`] `solver.tolerance` +
+    /// [`NONLINEAR_COEFFICIENT`] `peak^2` (the geometrically nonlinear terms the FFR rod with
+    /// axial stiffening leaves out grow with the square of the deflection relative to the
+    /// linear ones).
+    pub fn error_estimate(&self, peak: f64) -> f64 {
+        self.model_error()
+            + INTEGRATION_SHARE * self.tolerance
+            + NONLINEAR_COEFFICIENT * peak * peak
+    }
+
+    /// What was chosen and why, for the log at the end of initialization.
+    pub fn describe(&self) -> String {
+        let why = |setting: PhysicsSwitch, auto_reason: String| match setting {
+            PhysicsSwitch::Auto => auto_reason,
+            s => format!("set {}", s.name()),
+        };
+        let on_off = |b: bool| if b { "on" } else { "off" };
+        let shear_reason = format!(
+            "auto: estimated effect on v_mid/L {:.1e} of its peak {} solver.tolerance {:.0e}",
+            self.shear_effect,
+            if self.shear_effect > self.tolerance {
+                ">"
+            } else {
+                "<="
+            },
+            self.tolerance
+        );
+        let axial_reason = format!(
+            "auto: slider-rod axial mode {:.0} Hz {} {AXIAL_BAND_FACTOR} x the highest retained bending mode {:.0} Hz, or masses at C >= the rod's",
+            self.axial_hz,
+            if self.axial { "within" } else { "above" },
+            self.band_top_hz
+        );
+        format!(
+            "shear deformation and rotary inertia {} ({}); axial dynamics {} ({})",
+            on_off(self.shear),
+            why(self.shear_setting, shear_reason),
+            on_off(self.axial),
+            why(self.axial_setting, axial_reason)
+        )
+    }
+}
+
+/// `e_shear` of `spec` (module docs), from the section's length means.
+pub fn shear_effect(spec: &RodSpec) -> f64 {
+    let p = spec.properties();
+    let e = p.youngs_modulus;
+    let g = spec
+        .shear_modulus
+        .unwrap_or(e * super::spec::DEFAULT_SHEAR_MODULUS_FACTOR);
+    let shear_area = match (&spec.shear_area, spec.section.is_empty()) {
+        (Some(a_s), _) => *a_s,
+        (None, true) => p.area * DEFAULT_SHEAR_AREA_FACTOR,
+        (None, false) => {
+            let n = spec.section.len() as f64;
+            spec.section
+                .iter()
+                .map(|st| st.shear_area.unwrap_or(st.area * DEFAULT_SHEAR_AREA_FACTOR))
+                .sum::<f64>()
+                / n
+        }
+    };
+    let r2 = p.area_moment / p.area;
+    let slenderness = PI * PI * r2 / (p.length * p.length);
+    2.0 * slenderness * (1.0 + e * p.area / (g * shear_area))
+}
+
+/// The slider-rod axial frequency, Hz, with `mass_at_c` kg at C (module docs).
+pub fn axial_frequency_hz(spec: &RodSpec, mass_at_c: f64) -> f64 {
+    let p = spec.properties();
+    let c = (p.youngs_modulus / p.density).sqrt();
+    let m = spec
+        .definition()
+        .map(|d| d.rod_mass())
+        .unwrap_or_else(|_| p.mass());
+    let beta = tip_mass_root(m, mass_at_c);
+    beta * c / (2.0 * PI * p.length)
+}
+
+/// The first root of `beta tan(beta) = m / M` in (0, pi/2]; `pi / 2` for `M = 0`.
+fn tip_mass_root(m: f64, mass_at_c: f64) -> f64 {
+    if !(mass_at_c > 0.0) || !(m > 0.0) {
+        return PI / 2.0;
+    }
+    let ratio = m / mass_at_c;
+    // f(beta) = beta sin - ratio cos is increasing on (0, pi/2): bisection, then it is exact
+    // to the last bits after 60 halvings.
+    let (mut lo, mut hi) = (0.0_f64, PI / 2.0);
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if mid * mid.sin() - ratio * mid.cos() < 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// The first bending frequency of the simply supported Euler-Bernoulli rod of `spec`'s length
+/// means, Hz: `(pi / L)^2 sqrt(E I / (rho A)) / (2 pi)`.
+fn first_bending_hz(spec: &RodSpec) -> f64 {
+    let p = spec.properties();
+    (PI / p.length).powi(2) * (p.youngs_modulus * p.area_moment / (p.density * p.area)).sqrt()
+        / (2.0 * PI)
+}
+
+/// Resolve the `auto` settings of `spec` for a slider of `slider_mass` kg and the tolerance
+/// `tolerance`: the spec the model is built from (every switch `on` or `off`, the axial mode
+/// expressed in `axial_modes`, `loaded_modes` or `axial_springs`), and what was chosen.
+pub fn choose(
+    spec: &RodSpec,
+    slider_mass: f64,
+    tolerance: f64,
+) -> Result<(RodSpec, PhysicsChoice), ModelError> {
+    spec.validate()?;
+    let shear_effect = shear_effect(spec);
+    let shear = match spec.shear_deformation {
+        PhysicsSwitch::Auto => shear_effect > tolerance,
+        s => s == PhysicsSwitch::On,
+    };
+    let mass_at_c = slider_mass + spec.small_end.mass;
+    let axial_hz = axial_frequency_hz(spec, mass_at_c);
+    let f1 = first_bending_hz(spec);
+    let band_top_hz = match spec.mode_band_hz {
+        Some(band) => band.max(f1),
+        None => {
+            let n = spec.modes.max(1) as f64;
+            n * n * f1
+        }
+    };
+    let heavy_at_c = {
+        let rod = spec.total_mass().unwrap_or(f64::INFINITY);
+        mass_at_c > 0.0 && mass_at_c >= AXIAL_MODE_MASS_RATIO * rod
+    };
+    let axial = match spec.axial_dynamics {
+        PhysicsSwitch::Auto => heavy_at_c || axial_hz <= AXIAL_BAND_FACTOR * band_top_hz,
+        s => s == PhysicsSwitch::On,
+    };
+    let mut resolved = spec.clone();
+    resolved.shear_deformation = PhysicsSwitch::from_bool(shear);
+    resolved.axial_dynamics = PhysicsSwitch::from_bool(axial);
+    if !shear {
+        resolved.shear_modulus = None;
+        resolved.shear_area = None;
+    }
+    match spec.model {
+        RodModelKind::Ffr if axial => {
+            resolved.loaded_modes = true;
+            resolved.axial_modes = Some(spec.axial_modes.unwrap_or(1).max(1));
+        }
+        RodModelKind::Ffr => {
+            resolved.axial_modes = Some(spec.axial_modes.unwrap_or(0));
+        }
+        RodModelKind::Segments => resolved.axial_springs = spec.axial_springs || axial,
+    }
+    let choice = PhysicsChoice {
+        shear,
+        shear_setting: spec.shear_deformation,
+        shear_effect,
+        axial,
+        axial_setting: spec.axial_dynamics,
+        axial_hz,
+        band_top_hz,
+        tolerance,
+    };
+    Ok((resolved, choice))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Scene;
+
+    #[test]
+    fn tip_mass_root_solves_the_frequency_equation() {
+        for ratio in [0.01, 0.5, 1.0, 2.0, 100.0] {
+            let b = tip_mass_root(ratio, 1.0);
+            assert!(
+                (b * b.tan() - ratio).abs() < 1e-9 * ratio.max(1.0),
+                "{ratio}: {b}"
+            );
+        }
+        assert_eq!(tip_mass_root(1.0, 0.0), PI / 2.0);
+    }
+
+    #[test]
+    fn shear_effect_follows_the_slenderness() {
+        let mut spec = Scene::benchmark().rod;
+        let e0 = shear_effect(&spec);
+        // (pi r / L)^2 (1 + 2.6 * 1.2) * 2 with r^2 = I / A.
+        let p = spec.properties();
+        let expected = 2.0 * PI * PI * p.area_moment / p.area / p.length.powi(2) * (1.0 + 3.12);
+        assert!((e0 - expected).abs() < 1e-12 * expected);
+        spec.length *= 2.0;
+        assert!((shear_effect(&spec) - e0 / 4.0).abs() < 1e-12 * e0);
+    }
+
+    #[test]
+    fn settings_on_and_off_are_kept() {
+        let mut spec = Scene::benchmark().rod;
+        spec.shear_deformation = PhysicsSwitch::Off;
+        spec.axial_dynamics = PhysicsSwitch::On;
+        let (r, c) = choose(&spec, 0.0, 1e-12).unwrap();
+        assert!(!c.shear && c.axial);
+        assert_eq!(r.shear_deformation, PhysicsSwitch::Off);
+        assert!(r.loaded_modes && r.axial_modes == Some(1));
+        spec.shear_deformation = PhysicsSwitch::On;
+        spec.axial_dynamics = PhysicsSwitch::Off;
+        let (r, c) = choose(&spec, 10.0, 0.1).unwrap();
+        assert!(c.shear && !c.axial);
+        assert_eq!(r.axial_modes, Some(0));
+    }
+
+    #[test]
+    fn auto_follows_the_tolerance_and_the_band() {
+        let spec = Scene::benchmark().rod;
+        let effect = shear_effect(&spec);
+        assert!(choose(&spec, 0.0, effect * 0.9).unwrap().1.shear);
+        assert!(!choose(&spec, 0.0, effect * 1.1).unwrap().1.shear);
+        // Benchmark rod: axial 4.2 kHz, three modes up to 1.24 kHz: no axial mode; a slider
+        // of 10 times the rod's mass brings it down to 0.7 kHz.
+        let (_, c) = choose(&spec, 0.0, 1e-3).unwrap();
+        assert!(!c.axial, "{}", c.describe());
+        assert!((c.axial_hz - 4214.0).abs() < 10.0, "{}", c.axial_hz);
+        let m = spec.total_mass().unwrap();
+        let (_, c) = choose(&spec, 10.0 * m, 1e-3).unwrap();
+        assert!(c.axial, "{}", c.describe());
+    }
+}
