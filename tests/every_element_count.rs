@@ -29,11 +29,13 @@
 //!
 //! Each test prints the worst error per reference condition (`--nocapture`).
 
+mod common;
+
 use flexrod::beam::mesh::{least_elements, MAX_ELEMENTS};
 use flexrod::beam::{MassKind, RodProperties};
 use flexrod::modal::{ComponentModes, ModeSelection, ReferenceConditions, ReferenceKind};
 use flexrod::rod::segments::{least_segments, SegmentRod, SEGMENT_RANGE};
-use flexrod::scene::{RodModelKind, Scene};
+use flexrod::scene::RodModelKind;
 use flexrod::Simulation;
 use std::f64::consts::PI;
 
@@ -192,7 +194,7 @@ fn simulation_reports_the_closed_form_at_fine_meshes() {
     for kind in ReferenceKind::ALL {
         let first = closed_form(&p, beta_l(kind)[0]);
         for n in [86, 100, 104, 110, 120, 127, 128] {
-            let mut scene = Scene::benchmark();
+            let mut scene = common::euler_bernoulli_benchmark();
             scene.rod.reference = kind;
             scene.rod.elements = n;
             if kind == ReferenceKind::BodyFixedMid {
@@ -286,7 +288,7 @@ fn segment_chain_every_count() {
         }
     }
     // One segment: a rigid rod, no frequency; the model says so through an empty list.
-    let mut scene = Scene::benchmark();
+    let mut scene = common::euler_bernoulli_benchmark();
     scene.rod.model = RodModelKind::Segments;
     scene.rod.elements = 1;
     assert!(Simulation::new(&scene).unwrap().frequencies_hz().is_empty());
@@ -304,7 +306,7 @@ fn body_fixed_mid_keeps_pairs_whole() {
     let exact = closed_form(&p, beta_l(ReferenceKind::BodyFixedMid)[0]);
     for n in [2, 8, 64, 128] {
         for modes in 1..=4 {
-            let mut scene = Scene::benchmark();
+            let mut scene = common::euler_bernoulli_benchmark();
             scene.rod.reference = ReferenceKind::BodyFixedMid;
             scene.rod.elements = n;
             scene.rod.modes = modes;

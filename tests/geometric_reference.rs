@@ -7,7 +7,6 @@
 //! h = 1e-5 s. The table of README.md (fragment `exact-beam`) is written here.
 
 use flexrod::scene::{RodModelKind, SolverMethod};
-use flexrod::Scene;
 
 mod common;
 use common::{check_generated, exudyn, runs};
@@ -17,7 +16,7 @@ fn stiffened_modes_match_the_geometrically_exact_peak() {
     let reference = exudyn::samples();
     // (name, scene, communication step, stiffened, pointwise bound)
     let with = |method: SolverMethod, modes: usize, h: f64, stiff: bool| {
-        let mut s = Scene::benchmark();
+        let mut s = common::euler_bernoulli_benchmark();
         s.solver.method = method;
         s.rod.modes = modes;
         s.solver.step = h;
@@ -28,7 +27,7 @@ fn stiffened_modes_match_the_geometrically_exact_peak() {
     let cases = [
         (
             "default scene: FFR stiffened, 8 el, 3 modes, auto (exponential RK4(3), ETDRK4, on minimal coordinates, tolerance 1e-3)",
-            Scene::benchmark(),
+            common::euler_bernoulli_benchmark(),
             1e-4,
             true,
             0.0025,
@@ -79,7 +78,7 @@ fn stiffened_modes_match_the_geometrically_exact_peak() {
         (
             "finite segments, N = 32, auto (generalized-alpha, tolerance 1e-3)",
             {
-                let mut s = Scene::benchmark();
+                let mut s = common::euler_bernoulli_benchmark();
                 s.rod.model = RodModelKind::Segments;
                 s.rod.elements = 32;
                 s

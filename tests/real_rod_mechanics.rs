@@ -22,6 +22,8 @@ elements = 8
 reference = "simply_supported"
 modes = 0
 axial_stiffening = true
+# The closed form's rod is slender: no rotary inertia of its sections.
+shear_deformation = "off"
 [rod.big_end]
 mass = 0.31
 inertia = 2.2e-4
@@ -283,8 +285,8 @@ fn statics_midpoint_moment_axial_force_and_stress_match_beam_theory() {
     }
 }
 
-/// The stress outputs and `rod.mass` are in the FMU only when the scene uses them, at value
-/// references 130-134; the benchmark scene's table is unchanged.
+/// The stress outputs are in the FMU only when the scene asks for them, at value references
+/// 130-133; `rod.mass` (134) is in every FMU.
 #[test]
 fn stress_variables_present_only_when_asked() {
     use flexrod::fmi::variables::VariableTable;
@@ -293,7 +295,6 @@ fn stress_variables_present_only_when_asked() {
         ("rod.bending_moment_mid", 131),
         ("rod.stress_max", 132),
         ("rod.stress_max_position", 133),
-        ("rod.mass", 134),
     ];
     let with = VariableTable::new(&statics_scene(0.0, [0.0, -9.81], "ffr"), 0);
     for (name, vr) in names {
@@ -309,6 +310,10 @@ fn stress_variables_present_only_when_asked() {
             "{name} in the benchmark FMU"
         );
     }
+    assert_eq!(
+        without.by_name("rod.mass").map(|v| v.value_reference),
+        Some(134)
+    );
     let o = Scene::from_toml_str(RIGID, "RIGID").unwrap();
     let table = VariableTable::new(&o, 0);
     assert!(table.by_name("rod.mass").is_some());

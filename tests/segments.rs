@@ -380,7 +380,7 @@ fn segment_count_is_validated() {
             text.contains("rod.elements") && text.contains("1..=128"),
             "{text}"
         );
-        let mut scene = Scene::benchmark();
+        let mut scene = common::euler_bernoulli_benchmark();
         scene.rod.model = RodModelKind::Segments;
         scene.rod.elements = bad;
         let err = Simulation::new(&scene).err().unwrap().to_string();
@@ -716,7 +716,7 @@ fn rotating_cantilever_southwell() {
 
 /// A scene with the segment rod.
 fn segment_scene(n_seg: usize) -> Scene {
-    let mut scene = Scene::benchmark();
+    let mut scene = common::euler_bernoulli_benchmark();
     scene.rod.model = RodModelKind::Segments;
     scene.rod.elements = n_seg;
     scene
@@ -742,8 +742,8 @@ fn slider_crank_convergence_against_ffr() {
     let omega = exudyn::SPEED;
     let (revs, dt) = (2.0, 1e-4);
     let exact = exudyn::samples();
-    let (ffr, _, _) = run_deflection(&Scene::benchmark(), omega, revs, dt);
-    let mut no_stiff = Scene::benchmark();
+    let (ffr, _, _) = run_deflection(&common::euler_bernoulli_benchmark(), omega, revs, dt);
+    let mut no_stiff = common::euler_bernoulli_benchmark();
     no_stiff.rod.axial_stiffening = false;
     let (ffr_lin, _, _) = run_deflection(&no_stiff, omega, revs, dt);
     let counts = [4usize, 8, 16, 32];
@@ -945,7 +945,7 @@ fn energy_and_momentum_balance() {
 #[test]
 fn default_solver_two_revolutions() {
     let exact = exudyn::samples();
-    let mut damped_ffr = Scene::benchmark();
+    let mut damped_ffr = common::euler_bernoulli_benchmark();
     damped_ffr.rod.damping_ratio = 0.02;
     let (damped_ffr, _) = runs::constant(&damped_ffr, 150.0, 1e-4, 2.0);
     // (N, axial springs, damping ratio, bounds on the peak and pointwise error against the
@@ -1011,7 +1011,7 @@ fn ffr_and_segments_agree_across_speeds() {
     let dt = 1e-4;
     println!("Omega (rad/s)  peak FFR+stiff  peak seg N=64  max diff/peak rev 1  rev 2");
     for omega in [50.0, 100.0, 150.0] {
-        let mut f = Scene::benchmark();
+        let mut f = common::euler_bernoulli_benchmark();
         f.solver.step = 2.5e-5;
         let mut s = segment_scene(64);
         s.solver.step = 2.5e-5;
@@ -1052,7 +1052,7 @@ fn ffr_levels_off_at_300_rad_s() {
     let chain = max_diff(&n32, &reference) / p;
     println!("300 rad/s: segments N = 64 peak |v/L| {p:.4e}; N = 32 against it {chain:.3e}");
     let ffr = |elements: usize, modes: usize| {
-        let mut s = Scene::benchmark();
+        let mut s = common::euler_bernoulli_benchmark();
         s.rod.elements = elements;
         s.rod.modes = modes;
         let (x, _, _) = run_deflection(&converged(s), omega, 2.0, dt);
@@ -1065,7 +1065,7 @@ fn ffr_levels_off_at_300_rad_s() {
     let m6 = ffr(8, 6);
     let e16 = ffr(16, 6);
     // The default scene's own settings (RK4, h = 3e-4 s) at this speed.
-    let mut default_settings = Scene::benchmark();
+    let mut default_settings = common::euler_bernoulli_benchmark();
     default_settings.rod.deflection_policy = DeflectionPolicy::Warn;
     let (x, _, _) = run_deflection(&default_settings, omega, 2.0, dt);
     let coarse = max_diff(&x, &reference) / p;

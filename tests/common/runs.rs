@@ -79,9 +79,26 @@ impl Run {
         })
     }
 
-    /// Time of the first warning, s.
+    /// Time of the first warning that the deflection passed `rod.deflection_limit`, s.
     pub fn first_warning(&self) -> Option<f64> {
-        self.record.warnings.first().map(|w| w.0)
+        self.deflection_warnings().next().map(|w| w.0)
+    }
+
+    /// The warnings that the deflection passed `rod.deflection_limit` (time, text).
+    pub fn deflection_warnings(&self) -> impl Iterator<Item = &(f64, String)> {
+        self.record
+            .warnings
+            .iter()
+            .filter(|w| w.1.contains("small-deformation range"))
+    }
+
+    /// Time of the warning that `rod.error_estimate` passed `solver.tolerance`, s.
+    pub fn error_estimate_warning(&self) -> Option<f64> {
+        self.record
+            .warnings
+            .iter()
+            .find(|w| w.1.starts_with("rod.error_estimate"))
+            .map(|w| w.0)
     }
 
     /// The error as text, "none" without one.
