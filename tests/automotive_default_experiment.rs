@@ -106,6 +106,7 @@ fn default_experiment_against_the_converged_run() {
     free.rod.loaded_modes = false;
     free.rod.mode_band_hz = None;
     free.rod.modes = 7;
+    free.rod.axial_modes = Some(1);
     let free_errors = errors(&run(&free, &drive), &reference, 1e-3);
     show(
         "7 free modes (rod.loaded_modes = false), from 1 ms",

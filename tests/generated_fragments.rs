@@ -434,9 +434,26 @@ fn variable_table(xml: &str) -> String {
         let k = rest.strip_suffix(']')?.parse().ok()?;
         Some((stem.to_string(), k))
     };
+    // An Enumeration's Integer twin `<name>_index` shares its row.
+    let twin_of = |name: &str| {
+        variables
+            .iter()
+            .find(|w| w.name == format!("{name}_index") && w.kind == "Integer")
+    };
+    let is_twin = |name: &str| {
+        name.strip_suffix("_index").is_some_and(|stem| {
+            variables
+                .iter()
+                .any(|w| w.name == stem && w.kind == "Enumeration")
+        })
+    };
     let mut k = 0;
     while k < variables.len() {
         let v = &variables[k];
+        if is_twin(&v.name) {
+            k += 1;
+            continue;
+        }
         // A run of array elements stem[1], stem[2], ... with the same attributes.
         let mut last = k;
         if let Some((stem, 1)) = base(&v.name) {
@@ -457,6 +474,12 @@ fn variable_table(xml: &str) -> String {
                 format!("`{stem}[k]`, k = 1..{}", last - k + 1),
                 format!("{}..{}", v.value_reference, variables[last].value_reference),
                 v.description.replace(" 1 ", " k "),
+            )
+        } else if let Some(twin) = twin_of(&v.name).filter(|_| v.kind == "Enumeration") {
+            (
+                format!("`{}`, `{}`", v.name, twin.name),
+                format!("{}, {}", v.value_reference, twin.value_reference),
+                format!("{} (Integer twin: the same values as codes)", v.description),
             )
         } else {
             (
@@ -523,6 +546,7 @@ fn variable_table_reads_every_kind_of_variable() {
       </TypeDefinitions><ModelVariables>
       <ScalarVariable name="x" valueReference="1" description="X &amp; Y" causality="input"><Real unit="m" min="0.0" start="206800000000.0"/></ScalarVariable>
       <ScalarVariable name="m" valueReference="2" description="model" causality="parameter"><Enumeration declaredType="M" start="1"/></ScalarVariable>
+      <ScalarVariable name="m_index" valueReference="3" description="m as an Integer" causality="parameter"><Integer min="1" max="2" start="1"/></ScalarVariable>
       <ScalarVariable name="f[1]" valueReference="11" description="Frequency 1 of it" causality="calculatedParameter"><Real unit="Hz"/></ScalarVariable>
       <ScalarVariable name="f[2]" valueReference="12" description="Frequency 2 of it" causality="calculatedParameter"><Real unit="Hz"/></ScalarVariable>
       </ModelVariables></fmiModelDescription>"#;
@@ -532,7 +556,7 @@ fn variable_table_reads_every_kind_of_variable() {
         rows,
         [
             "| `x` | 1 | input | Real, m | >= 0 | 2.068e11 | X & Y |",
-            "| `m` | 2 | parameter | Enumeration | `a`=1, `b`=2 | 1 | model |",
+            "| `m`, `m_index` | 2, 3 | parameter | Enumeration | `a`=1, `b`=2 | 1 | model (Integer twin: the same values as codes) |",
             "| `f[k]`, k = 1..2 | 11..12 | calculatedParameter | Real, Hz |  |  | Frequency k of it |",
         ]
     );

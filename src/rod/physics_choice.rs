@@ -29,7 +29,8 @@
 //! keeps it (FFR: as a mass-loaded mode, [`crate::modal::loaded`]; segments: the axial springs)
 //! where it lies below [`AXIAL_BAND_FACTOR`] times the highest retained bending mode (the band
 //! the start, the gas force and the retained modes excite), or where the masses at C reach the
-//! rod's mass ([`super::spec::AXIAL_MODE_MASS_RATIO`]).
+//! rod's mass ([`super::spec::AXIAL_MODE_MASS_RATIO`]). With `auto`, an explicit `rod.axial_modes`
+//! (FFR) is the scene's own choice and stands.
 
 use super::spec::{PhysicsSwitch, RodModelKind, RodSpec, AXIAL_MODE_MASS_RATIO};
 use crate::beam::section_table::DEFAULT_SHEAR_AREA_FACTOR;
@@ -38,8 +39,14 @@ use crate::error::ModelError;
 use std::f64::consts::PI;
 
 /// The slider-rod axial mode is kept by `auto` below this multiple of the highest retained
-/// bending frequency.
-pub const AXIAL_BAND_FACTOR: f64 = 2.5;
+/// bending frequency. Over random rods (slenderness 8 to 60, smooth and abrupt starts) the
+/// axial mode changed `v_mid` by 3e-3 to 1e-2 of its peak where it lay below 1.2 times the
+/// third bending mode, and by 2e-4 to 1e-3 between 1.5 and 2 times it. Not higher: an axial
+/// mode makes the crank torque ring at its frequency, which a co-simulation master that holds
+/// the torque over its step (the engine example of docs/coupling.md, 1e-4 s) cannot follow
+/// at 4 kHz: the benchmark rod with four modes (axial mode at 1.9 times the fourth) ran it
+/// unstable.
+pub const AXIAL_BAND_FACTOR: f64 = 1.5;
 
 /// The integration's share of the error estimate, as a multiple of `solver.tolerance` (the
 /// error control holds the pointwise error of `v_mid / L` below the tolerance; over random
@@ -62,6 +69,8 @@ pub struct PhysicsChoice {
     /// Axial dynamics in the model.
     pub axial: bool,
     pub axial_setting: PhysicsSwitch,
+    /// `auto` with an explicit `rod.axial_modes`: the scene's count decided.
+    pub axial_count_given: bool,
     /// The slider-rod axial frequency, Hz.
     pub axial_hz: f64,
     /// The highest retained bending frequency (estimate: the simply supported rod's mode
@@ -117,6 +126,11 @@ impl PhysicsChoice {
             if self.axial { "within" } else { "above" },
             self.band_top_hz
         );
+        let axial_reason = if self.axial_count_given {
+            "rod.axial_modes given".to_string()
+        } else {
+            axial_reason
+        };
         format!(
             "shear deformation and rotary inertia {} ({}); axial dynamics {} ({})",
             on_off(self.shear),
@@ -225,9 +239,16 @@ pub fn choose(
         let rod = spec.total_mass().unwrap_or(f64::INFINITY);
         mass_at_c > 0.0 && mass_at_c >= AXIAL_MODE_MASS_RATIO * rod
     };
-    let axial = match spec.axial_dynamics {
-        PhysicsSwitch::Auto => heavy_at_c || axial_hz <= AXIAL_BAND_FACTOR * band_top_hz,
-        s => s == PhysicsSwitch::On,
+    // An explicit `rod.axial_modes` with `auto` is the scene's own choice of axial modes (free
+    // or mass-loaded as `rod.loaded_modes` says): kept as it is.
+    let explicit_count = match (spec.model, spec.axial_dynamics, spec.axial_modes) {
+        (RodModelKind::Ffr, PhysicsSwitch::Auto, Some(n)) => Some(n),
+        _ => None,
+    };
+    let axial = match (spec.axial_dynamics, explicit_count) {
+        (_, Some(n)) => n > 0,
+        (PhysicsSwitch::Auto, None) => heavy_at_c || axial_hz <= AXIAL_BAND_FACTOR * band_top_hz,
+        (s, None) => s == PhysicsSwitch::On,
     };
     let mut resolved = spec.clone();
     resolved.shear_deformation = PhysicsSwitch::from_bool(shear);
@@ -237,6 +258,7 @@ pub fn choose(
         resolved.shear_area = None;
     }
     match spec.model {
+        RodModelKind::Ffr if explicit_count.is_some() => {}
         RodModelKind::Ffr if axial => {
             resolved.loaded_modes = true;
             resolved.axial_modes = Some(spec.axial_modes.unwrap_or(1).max(1));
@@ -252,6 +274,7 @@ pub fn choose(
         shear_effect,
         axial,
         axial_setting: spec.axial_dynamics,
+        axial_count_given: explicit_count.is_some(),
         axial_hz,
         band_top_hz,
         tolerance,

@@ -396,7 +396,7 @@ impl VariableTable {
             ValueType::Enumeration(&PHYSICS_SWITCH),
             |s| enumerations::code(s.rod.axial_dynamics),
             set_axial_dynamics,
-            "Axial dynamics (the slider-rod axial mode): auto (on where it lies within 2.5 x the highest retained bending mode, or the masses at C reach the rod's), on or off",
+            "Axial dynamics (the slider-rod axial mode): auto (on where it lies within 1.5 x the highest retained bending mode, or the masses at C reach the rod's), on or off",
         );
         b.real_parameter(
             "rod.big_end.mass",
