@@ -307,7 +307,7 @@ def simulate(rod, drive, n, m, rho_inf, stop=None):
     settings.timeIntegration.endTime = stop
     settings.timeIntegration.generalizedAlpha.spectralRadius = rho_inf
     settings.timeIntegration.adaptiveStep = False
-    settings.linearSolverType = exu.LinearSolverType.EigenSparse
+    settings.linearSolver.solverType = exu.LinearSolverType.EigenSparse
     settings.timeIntegration.newton.relativeTolerance = 1e-8
     # Residuals are forces: the absolute tolerance is relative to the inertia forces of the
     # crank motion, the round-off floor of the stiff axial terms lies below it.
@@ -315,9 +315,9 @@ def simulate(rod, drive, n, m, rho_inf, stop=None):
     settings.timeIntegration.newton.absoluteTolerance = 1e-8 * masses * r * w * w
     settings.timeIntegration.newton.useModifiedNewton = False
     settings.timeIntegration.verboseMode = int(os.environ.get("RR_VERBOSE", "0"))
-    settings.solutionSettings.writeSolutionToFile = False
-    settings.solutionSettings.sensorsWritePeriod = SAMPLE_EVERY * drive.dt
-    settings.displayStatistics = False
+    settings.solution.file.write = False
+    settings.solution.sensors.writePeriod = SAMPLE_EVERY * drive.dt
+    settings.show.statistics = False
     start = time.process_time()
     exu.SolveDynamic(mbs, settings, showHints=True)
     cpu = time.process_time() - start
@@ -376,7 +376,16 @@ def main():
     ap.add_argument("--rods", type=int, default=44, help="number of rods")
     ap.add_argument("--only", type=int, nargs="*", help="run only these ids (rods.csv not written)")
     ap.add_argument(
-        "--elements", type=int, default=64, help="elements n of the coarser run (the stored run: 2 n)"
+        "--elements-smooth",
+        type=int,
+        default=64,
+        help="elements n of the coarser run, smooth start (the stored run: 2 n)",
+    )
+    ap.add_argument(
+        "--elements-abrupt",
+        type=int,
+        default=128,
+        help="elements n of the coarser run, abrupt start (the stored run: 2 n)",
     )
     ap.add_argument(
         "--substeps-smooth",
@@ -405,11 +414,12 @@ def main():
     ids = args.only if args.only else range(args.rods)
     os.makedirs(args.out_dir, exist_ok=True)
     command = "python tests/data/random_rods_reference.py " + " ".join(sys.argv[1:])
-    n = args.elements
     total = 0.0
     for i in ids:
         rod = rods[i]
-        m = args.substeps_smooth if rod["start"] == "smooth" else args.substeps_abrupt
+        smooth = rod["start"] == "smooth"
+        n = args.elements_smooth if smooth else args.elements_abrupt
+        m = args.substeps_smooth if smooth else args.substeps_abrupt
         cpu = 0.0
         w = min(w_quasi_static(rod), w_limit(rod))
         if not args.no_correct:
@@ -445,13 +455,14 @@ def main():
         with open(os.path.join(args.out_dir, f"rod_{i:02d}.csv"), "w") as f:
             f.write(
                 f"# Random rod {i} ({rod['start']} start, parameters in rods.csv): Exudyn "
-                f"{exu.GetVersionString()} ObjectBeamGeometricallyExact2D, {2 * n} elements,\n"
-                f"# generalized-alpha (spectral radius {args.rho_inf}), h = dt_comm / {2 * m}.\n"
+                f"{exu.config.Version()} ObjectBeamGeometricallyExact2D, {2 * n} elements,\n"
+                f"# generalized-alpha (spectral radius {args.rho_inf}), h = dt_comm / {2 * m}; pin B on\n"
+                f"# {'the per-step quadratic' if args.step_law else 'the drive law'}.\n"
                 f"# Command: {command}\n"
                 "t,v_mid_rel,FBx,FBy,FCx,FCy\n"
             )
             for tk, row in zip(t, fine):
-                f.write(f"{tk:.15g}," + ",".join(f"{x:.8g}" for x in row) + "\n")
+                f.write(f"{tk:.15g}," + ",".join(f"{x + 0.0:.8g}" for x in row) + "\n")
     print(f"total CPU {total:.1f} s", flush=True)
     if args.only:
         return
@@ -464,7 +475,7 @@ def main():
             "# target_peak / peak_v_rel: aimed and reached max |v_mid / L|, elements and step of the\n"
             "# stored run, conv_v / conv_f: max |dv| / max |v| and max |dF| / max |F| between the\n"
             "# stored run and one with half the elements and twice the step, cpu_s: CPU seconds.\n"
-            f"# Exudyn {exu.GetVersionString()}, numpy {np.__version__}. Total CPU {total:.0f} s.\n"
+            f"# Exudyn {exu.config.Version()}, numpy {np.__version__}. Total CPU {total:.0f} s.\n"
             f"# Command: {command}\n"
         )
         f.write(",".join(COLUMNS) + "\n")
