@@ -47,7 +47,7 @@ The run protocol (what the FMU test reproduces):
   (spectral radius --rho-inf), constant step h = dt / m.
 - converged: every rod runs at (n, m) and (2 n, 2 m); the finer is stored, and the differences
   between the two, max |dv| / max |v| over v_mid / L and max |dF| / max |F| over the four pin
-  force components together, are recorded (conv_v, conv_f). Defaults: smooth n = 64, m = 4;
+  force components together, are recorded (conv_v, conv_f). Defaults: smooth n = 128, m = 4;
   abrupt n = 128, m = 32. The abrupt start rings the rod's axial and bending modes, undamped:
   v_mid / L needs the finer mesh (the phase of the bending ringing), and the pin forces carry
   steep axial wave fronts whose maxima converge slowly (conv_f of a few percent).
@@ -390,7 +390,7 @@ def main():
     ap.add_argument(
         "--elements-smooth",
         type=int,
-        default=64,
+        default=128,
         help="elements n of the coarser run, smooth start (the stored run: 2 n)",
     )
     ap.add_argument(
