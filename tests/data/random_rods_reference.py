@@ -3,7 +3,8 @@ exact, shear-deformable 2D beam (ObjectBeamGeometricallyExact2D, Simo-Reissner, 
 converged in space and time, for a test that runs the default FMU with only physical parameters
 changed and compares `rod.deflection_rel` and the pin forces.
 
-The rods (seeded, `numpy.random.default_rng(seed)`, drawn in this order for each rod):
+The rods (seeded, `numpy.random.default_rng(seed)`: first the order of the materials, the rods
+with end bodies and those without slider mass, then for each rod its draws in this order):
 - uniform rectangular section: L ~ U[0.1, 0.6] m; slenderness L/h log-uniform in [8, 60] (h in
   the plane of motion); width b = h U[0.4, 1.0]; A = b h, I = b h^3 / 12; shear area A / 1.2;
   G = E / 2.6.
@@ -425,7 +426,7 @@ def main():
     rods = draw_rods(args.seed, args.rods)
     ids = args.only if args.only else range(args.rods)
     os.makedirs(args.out_dir, exist_ok=True)
-    command = "python tests/data/random_rods_reference.py " + " ".join(sys.argv[1:])
+    command = " ".join(["python tests/data/random_rods_reference.py"] + sys.argv[1:])
     total = 0.0
     for i in ids:
         rod = rods[i]
