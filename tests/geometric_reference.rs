@@ -26,7 +26,7 @@ fn stiffened_modes_match_the_geometrically_exact_peak() {
     use SolverMethod::{GeneralizedAlpha as Ga, Rk4};
     let cases = [
         (
-            "default scene: FFR stiffened, 8 el, 3 modes, auto (exponential RK4(3), ETDRK4, on minimal coordinates, tolerance 1e-3)",
+            "default scene, Euler-Bernoulli (rod.shear_deformation = off, as the cable): FFR stiffened, 8 el, 3 modes, auto (exponential RK4(3), ETDRK4, on minimal coordinates, tolerance 1e-3)",
             common::euler_bernoulli_benchmark(),
             1e-4,
             true,

@@ -139,7 +139,8 @@ def test_failed_initialization_leaves_no_stale_outputs(slave):
     fmi2ExitInitializationMode: outputs give fmi2Error with the reason, never old values."""
     slave.fmu.setupExperiment(startTime=0.0)
     slave.fmu.enterInitializationMode()
-    assert slave.get("rod.deflection") == [0.0]  # built and started here
+    # Built and started here: undeformed but for the left-out modes' static correction.
+    assert abs(slave.get("rod.deflection")[0]) < 1e-12
     slave.fmu.setReal([slave.vr["crank.length"]], [0.5])
     expect_error(slave, slave.fmu.exitInitializationMode, "crank.length")
     for name in ["rod.deflection", "pinB.force_x", "rod.frequency[1]"]:

@@ -8,7 +8,7 @@ import pytest
 from fmpy import simulate_fmu
 from fmpy.fmi1 import FMICallException
 
-from helpers import DT, STOP, Slave, run_loop, schedule
+from helpers import DT, STOP, Slave, restore_fmpy_default_logger, run_loop, schedule
 
 LEAKS = ("Some(", "None")
 
@@ -37,6 +37,7 @@ def test_messages_of_a_run_read_as_text(fmu_path, values):
         debug_logging=True,
         logger=logger,
     )
+    restore_fmpy_default_logger()
     assert any("initialized at t = 0" in m for m in messages), messages
     assert any("lowest natural frequency" in m and " Hz" in m for m in messages), messages
     assert_clean(messages)

@@ -181,7 +181,9 @@ def test_mode_parameters_declared_with_scene_values(slave):
     )
     names = {d.name for d in unknown.dependencies}
     assert {"rod.loaded_modes", "slider.mass", "rod.small_end.mass"} <= names, names
-    assert "rod.mode_band_hz" not in names
+    # And on what decides the model class: the band (against the slider-rod axial mode), the
+    # switches, the tolerance.
+    assert {"rod.mode_band_hz", "rod.axial_dynamics", "rod.shear_deformation", "solver.tolerance"} <= names, names
 
 
 def test_loaded_modes_give_the_piston_rod_axial_mode(automotive_unzipdir):
@@ -193,7 +195,8 @@ def test_loaded_modes_give_the_piston_rod_axial_mode(automotive_unzipdir):
         s.free()
     assert math.isclose(loaded[1], PISTON_AXIAL_HZ, abs_tol=0.5), loaded
     assert "3269 Hz axial" in text, text
-    s = initialized(automotive_unzipdir, integers={"rod.loaded_modes": 0})
+    # Free modes: loaded modes and the automatic axial mode off.
+    s = initialized(automotive_unzipdir, integers={"rod.loaded_modes": 0, "rod.axial_dynamics_index": 3})
     try:
         free = frequencies(s)
         text = s.log.text()

@@ -8,7 +8,12 @@ from fmpy.fmi1 import FMICallException
 
 from helpers import Slave
 
-TWINS = {"rod.model": "rod.model_index", "rod.reference": "rod.reference_index"}
+TWINS = {
+    "rod.model": "rod.model_index",
+    "rod.reference": "rod.reference_index",
+    "rod.shear_deformation": "rod.shear_deformation_index",
+    "rod.axial_dynamics": "rod.axial_dynamics_index",
+}
 
 
 @pytest.fixture

@@ -182,20 +182,27 @@ fn modes(args: &ModesArgs) -> Result<(), Failure> {
     }
     let spec = scene.mechanism_spec();
     spec.validate().map_err(|e| e.to_string())?;
-    // The rod as the model builds it: section table, shear deformation and end bodies included
-    // (the uniform equivalent `spec.rod.properties()` only for a plain rod).
-    let definition = spec.rod.definition().map_err(|e| e.to_string())?;
-    let reference = ReferenceConditions::from_kind(scene.rod.reference, scene.rod.elements)
+    // The rod as the model builds it: the `auto` settings resolved, section table, shear
+    // deformation and end bodies included.
+    let (rod, choice) = flexrod::rod::physics_choice::choose(
+        &scene.rod,
+        scene.slider.mass,
+        scene.solver.tolerance,
+    )
+    .map_err(|e| e.to_string())?;
+    println!("{}", choice.describe());
+    let definition = rod.definition().map_err(|e| e.to_string())?;
+    let reference = ReferenceConditions::from_kind(rod.reference, rod.elements)
         .map_err(|e| e.to_string())?;
     // The modes the simulation uses: the same eigenproblem (mass-loaded with rod.loaded_modes)
     // and the same selection (the band rod.mode_band_hz, else rod.modes lowest plus
-    // rod.axial_modes), and with a band the bending modes above it as static corrections.
-    let (selection, added) = ffr_mode_choice(&scene.rod, scene.slider.mass);
+    // rod.axial_modes), the bending modes left out as static corrections.
+    let (selection, added) = ffr_mode_choice(&rod, scene.slider.mass);
     let all = ComponentModes::from_definition_loaded(
         definition,
-        scene.rod.elements,
+        rod.elements,
         reference,
-        scene.rod.mass,
+        rod.mass,
         &ModeSelection::Cutoff {
             max_hz: f64::INFINITY,
         },
@@ -205,34 +212,32 @@ fn modes(args: &ModesArgs) -> Result<(), Failure> {
     let kept = selection
         .select_classified(&all.all_frequencies_hz, &all.all_axial_shares)
         .map_err(|e| e.to_string())?;
-    let corrections = match scene.rod.mode_band_hz {
-        Some(_) => residual_indices(&all, &kept),
-        None => Vec::new(),
-    };
-    let eigenproblem = match scene.rod.loaded_modes {
+    let corrections = residual_indices(&all, &kept);
+    let eigenproblem = match rod.loaded_modes {
         true => format!(
             "mass-loaded modes (rod.loaded_modes: slider.mass = {} kg at C in the eigenproblem)",
             scene.slider.mass
         ),
         false => "free modes".to_string(),
     };
-    let chosen = match scene.rod.mode_band_hz {
+    let chosen = match rod.mode_band_hz {
         Some(band) => format!(
             "every mode up to rod.mode_band_hz = {band} Hz; {} bending modes above it as static corrections to v_mid",
             corrections.len()
         ),
         None => format!(
-            "rod.modes = {}, at least {} axial",
-            scene.rod.modes,
-            scene.rod.min_axial_modes(scene.slider.mass)
+            "rod.modes = {}, at least {} axial; {} bending modes left out as static corrections to v_mid",
+            rod.modes,
+            rod.min_axial_modes(scene.slider.mass),
+            corrections.len()
         ),
     };
     println!(
         "scene {}: {} elements, {:?} reference conditions, {:?} mass, {eigenproblem}; {} modes retained of {} ({chosen})",
         scene.name,
-        scene.rod.elements,
-        scene.rod.reference,
-        scene.rod.mass,
+        rod.elements,
+        rod.reference,
+        rod.mass,
         kept.len(),
         all.all_frequencies_hz.len(),
     );

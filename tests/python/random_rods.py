@@ -1,0 +1,161 @@
+"""Run the default FMU on the random rods of tests/data/random_rods/ (only physical parameters
+set) and compare with the Exudyn reference: the helpers of test_random_rods.py.
+
+What is compared, per start type:
+- smooth start (crank ramp over one revolution of the final speed, then two revolutions at it):
+  `rod.deflection_rel` pointwise, relative to the reference's peak |v_mid / L|, and each pin's
+  force vector pointwise, relative to the peak magnitude of that pin's reference force;
+- abrupt start (the crank at full speed from t = 0, the rod undeformed): an undamped ringing,
+  whose phase after many cycles measures nothing physical, so the ringing's amplitude and
+  frequency: the peak |v_mid / L| of every half revolution, relative to the overall peak, and
+  the frequency of the largest spectral peak of v_mid above twice the crank frequency
+  (Hann window, zero-padded 16 times, parabolic interpolation), relative. The reference's pin
+  forces after an abrupt start do not converge pointwise (axial wave fronts, see rods.csv
+  conv_f), so they are not compared there.
+"""
+
+import csv
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from helpers import ROOT, Slave
+
+DATA = ROOT / "tests" / "data" / "random_rods"
+
+PARAMETERS = {
+    "crank.length": "crank_length",
+    "rod.length": "rod_length",
+    "rod.youngs_modulus": "youngs_modulus",
+    "rod.density": "density",
+    "rod.area": "area",
+    "rod.area_moment": "area_moment",
+    "slider.mass": "slider_mass",
+    "rod.big_end.mass": "big_end_mass",
+    "rod.big_end.inertia": "big_end_inertia",
+    "rod.small_end.mass": "small_end_mass",
+    "rod.small_end.inertia": "small_end_inertia",
+}
+
+
+def rods():
+    """The rows of rods.csv as dicts (numbers as float)."""
+    with open(DATA / "rods.csv") as f:
+        rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    out = []
+    for r in rows:
+        out.append({k: (v if k in ("start", "material") else float(v)) for k, v in r.items()})
+    return out
+
+
+def reference(rod_id):
+    """t, v_mid_rel, FBx, FBy, FCx, FCy of the reference, as columns."""
+    with open(DATA / f"rod_{int(rod_id):02d}.csv") as f:
+        lines = [line for line in f if not line.startswith("#")]
+    assert lines[0].strip() == "t,v_mid_rel,FBx,FBy,FCx,FCy", lines[0]
+    return np.loadtxt(lines[1:], delimiter=",").T
+
+
+def drive(rod, t):
+    """Crank angle, speed and acceleration at t: the ramp omega = W (1 - cos(pi t / T)) / 2 for
+    t < T (smooth), then W; constant W from 0 (abrupt)."""
+    w = rod["W"]
+    if rod["start"] == "abrupt":
+        return w * t, w, 0.0
+    big_t = rod["t_ramp"]
+    if t < big_t:
+        x = math.pi * t / big_t
+        return (0.5 * w * (t - big_t / math.pi * math.sin(x)), 0.5 * w * (1.0 - math.cos(x)),
+                0.5 * w * math.pi / big_t * math.sin(x))
+    return 0.5 * w * big_t + w * (t - big_t), w, 0.0
+
+
+@dataclass
+class Run:
+    t: np.ndarray
+    v: np.ndarray
+    pins: np.ndarray  # (n, 4): FBx, FBy, FCx, FCy
+    estimate: float
+    log: list
+
+
+def simulate(unzipdir, rod, extra=None):
+    """The FMU with only the physical parameters of `rod` set, driven at its communication
+    step with the crank acceleration as input derivative; outputs at every second point."""
+    slave = Slave(unzipdir, name="rod", logging_on=True)
+    vr, s = slave.vr, slave.fmu
+    s.setupExperiment(startTime=0.0)
+    s.enterInitializationMode()
+    names = list(PARAMETERS)
+    s.setReal([vr[n] for n in names], [rod[PARAMETERS[n]] for n in names])
+    for name, value in (extra or {}).items():
+        if isinstance(value, int):
+            s.setInteger([vr[name]], [value])
+        else:
+            s.setReal([vr[name]], [value])
+    th, om, _ = drive(rod, 0.0)
+    s.setReal([vr["crank.angle"], vr["crank.speed"]], [th, om])
+    s.exitInitializationMode()
+    dt = rod["dt_comm"]
+    n = int(round(rod["t_stop"] / dt))
+    outs = [vr[k] for k in ("rod.deflection_rel", "pinB.force_x", "pinB.force_y",
+                            "pinC.force_x", "pinC.force_y", "rod.error_estimate")]
+    rows = [(0.0, *s.getReal(outs))]
+    for k in range(n):
+        t = k * dt
+        th, om, al = drive(rod, t)
+        s.setReal([vr["crank.angle"], vr["crank.speed"]], [th, om])
+        s.setRealInputDerivatives([vr["crank.speed"]], [1], [al])
+        s.doStep(currentCommunicationPoint=t, communicationStepSize=dt)
+        if (k + 1) % 2 == 0:
+            rows.append(((k + 1) * dt, *s.getReal(outs)))
+    s.terminate()
+    s.freeInstance()
+    a = np.array(rows)
+    return Run(t=a[:, 0], v=a[:, 1], pins=a[:, 2:6], estimate=float(a[-1, 6]),
+               log=[m for _, _, m in slave.log.messages])
+
+
+def ringing_frequency(t, v, crank_hz):
+    """The frequency of the largest spectral peak of v above 2 x the crank frequency, Hz."""
+    x = (v - v.mean()) * np.hanning(len(v))
+    pad = 16 * len(v)
+    spec = np.abs(np.fft.rfft(x, pad))
+    f = np.fft.rfftfreq(pad, t[1] - t[0])
+    band = f > 2.0 * crank_hz
+    i = np.flatnonzero(band)[np.argmax(spec[band])]
+    a, b, c = np.log(spec[i - 1:i + 2])
+    shift = 0.5 * (a - c) / (a - 2 * b + c)
+    return f[i] + shift * (f[1] - f[0])
+
+
+def half_revolution_peaks(t, v, w):
+    """The peak |v| in every whole half revolution of the crank from t = 0, as an array (t on
+    the communication grid; a point on a boundary counts to the later half)."""
+    k = np.floor(t * w / math.pi + 1e-9).astype(int)
+    whole = int(math.floor(t[-1] * w / math.pi + 1e-9))
+    return np.array([np.abs(v[k == j]).max() for j in range(whole)])
+
+
+def compare(rod, run, ref):
+    """The measured errors: {"v": ..., "pin_b": ..., "pin_c": ...} (smooth) or
+    {"amplitude": ..., "frequency": ...} (abrupt), all relative."""
+    t, v = ref[0], ref[1]
+    assert len(t) == len(run.t) and np.allclose(t, run.t, rtol=0, atol=1e-9 * t[-1])
+    peak = np.abs(v).max()
+    if rod["start"] == "smooth":
+        out = {"v": np.abs(run.v - v).max() / peak}
+        for name, cols in (("pin_b", (2, 3)), ("pin_c", (4, 5))):
+            f_ref = np.stack([ref[c] for c in cols], axis=1)
+            f_run = run.pins[:, [c - 2 for c in cols]]
+            scale = np.hypot(f_ref[:, 0], f_ref[:, 1]).max()
+            out[name] = np.abs(f_run - f_ref).max() / scale if scale > 0 else 0.0
+        return out
+    w = rod["W"]
+    amp_run = half_revolution_peaks(t, run.v, w)
+    amp_ref = half_revolution_peaks(t, v, w)
+    crank_hz = w / (2 * math.pi)
+    f_run = ringing_frequency(run.t, run.v, crank_hz)
+    f_ref = ringing_frequency(t, v, crank_hz)
+    return {"amplitude": np.abs(amp_run - amp_ref).max() / peak,
+            "frequency": abs(f_run / f_ref - 1.0), "ringing_hz": f_ref}
