@@ -145,7 +145,8 @@ fn do_step_of(scene: &Scene, resources: Option<&str>, w: f64) -> [f64; 2] {
                     }
                     ffi::fmi2DoStep(comp, t, h, 1)
                 };
-                assert_eq!(status, 0);
+                // fmi2OK, or fmi2Warning once: the error estimate passes the tolerance.
+                assert!(status == 0 || status == 1, "{status}");
                 t += h;
             }
         });

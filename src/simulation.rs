@@ -27,6 +27,8 @@ pub struct Simulation {
     /// The warning that `rod.error_estimate` passed `solver.tolerance` was given (once per
     /// simulation).
     error_estimate_warned: bool,
+    /// The warning of `error_estimate_warned` not yet collected: time, estimate, peak.
+    estimate_warning: Option<[f64; 3]>,
 }
 
 /// Magic bytes and version of serialized snapshots.
@@ -65,6 +67,7 @@ impl Simulation {
             fingerprint: scene.fingerprint(),
             state,
             error_estimate_warned: false,
+            estimate_warning: None,
         })
     }
 
@@ -166,13 +169,9 @@ impl Simulation {
         let estimate = self.error_estimate();
         let tolerance = self.mechanism.spec.solver.tolerance;
         if estimate > tolerance && !self.error_estimate_warned {
+            // Formatted by `take_warnings`, outside the step (no allocation while stepping).
             self.error_estimate_warned = true;
-            self.state.warnings.push(format!(
-                "rod.error_estimate = {estimate:.2e} at t = {} s exceeds solver.tolerance = {tolerance:e} (model and integration, peak |v_mid/L| so far {:.2e}; {})",
-                trimmed(self.state.time),
-                self.state.dae.amplitude,
-                self.mechanism.physics.summary()
-            ));
+            self.estimate_warning = Some([self.state.time, estimate, self.state.dae.amplitude]);
         }
         Ok(self.state.stats)
     }
@@ -201,7 +200,16 @@ impl Simulation {
 
     /// Warnings raised since the last call (e.g. deflection beyond the small-deformation range).
     pub fn take_warnings(&mut self) -> Vec<String> {
-        std::mem::take(&mut self.state.warnings)
+        let mut warnings = std::mem::take(&mut self.state.warnings);
+        if let Some([time, estimate, peak]) = self.estimate_warning.take() {
+            warnings.push(format!(
+                "rod.error_estimate = {estimate:.2e} at t = {} s exceeds solver.tolerance = {:e} (model and integration, peak |v_mid/L| so far {peak:.2e}; {})",
+                trimmed(time),
+                self.mechanism.spec.solver.tolerance,
+                self.mechanism.physics.summary()
+            ));
+        }
+        warnings
     }
 
     /// The model (for tools that need energies, momenta, the rod itself).

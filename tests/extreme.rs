@@ -469,7 +469,7 @@ fn crank_angle_jump() {
     assert_eq!(ga.sim.time(), t_jump);
     assert_eq!(ga.record.times.len(), n0 + 1);
     assert!(time >= t_jump && time < t_jump + dt, "{time}");
-    assert!(ga.record.warnings.is_empty());
+    assert!(ga.first_warning().is_none());
     // Going on with the consistent input: bit for bit the run that never saw the jump.
     let mut sim = ga.sim;
     let mut continued = Vec::new();
@@ -856,7 +856,8 @@ fn deflection_policy_at_work() {
             match sim.advance(dt) {
                 Ok(_) => {
                     let w = sim.take_warnings();
-                    if outcome.is_empty() && !w.is_empty() {
+                    let deflection = w.iter().any(|w| w.contains("small-deformation range"));
+                    if outcome.is_empty() && deflection {
                         outcome = format!("warning at t = {}, run continues", ms(sim.time()));
                     }
                 }

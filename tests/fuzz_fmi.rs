@@ -500,7 +500,13 @@ fn rss_kb() -> u64 {
 fn instantiate_free_cycles_do_not_leak() {
     let exe = std::env::current_exe().expect("the test binary");
     let out = std::process::Command::new(exe)
-        .args(["rss_cycles", "--exact", "--ignored", "--nocapture", "--test-threads=1"])
+        .args([
+            "rss_cycles",
+            "--exact",
+            "--ignored",
+            "--nocapture",
+            "--test-threads=1",
+        ])
         .output()
         .expect("run the child");
     let text = String::from_utf8_lossy(&out.stdout);

@@ -40,8 +40,20 @@ pub fn read_rows(name: &str, columns: usize) -> Vec<Vec<f64>> {
 
 /// The reference rows (every row checked to lie on the 1e-4 s grid).
 pub fn samples() -> Vec<Sample> {
-    let path = "tests/data/exudyn_ancf_150rad_s.csv";
-    let rows: Vec<Sample> = read_rows("exudyn_ancf_150rad_s.csv", 6)
+    samples_of("exudyn_ancf_150rad_s.csv")
+}
+
+/// The same run with Exudyn's geometrically exact shear beam (ObjectBeamGeometricallyExact2D,
+/// 512 elements; `tests/data/benchmark_shear_reference.py`): the physics of the default scene,
+/// whose `auto` takes shear deformation and rotary inertia into the benchmark rod.
+pub fn shear_beam_samples() -> Vec<Sample> {
+    samples_of("exudyn_shear_beam_150rad_s.csv")
+}
+
+/// The rows of a reference file of this run's format under tests/data.
+pub fn samples_of(name: &str) -> Vec<Sample> {
+    let path = format!("tests/data/{name}");
+    let rows: Vec<Sample> = read_rows(name, 6)
         .into_iter()
         .map(|v| Sample {
             time: v[0],

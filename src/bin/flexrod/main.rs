@@ -184,16 +184,13 @@ fn modes(args: &ModesArgs) -> Result<(), Failure> {
     spec.validate().map_err(|e| e.to_string())?;
     // The rod as the model builds it: the `auto` settings resolved, section table, shear
     // deformation and end bodies included.
-    let (rod, choice) = flexrod::rod::physics_choice::choose(
-        &scene.rod,
-        scene.slider.mass,
-        scene.solver.tolerance,
-    )
-    .map_err(|e| e.to_string())?;
+    let (rod, choice) =
+        flexrod::rod::physics_choice::choose(&scene.rod, scene.slider.mass, scene.solver.tolerance)
+            .map_err(|e| e.to_string())?;
     println!("{}", choice.describe());
     let definition = rod.definition().map_err(|e| e.to_string())?;
-    let reference = ReferenceConditions::from_kind(rod.reference, rod.elements)
-        .map_err(|e| e.to_string())?;
+    let reference =
+        ReferenceConditions::from_kind(rod.reference, rod.elements).map_err(|e| e.to_string())?;
     // The modes the simulation uses: the same eigenproblem (mass-loaded with rod.loaded_modes)
     // and the same selection (the band rod.mode_band_hz, else rod.modes lowest plus
     // rod.axial_modes), the bending modes left out as static corrections.
