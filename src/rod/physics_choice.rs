@@ -205,7 +205,8 @@ pub fn axial_frequency_hz(spec: &RodSpec, mass_at_c: f64) -> f64 {
 
 /// The first root of `beta tan(beta) = m / M` in (0, pi/2]; `pi / 2` for `M = 0`.
 fn tip_mass_root(m: f64, mass_at_c: f64) -> f64 {
-    if !(mass_at_c > 0.0) || !(m > 0.0) {
+    let positive = |x: f64| x > 0.0;
+    if !positive(mass_at_c) || !positive(m) {
         return PI / 2.0;
     }
     let ratio = m / mass_at_c;
