@@ -305,10 +305,10 @@ fn converges_in_elements_and_modes_and_reference_conditions_agree() {
     );
     // Modes of 8 elements (simply supported: odd modes symmetric, even ones antisymmetric, with
     // no midpoint deflection of their own), the modes left out as static corrections: the error
-    // against the fine rod falls with the first modes and levels off at the 8-element mesh's
-    // own error once 4 are kept (a mode more or less then moves it by less than 10 %); the
-    // default scene's 3 modes are within 0.2 % of the peak. Measured: 2.7e-3, 1.1e-3, 1.1e-3,
-    // 4.9e-4, 5.3e-4.
+    // against the fine rod never grows by more than 10 % with a mode added (the 4th,
+    // antisymmetric mode leaves it), falls by at least a third with the 2nd mode and with modes
+    // 5 to 8, and the default scene's 3 modes are within 0.2 % of the peak. Measured: 2.7e-3,
+    // 1.1e-3, 1.1e-3, 1.1e-3, 5.3e-4.
     let modes = [1usize, 2, 3, 4, 8];
     let by_modes: Vec<f64> = modes.iter().map(|&m| error_with(8, m)).collect();
     assert!(
@@ -316,7 +316,7 @@ fn converges_in_elements_and_modes_and_reference_conditions_agree() {
         "error grows with a mode added: {by_modes:?}"
     );
     assert!(
-        by_modes[1] < 0.67 * by_modes[0] && by_modes[3] < 0.67 * by_modes[2],
+        by_modes[1] < 0.67 * by_modes[0] && by_modes[4] < 0.67 * by_modes[3],
         "{by_modes:?}"
     );
     assert!(by_modes[2] < 2e-3, "3 modes: {}", by_modes[2]);
