@@ -33,6 +33,10 @@ pub struct Run {
     pub frequencies_hz: Vec<f64>,
     /// The integrator used and what its iteration counter counts.
     pub integrator: (&'static str, &'static str),
+    /// The model class the `auto` settings chose, and why.
+    pub model_class: String,
+    /// The warnings of the run, with the communication point after which they came.
+    pub warnings: Vec<(f64, String)>,
 }
 
 fn isclose(a: f64, b: f64) -> bool {
@@ -86,6 +90,8 @@ pub fn run(scene: &Scene, options: &Options) -> Result<Run, String> {
         wall_seconds: clock.elapsed().as_secs_f64(),
         frequencies_hz: simulation.frequencies_hz().to_vec(),
         integrator: simulation.mechanism().integrator_name(),
+        model_class: simulation.mechanism().physics.describe(),
+        warnings: record.warnings,
     })
 }
 
@@ -162,6 +168,16 @@ pub fn print_summary(scene: &Scene, run: &Run, fmu: Option<&Path>) {
         run.stats.newton_iterations as f64 / (run.stats.steps.max(1)) as f64,
         run.stats.halvings
     );
+    println!("  model class: {}", run.model_class);
+    if let Some(last) = run.outputs.last() {
+        println!(
+            "  rod.error_estimate at the end: {:.2e} of the peak |v_mid / L| (solver.tolerance {:e})",
+            last.error_estimate, scene.solver.tolerance
+        );
+    }
+    for (t, w) in &run.warnings {
+        println!("  warning after t = {t} s: {w}");
+    }
     println!("  wall time: {:.3} s", run.wall_seconds);
     if let Some(fmu) = fmu {
         println!("  FMU: {}", fmu.display());
