@@ -376,13 +376,25 @@ def _ignore_sigint():
         pass
 
 
+DISTRIBUTED_LOGGERS = ("distributed", "distributed.worker", "distributed.nanny",
+                       "distributed.scheduler", "distributed.core")
+
+
+def _quiet_distributed_logs():
+    """In a worker process of our LocalCluster, at shutdown: Dask's own loggers to CRITICAL, so
+    that a worker whose scheduler is already gone does not print heartbeat tracebacks."""
+    import logging
+
+    for name in DISTRIBUTED_LOGGERS:
+        logging.getLogger(name).setLevel(logging.CRITICAL)
+
+
 def _dask(fmu_bytes, todo, job, results_path, cols, progress, scheduler, workers, cpw, info):
     import logging
 
     from dask.distributed import Client, LocalCluster, as_completed
 
-    quiet = [logging.getLogger(n) for n in ("distributed", "distributed.worker", "distributed.nanny",
-                                            "distributed.scheduler", "distributed.core")]
+    quiet = [logging.getLogger(n) for n in DISTRIBUTED_LOGGERS]
     cluster = None
     t_up = time.perf_counter()
     if scheduler is None:
@@ -435,6 +447,8 @@ def _dask(fmu_bytes, todo, job, results_path, cols, progress, scheduler, workers
         for q in quiet:
             q.setLevel(logging.CRITICAL)
         try:
+            if cluster is not None:
+                client.run(_quiet_distributed_logs)  # the workers log their own heartbeat errors
             if futures:
                 client.cancel(futures)  # after Ctrl-C: no chunk starts any more
             client.run(_runner.release, digest)  # the workers' extraction folders
