@@ -53,6 +53,10 @@ pub const AXIAL_BAND_FACTOR: f64 = 1.5;
 /// parameter sets it stays below a fifth of it (tests/error_control.rs).
 pub const INTEGRATION_SHARE: f64 = 0.1;
 
+/// The largest `rod.error_estimate`: an error of a thousand times the peak (no digit of the
+/// output is right far below it).
+pub const MAX_ERROR_ESTIMATE: f64 = 1e3;
+
 /// The coefficient `C` of the share of what the FFR rod's linear modes with axial stiffening
 /// leave out at large deflection, `C peak^2 sqrt(h / L)` (`h = sqrt(12) r`, the depth of the
 /// rectangle of the same radius of gyration), calibrated on the smooth starts of the random
@@ -112,7 +116,14 @@ impl PhysicsChoice {
         } else {
             NONLINEAR_COEFFICIENT * peak * peak * self.depth_ratio.sqrt()
         };
-        self.model_error() + INTEGRATION_SHARE * self.tolerance + nonlinear
+        let estimate = self.model_error() + INTEGRATION_SHARE * self.tolerance + nonlinear;
+        // Finite whatever the parameters (a shear area of 1e-320 m^2 makes e_shear infinite):
+        // past MAX_ERROR_ESTIMATE times the peak it says no more.
+        if estimate.is_finite() {
+            estimate.min(MAX_ERROR_ESTIMATE)
+        } else {
+            MAX_ERROR_ESTIMATE
+        }
     }
 
     /// What was chosen, in a few words: "shear on, axial dynamics off".
@@ -349,6 +360,17 @@ mod tests {
         assert!((e0 - expected).abs() < 1e-12 * expected);
         spec.length *= 2.0;
         assert!((shear_effect(&spec) - e0 / 4.0).abs() < 1e-12 * e0);
+    }
+
+    #[test]
+    fn the_estimate_is_finite_for_any_parameters() {
+        let mut spec = benchmark_rod();
+        spec.shear_deformation = PhysicsSwitch::Off;
+        spec.shear_area = Some(1e-320);
+        let (_, c) = choose(&spec, 0.0, 1e-3).unwrap();
+        assert!(shear_effect(&spec).is_infinite());
+        assert_eq!(c.error_estimate(0.01), MAX_ERROR_ESTIMATE);
+        assert_eq!(c.error_estimate(1e200), MAX_ERROR_ESTIMATE);
     }
 
     #[test]
