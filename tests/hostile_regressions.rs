@@ -561,3 +561,27 @@ fn large_models_inside_the_declared_ranges_take_bounded_time_per_step() {
         Duration::from_secs(90),
     );
 }
+
+/// `rod.error_estimate` is finite for every parameter set the FMU accepts: a shear area of
+/// 1e-320 m^2 with shear off made the estimate's shear share overflow, and the FMU handed out
+/// an infinite output with fmi2OK (the long fuzz run, seed 40915).
+#[test]
+fn the_error_estimate_is_finite_for_extreme_shear_parameters() {
+    for (area, modulus) in [(1e-320, None), (1e-320, Some(1e4)), (1e-12, Some(1e4))] {
+        let mut scene = Scene::benchmark();
+        scene.rod.shear_deformation = flexrod::rod::PhysicsSwitch::Off;
+        scene.rod.shear_area = Some(area);
+        scene.rod.shear_modulus = modulus;
+        let mut sim = Simulation::new(&scene).unwrap();
+        let input = CrankInput {
+            angle: 0.0,
+            speed: 150.0,
+            acceleration: 0.0,
+        };
+        sim.start(0.0, input, 0.0).unwrap();
+        sim.advance(1e-3).unwrap();
+        let e = sim.outputs().error_estimate;
+        assert!(e.is_finite() && e > 0.0, "A_s {area}, G {modulus:?}: {e}");
+        assert!(e <= flexrod::rod::physics_choice::MAX_ERROR_ESTIMATE);
+    }
+}
