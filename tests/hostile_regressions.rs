@@ -563,8 +563,8 @@ fn large_models_inside_the_declared_ranges_take_bounded_time_per_step() {
 }
 
 /// `rod.error_estimate` is finite for every parameter set the FMU accepts: a shear area of
-/// 1e-320 m^2 with shear off made the estimate's shear share overflow, and the FMU handed out
-/// an infinite output with fmi2OK (the long fuzz run, seed 40915).
+/// 1e-320 m^2 with shear off makes the estimate's shear share overflow, and the output must
+/// still be a finite number under fmi2OK (the long fuzz mode's seed 40915 is such a case).
 #[test]
 fn the_error_estimate_is_finite_for_extreme_shear_parameters() {
     for (area, modulus) in [(1e-320, None), (1e-320, Some(1e4)), (1e-12, Some(1e4))] {
