@@ -351,3 +351,64 @@ fn general_constraint_sets_are_checked() {
     let e = build(vec![0, 1, 99]).unwrap_err();
     assert!(e.to_string().contains("0..=14"), "{e}");
 }
+
+/// Selecting from every mode gives what solving with the selection gives (the same shapes and
+/// frequencies to rounding), and the first-order shape integrals of many modes are the full
+/// integrals' linear part: for the plain rod and for a rod with shear and end bodies.
+#[test]
+fn selecting_from_every_mode_matches_solving_with_the_selection() {
+    use flexrod::beam::{EndBody, RodDefinition};
+    let mut general = RodDefinition::uniform(bench());
+    general.shear_modulus = Some(bench().youngs_modulus / 2.6);
+    general.small_end = EndBody {
+        mass: 0.3 * bench().mass_per_length() * bench().length,
+        inertia: 1e-6,
+    };
+    for definition in [RodDefinition::uniform(bench()), general] {
+        for reference in [
+            ReferenceConditions::SimplySupported,
+            ReferenceConditions::BodyFixed { node: 0 },
+            ReferenceConditions::MeanAxis,
+        ] {
+            let solve = |selection: &ModeSelection| {
+                ComponentModes::from_definition(
+                    definition.clone(),
+                    10,
+                    reference.clone(),
+                    MassKind::Consistent,
+                    selection,
+                )
+                .unwrap()
+            };
+            let all = solve(&ModeSelection::Cutoff {
+                max_hz: f64::INFINITY,
+            });
+            for selection in [
+                ModeSelection::Count(4),
+                ModeSelection::CountWithAxial { count: 3, axial: 1 },
+                ModeSelection::Cutoff { max_hz: 5e3 },
+            ] {
+                let direct = solve(&selection);
+                let picked = all.select(&selection).unwrap();
+                assert_eq!(picked.retained, direct.retained, "{selection:?}");
+                for (a, b) in picked.omega2.iter().zip(&direct.omega2) {
+                    assert!((a - b).abs() <= 1e-12 * b.abs().max(1.0), "{a} {b}");
+                }
+                for i in 0..direct.shapes.nrows() {
+                    for j in 0..direct.shapes.ncols() {
+                        let (a, b) = (picked.shapes[(i, j)], direct.shapes[(i, j)]);
+                        assert!((a - b).abs() <= 1e-9 * (1.0 + b.abs()), "{i} {j}: {a} {b}");
+                    }
+                }
+            }
+            let full = ShapeIntegrals::new(&all);
+            let first = ShapeIntegrals::first_order(&all);
+            assert_eq!(first.m_ff.nrows(), 0);
+            assert_eq!(first.i2, full.i2);
+            assert_eq!(first.i5, full.i5);
+            assert_eq!(first.i_rot, full.i_rot);
+            assert_eq!(first.s_mid, full.s_mid);
+            assert_eq!((first.mass, first.i3), (full.mass, full.i3));
+        }
+    }
+}

@@ -17,6 +17,47 @@ use crate::beam::MassKind;
 use crate::beam::{RodDefinition, RodMesh, RodProperties};
 use crate::error::ModelError;
 
+/// Each column of `shapes` (full nodal coordinates): its kinetic energy share
+/// `x_a^T M_aa x_a / x^T M x` in the coordinates where `is_axial` holds, with point masses
+/// `extra` (coordinate, kg) added to `M`'s diagonal. Sums over `M`'s nonzeros only (the beam
+/// mass matrix is banded): O(nonzeros x modes). 0 for a column of zero energy.
+pub(super) fn axial_energy_shares(
+    m: &Mat<f64>,
+    shapes: &Mat<f64>,
+    is_axial: impl Fn(usize) -> bool,
+    extra: &[(usize, f64)],
+) -> Vec<f64> {
+    let mut entries: Vec<(usize, usize, f64, bool)> = Vec::new();
+    for c in 0..m.ncols() {
+        for r in 0..m.nrows() {
+            let v = m[(r, c)];
+            if v != 0.0 {
+                entries.push((r, c, v, is_axial(r) && is_axial(c)));
+            }
+        }
+    }
+    for &(k, mass) in extra {
+        entries.push((k, k, mass, is_axial(k)));
+    }
+    (0..shapes.ncols())
+        .map(|j| {
+            let (mut axial, mut total) = (0.0, 0.0);
+            for &(r, c, v, both_axial) in &entries {
+                let e = shapes[(r, j)] * v * shapes[(c, j)];
+                total += e;
+                if both_axial {
+                    axial += e;
+                }
+            }
+            if total > 0.0 {
+                axial / total
+            } else {
+                0.0
+            }
+        })
+        .collect()
+}
+
 /// Retained modes of the rod and the spectrum they come from.
 #[derive(Clone, Debug)]
 pub struct ComponentModes {
@@ -106,64 +147,26 @@ impl ComponentModes {
             .iter()
             .map(|&l| l.sqrt() / (2.0 * std::f64::consts::PI))
             .collect();
-        // Each mode in full coordinates, and its kinetic energy in the axial displacements
-        // (node i's u at 3 i): s_u^T M_uu s_u / s^T M s.
-        let full_shape = |j: usize| -> Vec<f64> {
-            match basis.selects {
-                true => {
-                    let mut full = vec![0.0; b.nrows()];
-                    for (i, &row) in basis.kept.iter().enumerate() {
-                        full[row] = eig.vectors[(i, j)];
-                    }
-                    full
-                }
-                false => (0..b.nrows())
-                    .map(|r| {
-                        (0..b.ncols())
-                            .map(|c| b[(r, c)] * eig.vectors[(c, j)])
-                            .sum()
-                    })
-                    .collect(),
-            }
-        };
-        let n_full = m.nrows();
-        let mesh_ref = &mesh;
-        let all_axial_shares: Vec<f64> = (0..eig.values.len())
-            .map(|j| {
-                let x = full_shape(j);
-                let (mut axial, mut total) = (0.0, 0.0);
-                for r in 0..n_full {
-                    for c in 0..n_full {
-                        let e = x[r] * m[(r, c)] * x[c];
-                        total += e;
-                        if mesh_ref.is_axial_coordinate(r) && mesh_ref.is_axial_coordinate(c) {
-                            axial += e;
-                        }
-                    }
-                }
-                if total > 0.0 {
-                    axial / total
-                } else {
-                    0.0
-                }
-            })
-            .collect();
-        let retained = selection.select_classified(&all_frequencies_hz, &all_axial_shares)?;
-        let phi = Mat::from_fn(eig.vectors.nrows(), retained.len(), |i, j| {
-            eig.vectors[(i, retained[j])]
-        });
-        let shapes = match basis.selects {
+        // Every mode in full coordinates, and its kinetic energy share in the axial
+        // displacements (node i's u at 3 i).
+        let all_full = match basis.selects {
             true => {
-                let mut full = Mat::zeros(b.nrows(), phi.ncols());
+                let mut full = Mat::zeros(b.nrows(), eig.vectors.ncols());
                 for (i, &row) in basis.kept.iter().enumerate() {
-                    for j in 0..phi.ncols() {
-                        full[(row, j)] = phi[(i, j)];
+                    for j in 0..eig.vectors.ncols() {
+                        full[(row, j)] = eig.vectors[(i, j)];
                     }
                 }
                 full
             }
-            false => b * &phi,
+            false => b * &eig.vectors,
         };
+        let all_axial_shares =
+            axial_energy_shares(&m, &all_full, |r| mesh.is_axial_coordinate(r), &[]);
+        let retained = selection.select_classified(&all_frequencies_hz, &all_axial_shares)?;
+        let shapes = Mat::from_fn(all_full.nrows(), retained.len(), |i, j| {
+            all_full[(i, retained[j])]
+        });
         let omega2 = retained.iter().map(|&i| eig.values[i]).collect();
         Ok(ComponentModes {
             mesh,
@@ -174,6 +177,37 @@ impl ComponentModes {
             retained,
             omega2,
             shapes,
+        })
+    }
+
+    /// The modes `selection` keeps of these, as if the eigenproblem had been solved with it:
+    /// `self` must retain every mode it selects (e.g. `self` from
+    /// `ModeSelection::Cutoff { max_hz: f64::INFINITY }`), else the missing one is refused.
+    pub fn select(&self, selection: &ModeSelection) -> Result<ComponentModes, ModelError> {
+        let retained =
+            selection.select_classified(&self.all_frequencies_hz, &self.all_axial_shares)?;
+        let mut columns = Vec::with_capacity(retained.len());
+        for &k in &retained {
+            let column = self.retained.iter().position(|&r| r == k).ok_or_else(|| {
+                ModelError::InvalidParameter {
+                    name: "mode index",
+                    value: k as f64,
+                    allowed: "a mode the set selected from retains".into(),
+                }
+            })?;
+            columns.push(column);
+        }
+        Ok(ComponentModes {
+            mesh: self.mesh.clone(),
+            reference: self.reference.clone(),
+            mass_kind: self.mass_kind,
+            all_frequencies_hz: self.all_frequencies_hz.clone(),
+            all_axial_shares: self.all_axial_shares.clone(),
+            retained,
+            omega2: columns.iter().map(|&c| self.omega2[c]).collect(),
+            shapes: Mat::from_fn(self.shapes.nrows(), columns.len(), |i, j| {
+                self.shapes[(i, columns[j])]
+            }),
         })
     }
 

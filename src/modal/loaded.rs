@@ -20,7 +20,7 @@
 
 use faer::Mat;
 
-use super::component_modes::ComponentModes;
+use super::component_modes::{axial_energy_shares, ComponentModes};
 use super::eigen::generalized_symmetric_eigen;
 use super::reference::ReferenceConditions;
 use super::selection::ModeSelection;
@@ -96,36 +96,9 @@ impl ComponentModes {
         // the shapes are normalized to M + Delta M).
         let (_, m) = free.mesh.assemble(mass_kind);
         let mesh = &free.mesh;
-        let all_axial_shares: Vec<f64> = (0..r)
-            .map(|j| {
-                let (mut axial, mut total) = (0.0, 0.0);
-                for a in 0..n_full {
-                    let xa = loaded[(a, j)];
-                    if xa == 0.0 {
-                        continue;
-                    }
-                    for b in 0..n_full {
-                        let e = xa * m[(a, b)] * loaded[(b, j)];
-                        total += e;
-                        if mesh.is_axial_coordinate(a) && mesh.is_axial_coordinate(b) {
-                            axial += e;
-                        }
-                    }
-                }
-                for am in &added {
-                    let e = am.mass * loaded[(am.coordinate, j)].powi(2);
-                    total += e;
-                    if mesh.is_axial_coordinate(am.coordinate) {
-                        axial += e;
-                    }
-                }
-                if total > 0.0 {
-                    axial / total
-                } else {
-                    0.0
-                }
-            })
-            .collect();
+        let extra: Vec<(usize, f64)> = added.iter().map(|a| (a.coordinate, a.mass)).collect();
+        let all_axial_shares =
+            axial_energy_shares(&m, &loaded, |k| mesh.is_axial_coordinate(k), &extra);
         let retained = selection.select_classified(&all_frequencies_hz, &all_axial_shares)?;
         let shapes = Mat::from_fn(n_full, retained.len(), |i, j| loaded[(i, retained[j])]);
         let omega2 = retained.iter().map(|&i| eig.values[i].max(0.0)).collect();

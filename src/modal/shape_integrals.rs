@@ -85,21 +85,34 @@ pub struct ShapeIntegrals {
 impl ShapeIntegrals {
     /// Compute every integral for `modes`.
     pub fn new(modes: &ComponentModes) -> ShapeIntegrals {
+        Self::with_extent(modes, Extent::Full)
+    }
+
+    /// Only the integrals linear in the modes (`m`, `I1`, `I2`, `I3`, `I4`, `I5`, `I_rot`, the
+    /// point shapes): the n x n ones (`M_ff`, `M_uu`, `S~`, the `G`) are left empty (0 x 0).
+    /// Cost O(n) per quadrature point instead of O(n^2): for many modes at once (every mode of
+    /// the rod, for the static corrections of the left-out ones).
+    pub fn first_order(modes: &ComponentModes) -> ShapeIntegrals {
+        Self::with_extent(modes, Extent::FirstOrder)
+    }
+
+    fn with_extent(modes: &ComponentModes, extent: Extent) -> ShapeIntegrals {
         if modes.mesh.is_plain() {
-            Self::plain(modes)
+            Self::plain(modes, extent)
         } else {
-            Self::general(modes)
+            Self::general(modes, extent)
         }
     }
 
     /// The plain rod (uniform, Euler-Bernoulli, no end bodies): closed-form element.
-    fn plain(modes: &ComponentModes) -> ShapeIntegrals {
+    fn plain(modes: &ComponentModes, extent: Extent) -> ShapeIntegrals {
         let mesh = &modes.mesh;
         let n = modes.n_modes();
         let el = mesh.element();
         let l = el.length;
         let rho_a = mesh.section.mass_per_length();
         let length = mesh.section.length;
+        let nn = extent.square_size(n);
 
         let mut i1 = Vector2::zeros();
         let mut i2 = DMatrix::zeros(2, n);
@@ -107,14 +120,14 @@ impl ShapeIntegrals {
         let mut i4 = DVector::zeros(n);
         let mut i5 = DVector::zeros(n);
         let mut i_rot = DVector::zeros(n);
-        let mut s_tilde = DMatrix::zeros(n, n);
+        let mut s_tilde = DMatrix::zeros(nn, nn);
         let mut g = [
-            DMatrix::zeros(n, n),
-            DMatrix::zeros(n, n),
-            DMatrix::zeros(n, n),
+            DMatrix::zeros(nn, nn),
+            DMatrix::zeros(nn, nn),
+            DMatrix::zeros(nn, nn),
         ];
         let mut rotary_total = 0.0;
-        let mut m_uu = DMatrix::zeros(n, n);
+        let mut m_uu = DMatrix::zeros(nn, nn);
 
         // The chord rotation row (v(L) - v(0)) / L.
         let s_b = point_shape(modes, 0.0);
@@ -133,8 +146,8 @@ impl ShapeIntegrals {
                 i5[j] -= w * x * b[(0, j)];
             }
             // S^T I~ S = -a^T b + b^T a; S^T S = a^T a + b^T b.
-            for i in 0..n {
-                for j in 0..n {
+            for i in 0..nn {
+                for j in 0..nn {
                     s_tilde[(i, j)] += w * (b[(0, i)] * a[(0, j)] - a[(0, i)] * b[(0, j)]);
                     m_uu[(i, j)] += w * (a[(0, i)] * a[(0, j)] + b[(0, i)] * b[(0, j)]);
                 }
@@ -168,7 +181,7 @@ impl ShapeIntegrals {
                 }
             }
             // Geometric stiffness moments, always by exact quadrature of the slopes.
-            for (xi, w) in GAUSS4 {
+            for (xi, w) in GAUSS4.into_iter().filter(|_| extent == Extent::Full) {
                 let s = s0 + xi * l;
                 let d = el.slope(xi) * &t - &chord;
                 let dtd = d.transpose() * &d;
@@ -180,8 +193,9 @@ impl ShapeIntegrals {
 
         i3 += rotary_total;
         let m_ff = match modes.mass_kind {
+            _ if extent == Extent::FirstOrder => DMatrix::zeros(0, 0),
             MassKind::Consistent => {
-                let mut m_ff = DMatrix::zeros(n, n);
+                let mut m_ff = DMatrix::zeros(nn, nn);
                 for e in 0..mesh.n_elements {
                     let t = modes.element_shapes(e);
                     for (xi, w) in GAUSS4 {
@@ -222,11 +236,12 @@ impl ShapeIntegrals {
     }
 
     /// A rod with a section table, shear deformation or end bodies (module documentation).
-    fn general(modes: &ComponentModes) -> ShapeIntegrals {
+    fn general(modes: &ComponentModes, extent: Extent) -> ShapeIntegrals {
         let mesh = &modes.mesh;
         let def = &mesh.definition;
         let table = mesh.section_table().expect("not plain");
         let n = modes.n_modes();
+        let nn = extent.square_size(n);
         let l = mesh.element_length();
         let rho = mesh.section.density;
         let length = mesh.section.length;
@@ -238,16 +253,16 @@ impl ShapeIntegrals {
         let mut i4 = DVector::zeros(n);
         let mut i5 = DVector::zeros(n);
         let mut i_rot = DVector::zeros(n);
-        let mut s_tilde = DMatrix::zeros(n, n);
-        let mut m_uu = DMatrix::zeros(n, n);
-        let mut m_rot = DMatrix::zeros(n, n);
+        let mut s_tilde = DMatrix::zeros(nn, nn);
+        let mut m_uu = DMatrix::zeros(nn, nn);
+        let mut m_rot = DMatrix::zeros(nn, nn);
         let mut g = [
-            DMatrix::zeros(n, n),
-            DMatrix::zeros(n, n),
-            DMatrix::zeros(n, n),
+            DMatrix::zeros(nn, nn),
+            DMatrix::zeros(nn, nn),
+            DMatrix::zeros(nn, nn),
         ];
-        let mut g_a = DMatrix::zeros(n, n);
-        let mut g_v = DMatrix::zeros(n, n);
+        let mut g_a = DMatrix::zeros(nn, nn);
+        let mut g_v = DMatrix::zeros(nn, nn);
 
         let s_b = point_shape(modes, 0.0);
         let s_c = point_shape(modes, length);
@@ -263,8 +278,8 @@ impl ShapeIntegrals {
                 i4[j] += w * x * a[(0, j)];
                 i5[j] -= w * x * b[(0, j)];
             }
-            for i in 0..n {
-                for j in 0..n {
+            for i in 0..nn {
+                for j in 0..nn {
                     s_tilde[(i, j)] += w * (b[(0, i)] * a[(0, j)] - a[(0, i)] * b[(0, j)]);
                     m_uu[(i, j)] += w * (a[(0, i)] * a[(0, j)] + b[(0, i)] * b[(0, j)]);
                 }
@@ -276,7 +291,7 @@ impl ShapeIntegrals {
             rotary_total += j;
             for a in 0..n {
                 i_rot[a] += j * theta[(0, a)];
-                for b in 0..n {
+                for b in 0..nn {
                     m_rot[(a, b)] += j * theta[(0, a)] * theta[(0, b)];
                 }
             }
@@ -310,6 +325,9 @@ impl ShapeIntegrals {
                         w * rho * sec.area_moment,
                         &DMatrix::from_fn(1, n, |_, j| psi[(0, j)]),
                     );
+                }
+                if extent == Extent::FirstOrder {
+                    continue;
                 }
                 // Geometric stiffness: slopes of the element's v interpolation.
                 let slope = if bubbles {
@@ -358,6 +376,25 @@ impl ShapeIntegrals {
             x_b,
             x_c: x_b + length,
             x_mid: x_b + 0.5 * length,
+        }
+    }
+}
+
+/// Which integrals [`ShapeIntegrals`] computes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Extent {
+    /// Every integral.
+    Full,
+    /// Those linear in the modes ([`ShapeIntegrals::first_order`]).
+    FirstOrder,
+}
+
+impl Extent {
+    /// The side of the n x n integrals for `n` modes.
+    fn square_size(self, n: usize) -> usize {
+        match self {
+            Extent::Full => n,
+            Extent::FirstOrder => 0,
         }
     }
 }

@@ -55,17 +55,9 @@ pub fn build(spec: &RodSpec, slider_mass: f64) -> Result<Box<dyn RodBody>, Model
         RodModelKind::Ffr => {
             let reference = ReferenceConditions::from_kind(spec.reference, spec.elements)?;
             let (selection, added) = ffr_mode_choice(spec, slider_mass);
-            let modes = ComponentModes::from_definition_loaded(
-                definition.clone(),
-                spec.elements,
-                reference.clone(),
-                spec.mass,
-                &selection,
-                &added,
-            )?;
-            let rod = ffr::FfrRod::new(modes, spec.damping_ratio, spec.axial_stiffening);
-            // The bending modes left out as residual flexibility (static corrections to
-            // v_mid, [`ffr::residual`]), with a band or a count of modes alike.
+            // Every mode once; the retained ones are selected from them, and the bending modes
+            // left out are residual flexibility (static corrections to v_mid,
+            // [`ffr::residual`]), with a band or a count of modes alike.
             let all = ComponentModes::from_definition_loaded(
                 definition,
                 spec.elements,
@@ -76,6 +68,8 @@ pub fn build(spec: &RodSpec, slider_mass: f64) -> Result<Box<dyn RodBody>, Model
                 },
                 &added,
             )?;
+            let modes = all.select(&selection)?;
+            let rod = ffr::FfrRod::new(modes, spec.damping_ratio, spec.axial_stiffening);
             Ok(Box::new(rod.with_residual_flexibility(&all)))
         }
         RodModelKind::Segments => Ok(Box::new(segments::SegmentRod::from_definition(

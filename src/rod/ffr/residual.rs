@@ -39,7 +39,7 @@ pub struct ResidualMode {
 /// The left-out bending modes of `all` (every mode of the rod, in the basis the retained ones
 /// come from) that are not among `retained` (indices into `all.all_frequencies_hz`).
 pub fn residual_modes(all: &ComponentModes, retained: &[usize]) -> Vec<ResidualMode> {
-    let ig = ShapeIntegrals::new(all);
+    let ig = ShapeIntegrals::first_order(all);
     residual_columns(all, &ig, retained)
         .map(|j| ResidualMode {
             omega2: all.omega2[j],
@@ -75,7 +75,7 @@ fn residual_columns<'a>(
 /// The modes [`residual_modes`] takes as static corrections, as indices into
 /// `all.all_frequencies_hz` (what `flexrod modes` lists).
 pub fn residual_indices(all: &ComponentModes, retained: &[usize]) -> Vec<usize> {
-    let ig = ShapeIntegrals::new(all);
+    let ig = ShapeIntegrals::first_order(all);
     residual_columns(all, &ig, retained)
         .map(|j| all.retained[j])
         .collect()
