@@ -99,6 +99,7 @@ pub fn cases() -> Vec<(&'static str, Scene)> {
             with(&|s| {
                 s.rod.mode_band_hz = None;
                 s.rod.modes = 7;
+                s.rod.axial_modes = Some(1);
             }),
         ),
         (
@@ -107,6 +108,7 @@ pub fn cases() -> Vec<(&'static str, Scene)> {
                 s.rod.elements = 16;
                 s.rod.mode_band_hz = None;
                 s.rod.modes = 8;
+                s.rod.axial_modes = Some(1);
                 s.solver.method = SolverMethod::Dopri5;
                 s.solver.tolerance = 1e-5;
             }),

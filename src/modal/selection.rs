@@ -17,6 +17,13 @@ pub enum ModeSelection {
     /// kept or left out together (a `count` that splits them is refused, an axial mode comes
     /// with the modes of its frequency). The other selections keep what they name.
     CountWithAxial { count: usize, axial: usize },
+    /// As [`ModeSelection::CountWithAxial`], but `bending` counts bending modes: every mode
+    /// up to the `bending`-th bending mode is kept (an axial mode inside that band comes in
+    /// addition to the bending modes, never in place of one; the lowest `bending` modes where
+    /// the rod has fewer bending modes), then the lowest axial modes missing until `axial`.
+    /// The selection where axial dynamics is switched on (`rod.axial_dynamics` `auto` or
+    /// `on`): the axial mode joins the bending band the scene asked for.
+    BendingWithAxial { bending: usize, axial: usize },
 }
 
 impl ModeSelection {
@@ -27,15 +34,25 @@ impl ModeSelection {
         frequencies_hz: &[f64],
         axial_shares: &[f64],
     ) -> Result<Vec<usize>, ModelError> {
-        let ModeSelection::CountWithAxial { count, axial } = self else {
-            return self.select(frequencies_hz);
+        let is_axial = |k: usize| axial_shares.get(k).is_some_and(|&s| s > 0.5);
+        let (count, axial, lowest) = match self {
+            ModeSelection::CountWithAxial { count, axial } => (count, axial, *count),
+            ModeSelection::BendingWithAxial { bending, axial } => {
+                // Every mode up to the `bending`-th bending mode.
+                let band = (0..frequencies_hz.len())
+                    .filter(|&k| !is_axial(k))
+                    .nth(bending.saturating_sub(1))
+                    .filter(|_| *bending > 0)
+                    .map_or(*bending, |k| k + 1);
+                (bending, axial, band)
+            }
+            _ => return self.select(frequencies_hz),
         };
-        let mut kept = ModeSelection::Count(*count).select(frequencies_hz)?;
+        let mut kept = ModeSelection::Count(lowest).select(frequencies_hz)?;
         check_whole_clusters(&kept, frequencies_hz)?;
         if *count == 0 {
             return Ok(kept);
         }
-        let is_axial = |k: usize| axial_shares.get(k).is_some_and(|&s| s > 0.5);
         let mut have = kept.iter().filter(|&&k| is_axial(k)).count();
         for k in *count..frequencies_hz.len() {
             if have >= *axial {
@@ -60,7 +77,8 @@ impl ModeSelection {
     pub fn select(&self, frequencies_hz: &[f64]) -> Result<Vec<usize>, ModelError> {
         let available = frequencies_hz.len();
         match self {
-            ModeSelection::CountWithAxial { count, .. } => {
+            ModeSelection::CountWithAxial { count, .. }
+            | ModeSelection::BendingWithAxial { bending: count, .. } => {
                 ModeSelection::Count(*count).select(frequencies_hz)
             }
             ModeSelection::Count(n) => {
@@ -172,6 +190,31 @@ mod tests {
         // More axial modes than the rod has: all of them; the rigid rod stays rigid.
         assert_eq!(pick(1, 5), vec![0, 3, 4]);
         assert_eq!(pick(0, 1), Vec::<usize>::new());
+    }
+
+    #[test]
+    fn axial_modes_join_the_bending_band() {
+        let f = [10.0, 20.0, 30.0, 40.0, 50.0];
+        let shares = [0.0, 0.9, 0.0, 0.0, 1.0];
+        let pick = |bending, axial| {
+            ModeSelection::BendingWithAxial { bending, axial }
+                .select_classified(&f, &shares)
+                .unwrap()
+        };
+        assert_eq!(pick(1, 1), vec![0, 1]);
+        assert_eq!(pick(2, 1), vec![0, 1, 2]);
+        assert_eq!(pick(3, 1), vec![0, 1, 2, 3]);
+        assert_eq!(pick(3, 2), vec![0, 1, 2, 3, 4]);
+        // More bending modes than the rod has: the lowest `bending` modes.
+        assert_eq!(pick(4, 1), vec![0, 1, 2, 3]);
+        assert_eq!(pick(0, 1), Vec::<usize>::new());
+        // The lowest `count` modes of CountWithAxial take the axial mode in place of one.
+        assert_eq!(
+            ModeSelection::CountWithAxial { count: 2, axial: 1 }
+                .select_classified(&f, &shares)
+                .unwrap(),
+            vec![0, 1]
+        );
     }
 
     #[test]

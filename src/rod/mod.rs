@@ -31,6 +31,10 @@ use crate::modal::{ComponentModes, ModeSelection, ReferenceConditions};
 pub fn ffr_mode_choice(spec: &RodSpec, slider_mass: f64) -> (ModeSelection, Vec<AddedMass>) {
     let selection = match spec.mode_band_hz {
         Some(max_hz) => ModeSelection::Cutoff { max_hz },
+        None if spec.axial_in_addition => ModeSelection::BendingWithAxial {
+            bending: spec.modes,
+            axial: spec.min_axial_modes(slider_mass),
+        },
         None => ModeSelection::CountWithAxial {
             count: spec.modes,
             axial: spec.min_axial_modes(slider_mass),

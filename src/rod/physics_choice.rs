@@ -300,6 +300,7 @@ pub fn choose(
         RodModelKind::Ffr if axial => {
             resolved.loaded_modes = true;
             resolved.axial_modes = Some(spec.axial_modes.unwrap_or(1).max(1));
+            resolved.axial_in_addition = true;
         }
         RodModelKind::Ffr => {
             resolved.axial_modes = Some(spec.axial_modes.unwrap_or(0));

@@ -87,7 +87,8 @@ pub struct RodSpec {
     /// Reference conditions (FFR only).
     #[serde(default = "default_reference")]
     pub reference: ReferenceKind,
-    /// Retained modes (FFR only), lowest first.
+    /// Retained modes (FFR only), lowest first; where axial dynamics brings the axial mode in
+    /// ([`Self::axial_in_addition`]), the number of bending modes.
     #[serde(default = "default_modes")]
     pub modes: usize,
     /// Least number of axial modes among the retained ones (FFR only): the lowest axial modes
@@ -96,6 +97,12 @@ pub struct RodSpec {
     /// [`Self::min_axial_modes`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub axial_modes: Option<usize>,
+    /// The axial modes come in addition to `modes` bending modes
+    /// ([`crate::modal::ModeSelection::BendingWithAxial`]) instead of among the `modes` lowest:
+    /// set where `axial_dynamics` (`auto` or `on`) brings the axial mode in, not read from a
+    /// scene.
+    #[serde(skip)]
+    pub axial_in_addition: bool,
     /// Mass-loaded modes (FFR only): the slider's mass is added at C's axial coordinate in the
     /// eigenproblem (not in the dynamics), so that the retained modes include the slider-rod
     /// axial mode at its frequency in the mechanism ([`crate::modal::loaded`]).

@@ -122,8 +122,11 @@ def ringing_frequency(t, v, crank_hz):
     pad = 16 * len(v)
     spec = np.abs(np.fft.rfft(x, pad))
     f = np.fft.rfftfreq(pad, t[1] - t[0])
-    band = f > 2.0 * crank_hz
-    i = np.flatnonzero(band)[np.argmax(spec[band])]
+    # Local maxima only: at the band's lower edge the leakage of the crank harmonics below it
+    # can be larger than any peak, and is not a ringing.
+    inner = np.flatnonzero(f > 2.0 * crank_hz)[1:-1]
+    peaks = inner[(spec[inner] > spec[inner - 1]) & (spec[inner] >= spec[inner + 1])]
+    i = peaks[np.argmax(spec[peaks])]
     a, b, c = np.log(spec[i - 1:i + 2])
     shift = 0.5 * (a - c) / (a - 2 * b + c)
     return f[i] + shift * (f[1] - f[0])

@@ -325,7 +325,7 @@ impl VariableTable {
                 ValueType::Integer,
                 |s| usize_to_i32(s.rod.modes),
                 |s, v| non_negative(v).map(|n| s.rod.modes = n),
-                "Retained modes (FFR), lowest first",
+                "Retained modes (FFR), lowest first; with axial dynamics on (auto or on) the bending modes, the slider-rod axial mode in addition",
             );
             b.bounds(Some(Value::Integer(0)), None);
         }
