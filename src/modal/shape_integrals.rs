@@ -18,6 +18,12 @@
 //! force `N(s) = n0 + n1 s + n2 s^2` is `K_G = n0 G_0 + n1 G_1 + n2 G_2` (Cook, Malkus,
 //! Plesha and Witt, *Concepts and Applications of FEA*, 4th ed., eq. 18.3-4).
 //!
+//! For the shear-deformable rod the foreshortening's integrand `v'^2` becomes
+//! `2 v' psi - psi^2 = v'^2 - gamma^2` (Reissner's axial strain along the section normal,
+//! `eps = u' + v' psi - psi^2 / 2` to second order: E. Reissner, ZAMP 23, 1972), so `D^T D` in
+//! every `G_k` becomes `D^T D_psi + D_psi^T D - D_psi^T D_psi` with `D_psi` the chord-relative
+//! section rotation row (docs/physics.md, "The shear-deformable rod").
+//!
 //! A rod that is not plain (section table, shear deformation, end bodies; see
 //! [`crate::beam::RodDefinition::is_plain`]) takes every integral with `rho A(s)` on the pieces
 //! of its section table (exact Gauss quadrature per piece), plus:
@@ -315,12 +321,14 @@ impl ShapeIntegrals {
                 let a = sh.rows(0, 1).into_owned();
                 let b = sh.rows(1, 1).into_owned();
                 add_point(w * rho * sec.area, x_b + s, &a, &b);
-                if def.shear_modulus.is_some() {
-                    let psi = if bubbles {
+                let psi = def.shear_modulus.map(|_| {
+                    if bubbles {
                         el.rotation_full(xi) * &t
                     } else {
                         dynamic(el.rotation(xi) * &t)
-                    };
+                    }
+                });
+                if let Some(psi) = &psi {
                     add_rotary(
                         w * rho * sec.area_moment,
                         &DMatrix::from_fn(1, n, |_, j| psi[(0, j)]),
@@ -336,7 +344,16 @@ impl ShapeIntegrals {
                     dynamic(el.slope(xi) * &t)
                 };
                 let d = slope - &chord;
-                let dtd = d.transpose() * &d;
+                // The foreshortening's integrand: `v'^2` (Euler-Bernoulli), `2 v' psi - psi^2 =
+                // v'^2 - gamma^2` for the shear-deformable rod (module documentation).
+                let dtd = match &psi {
+                    None => d.transpose() * &d,
+                    Some(psi) => {
+                        let dpsi = psi - &chord;
+                        let cross = d.transpose() * &dpsi;
+                        &cross + cross.transpose() - dpsi.transpose() * &dpsi
+                    }
+                };
                 for (k, gk) in g.iter_mut().enumerate() {
                     *gk += &dtd * (w * s.powi(k as i32));
                 }
