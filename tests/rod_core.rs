@@ -412,3 +412,50 @@ fn selecting_from_every_mode_matches_solving_with_the_selection() {
         }
     }
 }
+
+/// The shear-deformable rod's foreshortening against the closed form of the simply supported
+/// Timoshenko beam's first mode, `v = a sin(k s)`, `psi = b cos(k s)`, `k = pi / L`: from the
+/// transverse equation `-rho A w^2 v = G A_s (v'' - psi')`, `b = a (k^2 - rho A w^2 / (G A_s)) / k`;
+/// unit modal mass `rho A a^2 L / 2 + rho I b^2 L / 2 = 1`. Reissner's strain along the section
+/// normal gives `G_0 = int (2 v' psi - psi^2) = L / 2 (2 k a b - b^2)`, not `int v'^2 = L k^2 a^2
+/// / 2` (docs/physics.md, "The shear-deformable rod").
+#[test]
+fn shear_rod_foreshortening_is_reissners() {
+    use flexrod::beam::RodDefinition;
+    // A stubby steel rod, L/h = 8: shear takes a few percent of the first mode's slope.
+    let p = RodProperties {
+        length: 0.2,
+        youngs_modulus: 2.1e11,
+        density: 7850.0,
+        area: 25e-3 * 20e-3,
+        area_moment: 20e-3 * 25e-3f64.powi(3) / 12.0,
+    };
+    let g = p.youngs_modulus / 2.6;
+    let shear_area = p.area / 1.2;
+    let mut definition = RodDefinition::uniform(p);
+    definition.shear_modulus = Some(g);
+    let modes = ComponentModes::from_definition(
+        definition,
+        32,
+        ReferenceConditions::SimplySupported,
+        MassKind::Consistent,
+        &ModeSelection::Count(1),
+    )
+    .unwrap();
+    let ig = ShapeIntegrals::new(&modes);
+    let (l, rho_a, rho_i) = (p.length, p.mass_per_length(), p.density * p.area_moment);
+    let k = std::f64::consts::PI / l;
+    let w2 = modes.omega2[0];
+    let ratio = (k * k - rho_a * w2 / (g * shear_area)) / k; // b / a
+    let a = (2.0 / (l * (rho_a + rho_i * ratio * ratio))).sqrt();
+    let b = ratio * a;
+    let reissner = 0.5 * l * (2.0 * k * a * b - b * b);
+    let slope_squared = 0.5 * l * k * k * a * a;
+    let g0 = ig.g[0][(0, 0)];
+    assert!(
+        (g0 - reissner).abs() < 1e-6 * reissner,
+        "G_0 {g0} against Reissner's {reissner}"
+    );
+    // The difference is the shear strain's share, large enough to tell the two apart.
+    assert!((slope_squared - reissner) / reissner > 1e-3);
+}
