@@ -18,9 +18,10 @@ pub enum ModeSelection {
     /// with the modes of its frequency). The other selections keep what they name.
     CountWithAxial { count: usize, axial: usize },
     /// As [`ModeSelection::CountWithAxial`], but `bending` counts bending modes: every mode
-    /// up to the `bending`-th bending mode is kept (an axial mode inside that band comes in
-    /// addition to the bending modes, never in place of one; the lowest `bending` modes where
-    /// the rod has fewer bending modes), then the lowest axial modes missing until `axial`.
+    /// up to the `bending`-th bending mode and the modes of its frequency is kept (an axial
+    /// mode inside that band comes in addition to the bending modes, never in place of one;
+    /// every mode where the rod has fewer bending modes, a refusal where it has fewer modes),
+    /// then the lowest axial modes missing until `axial`.
     /// The selection where axial dynamics is switched on (`rod.axial_dynamics` `auto` or
     /// `on`): the axial mode joins the bending band the scene asked for.
     BendingWithAxial { bending: usize, axial: usize },
@@ -38,12 +39,17 @@ impl ModeSelection {
         let (count, axial, lowest) = match self {
             ModeSelection::CountWithAxial { count, axial } => (count, axial, *count),
             ModeSelection::BendingWithAxial { bending, axial } => {
-                // Every mode up to the `bending`-th bending mode.
-                let band = (0..frequencies_hz.len())
-                    .filter(|&k| !is_axial(k))
-                    .nth(bending.saturating_sub(1))
-                    .filter(|_| *bending > 0)
-                    .map_or(*bending, |k| k + 1);
+                // Every mode up to the `bending`-th bending mode and the modes of its
+                // frequency; every mode where the rod has fewer bending modes (the lowest
+                // `bending` where it has fewer modes at all: refused below).
+                let available = frequencies_hz.len();
+                let band = match *bending {
+                    0 => 0,
+                    n => (0..available)
+                        .filter(|&k| !is_axial(k))
+                        .nth(n - 1)
+                        .map_or(available.max(n), |k| cluster(frequencies_hz, k).end),
+                };
                 (bending, axial, band)
             }
             _ => return self.select(frequencies_hz),
@@ -205,9 +211,27 @@ mod tests {
         assert_eq!(pick(2, 1), vec![0, 1, 2]);
         assert_eq!(pick(3, 1), vec![0, 1, 2, 3]);
         assert_eq!(pick(3, 2), vec![0, 1, 2, 3, 4]);
-        // More bending modes than the rod has: the lowest `bending` modes.
-        assert_eq!(pick(4, 1), vec![0, 1, 2, 3]);
+        // More bending modes than the rod has: every mode; more than it has modes: refused.
+        assert_eq!(pick(4, 1), vec![0, 1, 2, 3, 4]);
+        assert!(ModeSelection::BendingWithAxial {
+            bending: 6,
+            axial: 1
+        }
+        .select_classified(&f, &shares)
+        .is_err());
         assert_eq!(pick(0, 1), Vec::<usize>::new());
+        // The band ends with the modes of its last bending mode's frequency.
+        let f = [10.0, 10.0, 20.0, 30.0, 30.0];
+        let shares = [0.0, 0.0, 1.0, 0.0, 0.0];
+        let pick = |bending, axial| {
+            ModeSelection::BendingWithAxial { bending, axial }
+                .select_classified(&f, &shares)
+                .unwrap()
+        };
+        assert_eq!(pick(1, 1), vec![0, 1, 2]);
+        assert_eq!(pick(3, 1), vec![0, 1, 2, 3, 4]);
+        let f = [10.0, 20.0, 30.0, 40.0, 50.0];
+        let shares = [0.0, 0.9, 0.0, 0.0, 1.0];
         // The lowest `count` modes of CountWithAxial take the axial mode in place of one.
         assert_eq!(
             ModeSelection::CountWithAxial { count: 2, axial: 1 }

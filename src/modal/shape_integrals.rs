@@ -72,7 +72,8 @@ pub struct ShapeIntegrals {
     pub m_uu: DMatrix<f64>,
     /// S~ = int rho S_hat^T I~ S_hat (n x n, skew).
     pub s_tilde: DMatrix<f64>,
-    /// Geometric stiffness moments G_0, G_1, G_2 (n x n each), chord-relative slopes.
+    /// Geometric stiffness moments G_0, G_1, G_2 (n x n each), chord-relative slopes (the
+    /// shear-deformable rod: Reissner's form, module documentation).
     pub g: [DMatrix<f64>; 3],
     /// Rods that are not plain: `[G_a, G_v]`, the geometric stiffness per unit `e.R''` and per
     /// unit `phi'^2` of the axial force of the frame motion (module documentation); `None` for

@@ -289,6 +289,7 @@ pub fn choose(
         (s, None) => s == PhysicsSwitch::On,
     };
     let mut resolved = spec.clone();
+    resolved.axial_in_addition = false;
     resolved.shear_deformation = PhysicsSwitch::from_bool(shear);
     resolved.axial_dynamics = PhysicsSwitch::from_bool(axial);
     if !shear {
@@ -300,7 +301,8 @@ pub fn choose(
         RodModelKind::Ffr if axial => {
             resolved.loaded_modes = true;
             resolved.axial_modes = Some(spec.axial_modes.unwrap_or(1).max(1));
-            resolved.axial_in_addition = true;
+            // The scene's own `rod.axial_modes` counts every mode, as with `auto`.
+            resolved.axial_in_addition = spec.axial_modes.is_none();
         }
         RodModelKind::Ffr => {
             resolved.axial_modes = Some(spec.axial_modes.unwrap_or(0));
@@ -383,11 +385,20 @@ mod tests {
         assert!(!c.shear && c.axial);
         assert_eq!(r.shear_deformation, PhysicsSwitch::Off);
         assert!(r.loaded_modes && r.axial_modes == Some(1));
+        // `rod.modes` counts bending modes, the axial mode in addition; a scene's own
+        // `rod.axial_modes` counts every mode.
+        assert!(r.axial_in_addition);
+        spec.axial_modes = Some(1);
+        let (r, _) = choose(&spec, 0.0, 1e-12).unwrap();
+        assert!(!r.axial_in_addition);
+        spec.axial_modes = None;
         spec.shear_deformation = PhysicsSwitch::On;
         spec.axial_dynamics = PhysicsSwitch::Off;
+        spec.axial_in_addition = true;
         let (r, c) = choose(&spec, 10.0, 0.1).unwrap();
         assert!(c.shear && !c.axial);
         assert_eq!(r.axial_modes, Some(0));
+        assert!(!r.axial_in_addition);
     }
 
     #[test]

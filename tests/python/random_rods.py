@@ -126,6 +126,8 @@ def ringing_frequency(t, v, crank_hz):
     # can be larger than any peak, and is not a ringing.
     inner = np.flatnonzero(f > 2.0 * crank_hz)[1:-1]
     peaks = inner[(spec[inner] > spec[inner - 1]) & (spec[inner] >= spec[inner + 1])]
+    if len(peaks) == 0:
+        raise ValueError(f"no spectral peak of v above 2 x the crank frequency ({crank_hz:.1f} Hz)")
     i = peaks[np.argmax(spec[peaks])]
     a, b, c = np.log(spec[i - 1:i + 2])
     shift = 0.5 * (a - c) / (a - 2 * b + c)

@@ -222,6 +222,12 @@ fn modes(args: &ModesArgs) -> Result<(), Failure> {
             "every mode up to rod.mode_band_hz = {band} Hz; {} bending modes above it as static corrections to v_mid",
             corrections.len()
         ),
+        None if rod.axial_in_addition => format!(
+            "rod.modes = {} bending modes, the axial modes in their band and at least {} axial in addition; {} bending modes left out as static corrections to v_mid",
+            rod.modes,
+            rod.min_axial_modes(scene.slider.mass),
+            corrections.len()
+        ),
         None => format!(
             "rod.modes = {}, at least {} axial; {} bending modes left out as static corrections to v_mid",
             rod.modes,
