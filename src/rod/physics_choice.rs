@@ -301,8 +301,9 @@ pub fn choose(
         RodModelKind::Ffr if axial => {
             resolved.loaded_modes = true;
             resolved.axial_modes = Some(spec.axial_modes.unwrap_or(1).max(1));
-            // The scene's own `rod.axial_modes` counts every mode, as with `auto`.
-            resolved.axial_in_addition = spec.axial_modes.is_none();
+            // The scene's own `rod.axial_modes` counts every mode, as with `auto`; a spec
+            // resolved before keeps its count (resolving is idempotent).
+            resolved.axial_in_addition = spec.axial_in_addition || spec.axial_modes.is_none();
         }
         RodModelKind::Ffr => {
             resolved.axial_modes = Some(spec.axial_modes.unwrap_or(0));
@@ -388,6 +389,8 @@ mod tests {
         // `rod.modes` counts bending modes, the axial mode in addition; a scene's own
         // `rod.axial_modes` counts every mode.
         assert!(r.axial_in_addition);
+        let (again, _) = choose(&r, 0.0, 1e-12).unwrap();
+        assert_eq!(again, r, "resolving a resolved spec changes nothing");
         spec.axial_modes = Some(1);
         let (r, _) = choose(&spec, 0.0, 1e-12).unwrap();
         assert!(!r.axial_in_addition);
@@ -398,7 +401,10 @@ mod tests {
         let (r, c) = choose(&spec, 10.0, 0.1).unwrap();
         assert!(c.shear && !c.axial);
         assert_eq!(r.axial_modes, Some(0));
-        assert!(!r.axial_in_addition);
+        assert!(
+            !r.axial_in_addition,
+            "without axial dynamics the count is of every mode"
+        );
     }
 
     #[test]
