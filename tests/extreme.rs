@@ -546,7 +546,11 @@ fn communication_steps_from_1e_7_to_1e_2() {
 fn all_modes_kept() {
     let dt = 1e-4;
     let n = runs::steps_for(W, 2.0, dt);
-    let all = scene(|s| s.rod.modes = 24);
+    // The lowest 24 modes whatever their kind (`rod.axial_modes` given: every mode counts).
+    let all = scene(|s| {
+        s.rod.modes = 24;
+        s.rod.axial_modes = Some(1);
+    });
     let f = Simulation::new(&all).unwrap().frequencies_hz().to_vec();
     let run = drive(&all, dt, n, 0.0, |_, t| constant(t, W));
     let base = drive(&benchmark_rk4(), dt, n, 0.0, |_, t| constant(t, W));

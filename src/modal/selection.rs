@@ -17,11 +17,11 @@ pub enum ModeSelection {
     /// kept or left out together (a `count` that splits them is refused, an axial mode comes
     /// with the modes of its frequency). The other selections keep what they name.
     CountWithAxial { count: usize, axial: usize },
-    /// As [`ModeSelection::CountWithAxial`], but `bending` counts bending modes: every mode
-    /// up to the `bending`-th bending mode and the modes of its frequency is kept (an axial
-    /// mode inside that band comes in addition to the bending modes, never in place of one;
-    /// every mode where the rod has fewer bending modes, a refusal where it has fewer modes),
-    /// then the lowest axial modes missing until `axial`.
+    /// The lowest `bending` bending modes (with the modes of the last one's frequency; every
+    /// bending mode where the rod has fewer, a refusal where it has fewer modes at all) and
+    /// the lowest `axial` axial modes in addition: an axial mode below the highest kept
+    /// bending mode never takes a bending mode's place, and the count stays at most
+    /// `bending + axial` (plus equal-frequency partners).
     /// The selection where axial dynamics is switched on (`rod.axial_dynamics` `auto` or
     /// `on`): the axial mode joins the bending band the scene asked for.
     BendingWithAxial { bending: usize, axial: usize },
@@ -36,31 +36,48 @@ impl ModeSelection {
         axial_shares: &[f64],
     ) -> Result<Vec<usize>, ModelError> {
         let is_axial = |k: usize| axial_shares.get(k).is_some_and(|&s| s > 0.5);
-        let (count, axial, lowest) = match self {
-            ModeSelection::CountWithAxial { count, axial } => (count, axial, *count),
+        let (count, axial, mut kept) = match self {
+            ModeSelection::CountWithAxial { count, axial } => {
+                let kept = ModeSelection::Count(*count).select(frequencies_hz)?;
+                check_whole_clusters(&kept, frequencies_hz)?;
+                (count, axial, kept)
+            }
             ModeSelection::BendingWithAxial { bending, axial } => {
-                // Every mode up to the `bending`-th bending mode and the modes of its
-                // frequency; every mode where the rod has fewer bending modes (the lowest
-                // `bending` where it has fewer modes at all: refused below).
+                // The bending modes up to the `bending`-th and those of its frequency (every
+                // bending mode where the rod has fewer); the axial modes come below.
                 let available = frequencies_hz.len();
-                let band = match *bending {
+                if *bending > available {
+                    return Err(ModelError::TooManyModes {
+                        requested: *bending,
+                        available,
+                    });
+                }
+                let bending_modes: Vec<usize> = (0..available).filter(|&k| !is_axial(k)).collect();
+                let end = match *bending {
                     0 => 0,
-                    n => (0..available)
-                        .filter(|&k| !is_axial(k))
-                        .nth(n - 1)
-                        .map_or(available.max(n), |k| cluster(frequencies_hz, k).end),
+                    n => bending_modes
+                        .get(n - 1)
+                        .map_or(available, |&k| cluster(frequencies_hz, k).end),
                 };
-                (bending, axial, band)
+                // With the modes of each one's frequency (an axial mode of equal frequency
+                // comes with its partner).
+                let mut kept: Vec<usize> = Vec::new();
+                for k in bending_modes.into_iter().filter(|&k| k < end) {
+                    for j in cluster(frequencies_hz, k) {
+                        if !kept.contains(&j) {
+                            kept.push(j);
+                        }
+                    }
+                }
+                (bending, axial, kept)
             }
             _ => return self.select(frequencies_hz),
         };
-        let mut kept = ModeSelection::Count(lowest).select(frequencies_hz)?;
-        check_whole_clusters(&kept, frequencies_hz)?;
         if *count == 0 {
             return Ok(kept);
         }
         let mut have = kept.iter().filter(|&&k| is_axial(k)).count();
-        for k in *count..frequencies_hz.len() {
+        for k in 0..frequencies_hz.len() {
             if have >= *axial {
                 break;
             }
@@ -75,6 +92,7 @@ impl ModeSelection {
             }
         }
         kept.sort_unstable();
+        check_whole_clusters(&kept, frequencies_hz)?;
         Ok(kept)
     }
 
@@ -211,8 +229,10 @@ mod tests {
         assert_eq!(pick(2, 1), vec![0, 1, 2]);
         assert_eq!(pick(3, 1), vec![0, 1, 2, 3]);
         assert_eq!(pick(3, 2), vec![0, 1, 2, 3, 4]);
-        // More bending modes than the rod has: every mode; more than it has modes: refused.
-        assert_eq!(pick(4, 1), vec![0, 1, 2, 3, 4]);
+        // More bending modes than the rod has: every bending mode; more than it has modes:
+        // refused. Axial modes in the band beyond `axial` are left out.
+        assert_eq!(pick(4, 1), vec![0, 1, 2, 3]);
+        assert_eq!(pick(5, 1), vec![0, 1, 2, 3]);
         assert!(ModeSelection::BendingWithAxial {
             bending: 6,
             axial: 1
