@@ -572,14 +572,9 @@ fn the_error_estimate_is_finite_for_extreme_shear_parameters() {
         scene.rod.shear_deformation = flexrod::rod::PhysicsSwitch::Off;
         scene.rod.shear_area = Some(area);
         scene.rod.shear_modulus = modulus;
-        let mut sim = Simulation::new(&scene).unwrap();
-        let input = CrankInput {
-            angle: 0.0,
-            speed: 150.0,
-            acceleration: 0.0,
-        };
-        sim.start(0.0, input, 0.0).unwrap();
-        sim.advance(1e-3).unwrap();
+        // One communication step of 1 ms at 150 rad/s.
+        let revolutions = 150.0 * 1e-3 / (2.0 * std::f64::consts::PI);
+        let (_, sim) = flexrod::drive::run_constant(&scene, 150.0, 1e-3, revolutions).unwrap();
         let e = sim.outputs().error_estimate;
         assert!(e.is_finite() && e > 0.0, "A_s {area}, G {modulus:?}: {e}");
         assert!(e <= flexrod::rod::physics_choice::MAX_ERROR_ESTIMATE);

@@ -198,15 +198,17 @@ fn check_whole_clusters(kept: &[usize], frequencies_hz: &[f64]) -> Result<(), Mo
 mod tests {
     use super::*;
 
+    /// What `selection` keeps of modes of frequencies `f` and axial shares `shares`.
+    fn picked(selection: ModeSelection, f: &[f64], shares: &[f64]) -> Vec<usize> {
+        selection.select_classified(f, shares).unwrap()
+    }
+
     #[test]
     fn axial_modes_are_added_after_the_count() {
         let f = [10.0, 20.0, 30.0, 40.0, 50.0];
         let shares = [0.0, 0.0, 0.0, 1.0, 0.9];
-        let pick = |count, axial| {
-            ModeSelection::CountWithAxial { count, axial }
-                .select_classified(&f, &shares)
-                .unwrap()
-        };
+        let pick =
+            |count, axial| picked(ModeSelection::CountWithAxial { count, axial }, &f, &shares);
         assert_eq!(pick(2, 0), vec![0, 1]);
         assert_eq!(pick(2, 1), vec![0, 1, 3]);
         assert_eq!(pick(2, 2), vec![0, 1, 3, 4]);
@@ -221,9 +223,11 @@ mod tests {
         let f = [10.0, 20.0, 30.0, 40.0, 50.0];
         let shares = [0.0, 0.9, 0.0, 0.0, 1.0];
         let pick = |bending, axial| {
-            ModeSelection::BendingWithAxial { bending, axial }
-                .select_classified(&f, &shares)
-                .unwrap()
+            picked(
+                ModeSelection::BendingWithAxial { bending, axial },
+                &f,
+                &shares,
+            )
         };
         assert_eq!(pick(1, 1), vec![0, 1]);
         assert_eq!(pick(2, 1), vec![0, 1, 2]);
@@ -244,21 +248,19 @@ mod tests {
         let f = [10.0, 10.0, 20.0, 30.0, 30.0];
         let shares = [0.0, 0.0, 1.0, 0.0, 0.0];
         let pick = |bending, axial| {
-            ModeSelection::BendingWithAxial { bending, axial }
-                .select_classified(&f, &shares)
-                .unwrap()
+            picked(
+                ModeSelection::BendingWithAxial { bending, axial },
+                &f,
+                &shares,
+            )
         };
         assert_eq!(pick(1, 1), vec![0, 1, 2]);
         assert_eq!(pick(3, 1), vec![0, 1, 2, 3, 4]);
         let f = [10.0, 20.0, 30.0, 40.0, 50.0];
         let shares = [0.0, 0.9, 0.0, 0.0, 1.0];
         // The lowest `count` modes of CountWithAxial take the axial mode in place of one.
-        assert_eq!(
-            ModeSelection::CountWithAxial { count: 2, axial: 1 }
-                .select_classified(&f, &shares)
-                .unwrap(),
-            vec![0, 1]
-        );
+        let count_with_axial = ModeSelection::CountWithAxial { count: 2, axial: 1 };
+        assert_eq!(picked(count_with_axial, &f, &shares), vec![0, 1]);
     }
 
     #[test]
