@@ -166,7 +166,7 @@ fn automotive() -> Scene {
 /// communication step (ms, steps, right-hand sides); the engine run of
 /// `flexrod::drive::engine` (ramp to 6000 rpm, gas pulse, 60 ms: ms); `fmi2DoStep` at 1e-5 s
 /// with the crank set before every call (us).
-fn automotive_speed() -> (f64, u64, u64, f64, f64) {
+fn automotive_speed() -> (f64, u64, u64, f64, f64, [f64; 2], u64) {
     let scene = automotive();
     let w = scene.experiment.crank_speed;
     let grid = [0.0, 4.0 * std::f64::consts::PI / w];
@@ -181,6 +181,28 @@ fn automotive_speed() -> (f64, u64, u64, f64, f64) {
             flexrod::drive::engine::EngineRun::automotive()
                 .run(&scene)
                 .unwrap();
+        });
+    // The gas pulse inside the model (`[slider.gas_force]`): two revolutions at full speed
+    // with the pulse after the second top dead centre, in one communication step; the engine
+    // run with the table on its 2e-5 s row grid.
+    let setup = flexrod::drive::engine::EngineRun::automotive();
+    let constant = flexrod::drive::engine::EngineRun {
+        ramp: 0.0,
+        stop: 0.02,
+        firing_angle: 2.0 * std::f64::consts::PI + 15f64.to_radians(),
+        ..setup
+    };
+    let mut with_gas = scene.clone();
+    with_gas.slider.gas_force = Some(constant.gas_table());
+    let mut sim_gas = Simulation::new(&with_gas).unwrap();
+    let gas_ms = 1e3
+        * time(41, || {
+            drive::run(&mut sim_gas, &CrankDrive::Constant { speed: w }, 0.0, &grid).unwrap();
+        });
+    let gas_steps = sim_gas.stats().steps;
+    let engine_table = 1e3
+        * time(11, || {
+            setup.run_with_gas_table(&scene, setup.sample).unwrap();
         });
     let dir = std::env::temp_dir().join(format!("flexrod-speed-{}", std::process::id()));
     let res = dir.join("resources");
@@ -197,11 +219,20 @@ fn automotive_speed() -> (f64, u64, u64, f64, f64) {
     let uri = format!("file://{}", res.display());
     let [_, step] = do_step_of(&scene, Some(&uri), w);
     std::fs::remove_dir_all(&dir).ok();
-    (ms, stats.steps, stats.newton_iterations, engine, step)
+    (
+        ms,
+        stats.steps,
+        stats.newton_iterations,
+        engine,
+        step,
+        [gas_ms, engine_table],
+        gas_steps,
+    )
 }
 
 fn main() {
-    let (a_ms, a_steps, a_rhs, a_engine, a_step) = automotive_speed();
+    let (a_ms, a_steps, a_rhs, a_engine, a_step, [a_gas, a_engine_table], a_gas_steps) =
+        automotive_speed();
     let (ms, steps, rhs, peak) = two_revolutions(&Scene::benchmark());
     let mut dopri = Scene::benchmark();
     dopri.solver.method = SolverMethod::Dopri5;
@@ -225,6 +256,8 @@ fn main() {
 | `fmi2SetReal` (crank angle and speed) + `fmi2DoStep` at 1e-5 s | {step_inputs:.2} us a call |
 | automotive rod (scenes/automotive_rod.toml: mass-loaded modes to 6 kHz, residual flexibility above, `auto`: exponential RK4(3), tolerance 1e-2), two revolutions at 628.3 rad/s from the undeformed start in one `fmi2DoStep` | {a_ms:.2} ms; {a_steps} steps, {a_rhs} right-hand sides |
 | automotive rod, the engine run (ramp to 6000 rpm, gas pulse, 60 ms, 1e-5 s grid) | {a_engine:.2} ms |
+| automotive rod, the engine run with the gas pulse as a `[slider.gas_force]` table (the crank on a 2e-5 s grid, a row at every point) | {a_engine_table:.2} ms |
+| automotive rod, two revolutions at 628.3 rad/s with the gas pulse as a `[slider.gas_force]` table, in one `fmi2DoStep` | {a_gas:.2} ms; {a_gas_steps} steps |
 | automotive rod, `fmi2SetReal` (crank angle and speed) + `fmi2DoStep` at 1e-5 s, 628.3 rad/s | {a_step:.2} us a call |
 ",
         simulated / (ms * 1e-3),

@@ -10,6 +10,7 @@ use std::time::{Duration, Instant};
 
 use super::law::CrankDrive;
 use crate::error::ModelError;
+use crate::mechanism::gas_force::GasForceTable;
 use crate::mechanism::CrankInput;
 use crate::scene::Scene;
 use crate::simulation::Simulation;
@@ -76,12 +77,52 @@ impl EngineRun {
         self.ramp + (self.firing_angle - 4.0 * std::f64::consts::PI) / self.speed
     }
 
+    /// The gas pulse as a `[slider.gas_force]` table: [`EngineRun::gas`] sampled every half
+    /// degree over a cycle of 1440 degrees (the run's four revolutions, so that the pulse comes
+    /// once, at the firing angle, as in the reference).
+    pub fn gas_table(&self) -> GasForceTable {
+        let (cycle, spacing) = (1440.0, 0.5);
+        let angle: Vec<f64> = (0..(cycle / spacing) as usize)
+            .map(|i| i as f64 * spacing)
+            .collect();
+        GasForceTable {
+            cycle,
+            force: angle.iter().map(|a| self.gas(a.to_radians())).collect(),
+            angle,
+            scale: 1.0,
+        }
+    }
+
     /// Run `scene` (its rod needs a section table with fibre distances, or a uniform section
     /// with `[outputs] stress`): the crank input at each communication point continues the law
     /// in force ([`continued`]: the drive's speed at the points, no projection of the state),
-    /// the gas force held over each communication step at its mid-step value. Returns the rows, the wall time of the run (`Simulation::new`
-    /// excluded) and the integrator's name.
+    /// the gas force held over each communication step at its mid-step value. Returns the rows,
+    /// the wall time of the run (`Simulation::new` excluded) and the integrator's name.
     pub fn run(&self, scene: &Scene) -> Result<(Vec<EngineRow>, Duration, String), ModelError> {
+        self.drive(scene, self.step, self.sample, true)
+    }
+
+    /// The same run with the gas force inside the model, as the table [`EngineRun::gas_table`]
+    /// (`[slider.gas_force]`: a function of the crank angle, followed through every internal
+    /// step), on the communication step `step` (s, a divisor of the run's length), a row at
+    /// every communication point.
+    pub fn run_with_gas_table(
+        &self,
+        scene: &Scene,
+        step: f64,
+    ) -> Result<(Vec<EngineRow>, Duration, String), ModelError> {
+        let mut scene = scene.clone();
+        scene.slider.gas_force = Some(self.gas_table());
+        self.drive(&scene, step, step, false)
+    }
+
+    fn drive(
+        &self,
+        scene: &Scene,
+        step: f64,
+        sample: f64,
+        held_gas: bool,
+    ) -> Result<(Vec<EngineRow>, Duration, String), ModelError> {
         let law = self.law();
         let (area, moment, fibre) = section_at_half(scene);
         let mut sim = Simulation::new(scene)?;
@@ -103,23 +144,20 @@ impl EngineRun {
             ]
         };
         let mut rows = vec![row(&sim, 0.0)];
-        let n = (self.stop / self.step).round() as usize;
-        let every = ((self.sample / self.step).round() as usize).max(1);
+        let n = (self.stop / step).round() as usize;
+        let every = ((sample / step).round() as usize).max(1);
         let (mut input, mut input_time) = (law.at(0.0), 0.0);
         for k in 0..n {
-            let t = k as f64 * self.step;
-            input = continued(
-                input,
-                sim.time() - input_time,
-                law.at(t + self.step).speed,
-                self.step,
-            );
+            let t = k as f64 * step;
+            input = continued(input, sim.time() - input_time, law.at(t + step).speed, step);
             input_time = sim.time();
             sim.set_input(input)?;
-            sim.set_slider_force(self.gas(law.at(t + 0.5 * self.step).angle))?;
-            sim.advance(self.step)?;
+            if held_gas {
+                sim.set_slider_force(self.gas(law.at(t + 0.5 * step).angle))?;
+            }
+            sim.advance(step)?;
             if (k + 1) % every == 0 {
-                rows.push(row(&sim, (k + 1) as f64 * self.step));
+                rows.push(row(&sim, (k + 1) as f64 * step));
             }
         }
         let (name, _) = sim.mechanism().integrator_name();

@@ -14,6 +14,7 @@ use faer::MatMut;
 use nalgebra::Vector2;
 
 use super::crank::CrankLaw;
+use super::gas_force::GasForce;
 use crate::integrator::DaeSystem;
 use crate::rod::{RodBody, RodPoint};
 
@@ -23,8 +24,10 @@ pub struct SliderCrankDae<'a> {
     pub crank: CrankLaw,
     /// Slider mass m_s, kg (0 allowed).
     pub slider_mass: f64,
-    /// External force on the slider along +x, N.
+    /// External force on the slider along +x, N (the `slider.force` input).
     pub slider_force: f64,
+    /// The force of `[slider.gas_force]` as a function of the crank angle, if the scene has one.
+    pub gas: Option<&'a GasForce>,
     /// The slider line `y = slider_offset`, m.
     pub slider_offset: f64,
     /// Gravity, m/s^2, global frame.
@@ -107,6 +110,15 @@ impl SliderCrankDae<'_> {
         PinAt::pin(self.pin_cache, &self.crank, t)
     }
 
+    /// The force on the slider along +x at `t`, N: the `slider.force` input plus the gas force
+    /// at the crank angle of `t`.
+    pub fn slider_force_at(&self, t: f64) -> f64 {
+        match self.gas {
+            Some(gas) => self.slider_force + gas.at(self.crank.kinematics(t).0),
+            None => self.slider_force,
+        }
+    }
+
     fn nr(&self) -> usize {
         self.rod.n_coordinates()
     }
@@ -139,10 +151,10 @@ impl DaeSystem for SliderCrankDae<'_> {
         m[(nr, nr)] = self.slider_mass;
     }
 
-    fn forces(&self, _t: f64, q: &[f64], v: &[f64], f: &mut [f64]) {
+    fn forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) {
         let nr = self.nr();
         self.rod.forces(q, v, &mut f[..nr]);
-        f[nr] = self.slider_force;
+        f[nr] = self.slider_force_at(t);
         if self.gravity != Vector2::zeros() {
             self.rod.add_gravity(q, self.gravity, &mut f[..nr]);
             f[nr] += self.slider_mass * self.gravity.x;

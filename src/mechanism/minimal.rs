@@ -97,7 +97,7 @@ impl SliderCrankDae<'_> {
             pin_a,
             offset: self.slider_offset,
             slider_mass: self.slider_mass,
-            slider_force: self.slider_force,
+            slider_force: self.slider_force_at(t),
             gravity: self.gravity,
         };
         if kernel.pinned {

@@ -8,6 +8,7 @@ use nalgebra::Vector2;
 
 use super::crank::{CrankInput, CrankLaw};
 use super::dae::{PinAt, SliderCrankDae};
+use super::gas_force::GasForce;
 use super::integrator_choice::{self, MechanismFacts};
 use super::spec::MechanismSpec;
 use super::state::MechanismState;
@@ -39,6 +40,8 @@ pub struct Mechanism {
     /// The crank pin's motion last computed ([`PinAt::pin`]), shared by the evaluation
     /// contexts and the outputs.
     pub(super) pin_cache: Cell<PinAt>,
+    /// The force of `[slider.gas_force]`, preprocessed.
+    pub(super) gas: Option<GasForce>,
 }
 
 /// What restores the state's held step ([`StepAhead`]) when a communication step fails: most
@@ -73,6 +76,7 @@ impl OutputSolve {
 /// The DAE evaluation context of `state`: the rod, the crank law in force, the slider.
 pub(super) fn dae_context<'a>(
     rod: &'a dyn RodBody,
+    gas: Option<&'a GasForce>,
     spec: &MechanismSpec,
     state: &MechanismState,
     pin_cache: &'a Cell<PinAt>,
@@ -86,6 +90,7 @@ pub(super) fn dae_context<'a>(
         },
         slider_mass: spec.slider.mass,
         slider_force: state.slider_force,
+        gas,
         slider_offset: spec.mechanism.slider_offset,
         gravity: Vector2::from(spec.mechanism.gravity),
         pin_cache,
@@ -115,6 +120,7 @@ impl Mechanism {
             },
             slider_mass: spec.slider.mass,
             slider_force: 0.0,
+            gas: None,
             slider_offset: spec.mechanism.slider_offset,
             gravity: Vector2::from(spec.mechanism.gravity),
             pin_cache: &probe_pins,
@@ -152,6 +158,12 @@ impl Mechanism {
             backup,
             rod,
             pin_cache: Cell::default(),
+            gas: spec
+                .slider
+                .gas_force
+                .as_ref()
+                .map(GasForce::new)
+                .transpose()?,
         })
     }
 
@@ -171,7 +183,13 @@ impl Mechanism {
 
     /// The DAE of `state` (the crank law in force, the slider force).
     pub fn system(&self, state: &MechanismState) -> SliderCrankDae<'_> {
-        dae_context(self.rod.as_ref(), &self.spec, state, &self.pin_cache)
+        dae_context(
+            self.rod.as_ref(),
+            self.gas.as_ref(),
+            &self.spec,
+            state,
+            &self.pin_cache,
+        )
     }
 
     /// The crank law in force in `state`.

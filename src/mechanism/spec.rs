@@ -20,11 +20,18 @@ pub struct SliderSpec {
     /// Slider mass m_s, kg (0 allowed).
     #[serde(default)]
     pub mass: f64,
+    /// `[slider.gas_force]`: a force on the slider as a function of the crank angle
+    /// ([`super::gas_force`]), in addition to the `slider.force` input.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gas_force: Option<super::gas_force::GasForceTable>,
 }
 
 impl Default for SliderSpec {
     fn default() -> Self {
-        SliderSpec { mass: 0.0 }
+        SliderSpec {
+            mass: 0.0,
+            gas_force: None,
+        }
     }
 }
 
@@ -270,6 +277,9 @@ impl MechanismSpec {
         }
         require_within("rod.damping_ratio", rod.damping_ratio, 0.0, 100.0, "")?;
         require_within("slider.mass", self.slider.mass, 0.0, 1e6, "kg")?;
+        if let Some(gas) = &self.slider.gas_force {
+            gas.validate()?;
+        }
         let offset = self.mechanism.slider_offset;
         if !(offset.is_finite() && self.crank.length + offset.abs() < rod.length) {
             return Err(ModelError::InvalidParameter {

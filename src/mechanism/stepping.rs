@@ -209,7 +209,13 @@ impl Mechanism {
         state: &mut MechanismState,
     ) -> Result<bool, (f64, f64, String)> {
         let t = state.dae.t;
-        let sys = dae_context(self.rod.as_ref(), &self.spec, state, &self.pin_cache);
+        let sys = dae_context(
+            self.rod.as_ref(),
+            self.gas.as_ref(),
+            &self.spec,
+            state,
+            &self.pin_cache,
+        );
         // The constraint residual of `SliderCrankDae::constraints`, with the pin's motion of
         // the new law computed once for the position and the velocity checks.
         let (pin, v_new, a_new) = sys.crank.pin(t);
@@ -303,9 +309,9 @@ impl Mechanism {
         let m_s = self.slider_mass;
         let g_x = self.spec.mechanism.gravity[0];
         let inertia = m_s * d.qdd[ns];
-        let residual = inertia - d.lambda[2] - state.slider_force - m_s * g_x;
-        let scale =
-            inertia.abs() + d.lambda[2].abs() + state.slider_force.abs() + (m_s * g_x).abs();
+        let force = self.system(state).slider_force_at(d.t);
+        let residual = inertia - d.lambda[2] - force - m_s * g_x;
+        let scale = inertia.abs() + d.lambda[2].abs() + force.abs() + (m_s * g_x).abs();
         residual.abs() <= 1e-12 * scale.max(1e-300)
     }
 
@@ -330,7 +336,13 @@ impl Mechanism {
         let dense = may_step_ahead && self.integrator.dense_output();
         while state.dae.t < t_end {
             if state.ahead.held {
-                let sys = dae_context(self.rod.as_ref(), &self.spec, state, &self.pin_cache);
+                let sys = dae_context(
+                    self.rod.as_ref(),
+                    self.gas.as_ref(),
+                    &self.spec,
+                    state,
+                    &self.pin_cache,
+                );
                 let t1 = state.ahead.end.t;
                 if t_end < t1 - 1e-12 * (t1 - state.ahead.t0) {
                     let work = self
@@ -360,7 +372,13 @@ impl Mechanism {
             }
             taken += 1;
             let h_max = t_end - state.dae.t;
-            let sys = dae_context(self.rod.as_ref(), &self.spec, state, &self.pin_cache);
+            let sys = dae_context(
+                self.rod.as_ref(),
+                self.gas.as_ref(),
+                &self.spec,
+                state,
+                &self.pin_cache,
+            );
             if dense
                 && state.dae.step_hint > 0.0
                 && steps_past_is_cheaper(h_max, state.dae.step_hint.min(MAX_ADAPTIVE_STEP))
@@ -437,7 +455,13 @@ impl Mechanism {
                 return Err((state.dae.t, target - state.dae.t, OVER_BUDGET.to_string()));
             }
             let h = target - state.dae.t;
-            let sys = dae_context(self.rod.as_ref(), &self.spec, state, &self.pin_cache);
+            let sys = dae_context(
+                self.rod.as_ref(),
+                self.gas.as_ref(),
+                &self.spec,
+                state,
+                &self.pin_cache,
+            );
             match self.integrator.step(&sys, &mut state.dae, h) {
                 Ok(work) => {
                     state.dae.t = target;

@@ -359,6 +359,25 @@ impl VariableTable {
             );
         }
 
+        if scene.slider.gas_force.is_some() {
+            b.real_parameter(
+                "slider.gas_force_scale",
+                150,
+                DIMENSIONLESS,
+                |s| s.slider.gas_force.as_ref().map_or(1.0, |g| g.scale),
+                |s, v| {
+                    if let Some(g) = s.slider.gas_force.as_mut() {
+                        g.scale = v;
+                    }
+                },
+                "Factor on the scene's gas-force table [slider.gas_force] (force on the slider as a function of crank angle, in addition to slider.force), in [0, 100]",
+            );
+            b.bounds(
+                Some(Value::Real(0.0)),
+                Some(Value::Real(crate::mechanism::gas_force::MAX_SCALE)),
+            );
+        }
+
         // The rod's shear deformation and end bodies (`docs/fmu.md`, "Real connecting rods" and
         // "Model class and error estimate"), value references 138-142 and 145-149, in every
         // FMU: any rod can be entered with only physical parameters.

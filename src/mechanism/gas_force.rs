@@ -1,0 +1,341 @@
+//! A force on the slider given as a function of the crank angle (scene table
+//! `[slider.gas_force]`): the cylinder gas force of an engine or a compressor over its cycle.
+//!
+//! The table's points `(angle_i, force_i)` (degrees of crank angle within one cycle of
+//! `cycle` degrees: 720 for a four-stroke engine, 360 for a two-stroke engine or a compressor;
+//! N along +x, negative towards the crank) are joined by the periodic cubic spline, continuous
+//! with its first and second derivatives across the points and across the cycle's end
+//! (C. de Boor, *A Practical Guide to Splines*, revised ed., 2001, chapter IV; the periodic
+//! end condition). The force at crank angle `theta` (rad, the `crank.angle` input, any number
+//! of turns) is `scale F((theta in degrees) mod cycle)`.
+//!
+//! Inside a communication step the crank angle follows `theta(t) = theta_k + omega_k s +
+//! alpha_k s^2 / 2` ([`super::crank`]), so the force follows the crank through every internal
+//! step: a coarse communication grid sees the same pulse as a fine one. It acts in addition to
+//! the `slider.force` input.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::ModelError;
+
+/// Most points of a table (one per 0.05 degree of a four-stroke cycle).
+pub const MAX_POINTS: usize = 14_400;
+
+/// Largest |force| of a point and of `scale` times it, N (the `slider.force` input's window).
+pub const MAX_FORCE: f64 = 1e8;
+
+/// The scale's window: `[0, MAX_SCALE]`.
+pub const MAX_SCALE: f64 = 100.0;
+
+/// The scene table `[slider.gas_force]`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GasForceTable {
+    /// Crank angle of one cycle, degrees, in (0, 3600].
+    pub cycle: f64,
+    /// Crank angles of the points, degrees, strictly ascending within [0, cycle).
+    pub angle: Vec<f64>,
+    /// Force on the slider along +x at each point, N.
+    pub force: Vec<f64>,
+    /// Factor on the table's force (FMU parameter `slider.gas_force_scale`), in [0, 100].
+    #[serde(default = "unit_scale")]
+    pub scale: f64,
+}
+
+fn unit_scale() -> f64 {
+    1.0
+}
+
+fn invalid(name: &'static str, value: f64, allowed: String) -> ModelError {
+    ModelError::InvalidParameter {
+        name,
+        value,
+        allowed,
+    }
+}
+
+impl GasForceTable {
+    /// Check every number against its documented window (module and field documentation).
+    pub fn validate(&self) -> Result<(), ModelError> {
+        if !(self.cycle.is_finite() && self.cycle > 0.0 && self.cycle <= 3600.0) {
+            return Err(invalid(
+                "slider.gas_force.cycle",
+                self.cycle,
+                "a crank angle in (0, 3600] degrees".into(),
+            ));
+        }
+        let n = self.angle.len();
+        if !(3..=MAX_POINTS).contains(&n) || self.force.len() != n {
+            return Err(invalid(
+                "slider.gas_force.angle",
+                n as f64,
+                format!(
+                    "3 to {MAX_POINTS} points, as many angles as forces ({} forces)",
+                    self.force.len()
+                ),
+            ));
+        }
+        for (i, &a) in self.angle.iter().enumerate() {
+            let above = if i == 0 { 0.0 } else { self.angle[i - 1] };
+            let ascending = i == 0 || a > above;
+            if !(a.is_finite() && a >= 0.0 && a < self.cycle && ascending) {
+                return Err(invalid(
+                    "slider.gas_force.angle",
+                    a,
+                    format!(
+                        "strictly ascending crank angles in [0, cycle = {}) degrees",
+                        self.cycle
+                    ),
+                ));
+            }
+        }
+        let mut largest: f64 = 0.0;
+        for &f in &self.force {
+            if !(f.is_finite() && f.abs() <= MAX_FORCE) {
+                return Err(invalid(
+                    "slider.gas_force.force",
+                    f,
+                    format!("a finite force with |force| <= {MAX_FORCE:e} N"),
+                ));
+            }
+            largest = largest.max(f.abs());
+        }
+        if !(self.scale.is_finite() && (0.0..=MAX_SCALE).contains(&self.scale)) {
+            return Err(invalid(
+                "slider.gas_force_scale",
+                self.scale,
+                format!("a factor in [0, {MAX_SCALE}]"),
+            ));
+        }
+        if self.scale * largest > MAX_FORCE {
+            return Err(invalid(
+                "slider.gas_force_scale",
+                self.scale,
+                format!(
+                    "at most {:e}: the scaled table's largest force must stay within {MAX_FORCE:e} N",
+                    MAX_FORCE / largest
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The preprocessed table: the periodic cubic spline's second derivatives at the points.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GasForce {
+    /// Cycle, degrees.
+    cycle: f64,
+    /// The points' angles (degrees) with the first repeated one cycle on, `n + 1`.
+    angle: Vec<f64>,
+    /// Scaled forces, N, `n + 1` (the first repeated).
+    force: Vec<f64>,
+    /// Second derivatives of the spline, N / deg^2, `n + 1` (the first repeated).
+    curvature: Vec<f64>,
+}
+
+impl GasForce {
+    /// The spline of a validated table.
+    pub fn new(table: &GasForceTable) -> Result<GasForce, ModelError> {
+        table.validate()?;
+        let n = table.angle.len();
+        let mut angle = table.angle.clone();
+        angle.push(table.angle[0] + table.cycle);
+        let mut force: Vec<f64> = table.force.iter().map(|f| table.scale * f).collect();
+        force.push(force[0]);
+        let h: Vec<f64> = (0..n).map(|i| angle[i + 1] - angle[i]).collect();
+        // Periodic spline (de Boor, chapter IV): for every point i (indices mod n)
+        // h_{i-1} M_{i-1} + 2 (h_{i-1} + h_i) M_i + h_i M_{i+1}
+        //   = 6 ((f_{i+1} - f_i) / h_i - (f_i - f_{i-1}) / h_{i-1}).
+        let below = |i: usize| h[(i + n - 1) % n];
+        let diag: Vec<f64> = (0..n).map(|i| 2.0 * (below(i) + h[i])).collect();
+        let rhs: Vec<f64> = (0..n)
+            .map(|i| {
+                let prev = force[(i + n - 1) % n];
+                6.0 * ((force[i + 1] - force[i]) / h[i] - (force[i] - prev) / below(i))
+            })
+            .collect();
+        // Sub-diagonal a_i = h_{i-1} (row i, column i-1), super-diagonal c_i = h_i (row i,
+        // column i+1), the corners a_0 (row 0, column n-1) and c_{n-1} (row n-1, column 0).
+        let sub: Vec<f64> = (0..n).map(below).collect();
+        let sup: Vec<f64> = h.clone();
+        let mut curvature = cyclic_tridiagonal(&sub, &diag, &sup, &rhs);
+        curvature.push(curvature[0]);
+        Ok(GasForce {
+            cycle: table.cycle,
+            angle,
+            force,
+            curvature,
+        })
+    }
+
+    /// The force at crank angle `theta` (rad), N.
+    pub fn at(&self, theta: f64) -> f64 {
+        let first = self.angle[0];
+        let x = (theta.to_degrees() - first).rem_euclid(self.cycle) + first;
+        // The interval [angle_i, angle_i+1] holding x (angle_n = angle_0 + cycle).
+        let i = self
+            .angle
+            .partition_point(|&a| a <= x)
+            .clamp(1, self.angle.len() - 1)
+            - 1;
+        let h = self.angle[i + 1] - self.angle[i];
+        let a = (self.angle[i + 1] - x) / h;
+        let b = 1.0 - a;
+        let (m0, m1) = (self.curvature[i], self.curvature[i + 1]);
+        a * self.force[i]
+            + b * self.force[i + 1]
+            + ((a * a * a - a) * m0 + (b * b * b - b) * m1) * h * h / 6.0
+    }
+}
+
+/// Solve the cyclic tridiagonal system with sub-diagonal `a` (`a[0]` in the top-right corner),
+/// diagonal `b`, super-diagonal `c` (`c[n-1]` in the bottom-left corner) and right side `r`,
+/// by the Sherman-Morrison correction of the Thomas algorithm (W. H. Press et al., *Numerical
+/// Recipes*, 3rd ed., 2007, section 2.7.2). The spline's matrix is strictly diagonally
+/// dominant, so no pivoting is needed.
+fn cyclic_tridiagonal(a: &[f64], b: &[f64], c: &[f64], r: &[f64]) -> Vec<f64> {
+    let n = b.len();
+    let (alpha, beta) = (c[n - 1], a[0]);
+    let gamma = -b[0];
+    let mut bb = b.to_vec();
+    bb[0] = b[0] - gamma;
+    bb[n - 1] = b[n - 1] - alpha * beta / gamma;
+    let x = tridiagonal(a, &bb, c, r);
+    let mut u = vec![0.0; n];
+    u[0] = gamma;
+    u[n - 1] = alpha;
+    let z = tridiagonal(a, &bb, c, &u);
+    let fact = (x[0] + beta * x[n - 1] / gamma) / (1.0 + z[0] + beta * z[n - 1] / gamma);
+    x.iter().zip(&z).map(|(xi, zi)| xi - fact * zi).collect()
+}
+
+/// Thomas algorithm for the tridiagonal system (`a[0]` and `c[n-1]` unused).
+fn tridiagonal(a: &[f64], b: &[f64], c: &[f64], r: &[f64]) -> Vec<f64> {
+    let n = b.len();
+    let mut cp = vec![0.0; n];
+    let mut x = vec![0.0; n];
+    let mut den = b[0];
+    x[0] = r[0] / den;
+    for i in 1..n {
+        cp[i - 1] = c[i - 1] / den;
+        den = b[i] - a[i] * cp[i - 1];
+        x[i] = (r[i] - a[i] * x[i - 1]) / den;
+    }
+    for i in (0..n - 1).rev() {
+        x[i] -= cp[i] * x[i + 1];
+    }
+    x
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn table(cycle: f64, n: usize, f: impl Fn(f64) -> f64) -> GasForceTable {
+        let angle: Vec<f64> = (0..n).map(|i| cycle * i as f64 / n as f64).collect();
+        GasForceTable {
+            cycle,
+            force: angle.iter().map(|&a| f(a)).collect(),
+            angle,
+            scale: 1.0,
+        }
+    }
+
+    #[test]
+    fn spline_passes_through_its_points_and_repeats_every_cycle() {
+        let t = GasForceTable {
+            cycle: 720.0,
+            angle: vec![0.0, 10.0, 35.0, 300.0, 700.0],
+            force: vec![-1e3, -4e4, -2e4, 0.0, 5e2],
+            scale: 2.0,
+        };
+        let g = GasForce::new(&t).unwrap();
+        for (a, f) in t.angle.iter().zip(&t.force) {
+            for turns in [-3.0, 0.0, 1.0, 7.0] {
+                let theta = (a + turns * 720.0).to_radians();
+                assert!((g.at(theta) - 2.0 * f).abs() < 1e-9 * 8e4, "{a} {turns}");
+            }
+        }
+    }
+
+    #[test]
+    fn spline_is_smooth_across_the_cycle_end() {
+        // Second differences on both sides of the wrap agree: C2 at the cycle's end.
+        let g = GasForce::new(&table(360.0, 7, |a| (a.to_radians()).sin() * 1e3)).unwrap();
+        let d = 1e-3f64;
+        let curv = |x: f64| {
+            (g.at((x + d).to_radians()) - 2.0 * g.at(x.to_radians()) + g.at((x - d).to_radians()))
+                / (d * d)
+        };
+        let (left, right) = (curv(360.0 - 10.0 * d), curv(360.0 + 10.0 * d));
+        assert!(
+            (left - right).abs() < 1e-3 * left.abs().max(1.0),
+            "{left} {right}"
+        );
+    }
+
+    #[test]
+    fn spline_converges_to_a_smooth_pulse_at_fourth_order() {
+        // The pulse -38 kN exp(-((a - 375) / 20)^2) over a four-stroke cycle: the largest
+        // error over the cycle falls 16 times per halved spacing (de Boor, chapter IV: O(h^4)).
+        let pulse = |a: f64| -38e3 * (-((a - 375.0) / 20.0).powi(2)).exp();
+        let err = |n: usize| {
+            let g = GasForce::new(&table(720.0, n, pulse)).unwrap();
+            (0..7200)
+                .map(|k| {
+                    let a = k as f64 * 0.1;
+                    (g.at(a.to_radians()) - pulse(a)).abs()
+                })
+                .fold(0.0, f64::max)
+        };
+        let (coarse, fine) = (err(360), err(720));
+        let order = (coarse / fine).log2();
+        assert!(
+            (3.6..4.4).contains(&order),
+            "order {order}: {coarse} {fine}"
+        );
+        assert!(fine < 38e3 * 1e-4, "{fine}");
+    }
+
+    #[test]
+    fn bad_tables_are_refused_with_the_value_and_its_window() {
+        let good = table(720.0, 8, |a| -a);
+        assert!(good.validate().is_ok());
+        type Spoil = Box<dyn Fn(&mut GasForceTable)>;
+        let cases: [(&str, Spoil); 7] = [
+            ("slider.gas_force.cycle", Box::new(|t| t.cycle = 0.0)),
+            ("slider.gas_force.angle", Box::new(|t| t.angle.truncate(2))),
+            (
+                "slider.gas_force.angle",
+                Box::new(|t| t.angle[3] = t.angle[2]),
+            ),
+            ("slider.gas_force.angle", Box::new(|t| t.angle[7] = 720.0)),
+            (
+                "slider.gas_force.force",
+                Box::new(|t| t.force[1] = f64::NAN),
+            ),
+            ("slider.gas_force_scale", Box::new(|t| t.scale = -1.0)),
+            (
+                "slider.gas_force_scale",
+                Box::new(|t| {
+                    t.force[1] = 9e7;
+                    t.scale = 2.0;
+                }),
+            ),
+        ];
+        for (name, spoil) in cases {
+            let mut t = good.clone();
+            spoil(&mut t);
+            match t.validate() {
+                Err(ModelError::InvalidParameter {
+                    name: got, allowed, ..
+                }) => {
+                    assert_eq!(got, name);
+                    assert!(!allowed.is_empty());
+                }
+                other => panic!("{name}: {other:?}"),
+            }
+        }
+    }
+}
