@@ -62,6 +62,11 @@ impl Oscillator {
         zdd + self.omega2 * z + self.damping * zd
     }
 
+    /// The damping ratio `zeta = c / (2 w)`.
+    pub fn damping_ratio(&self) -> f64 {
+        0.5 * self.damping * self.inv_omega2.sqrt()
+    }
+
     /// `E(tau)` (module documentation).
     pub fn propagator(&self, tau: f64) -> Propagator {
         let x = 0.5 * self.damping;

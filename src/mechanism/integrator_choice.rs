@@ -288,8 +288,8 @@ pub fn build(
                 })
                 .collect();
             let mut integrator = integrator.exponential(oscillators);
-            for omega in rod.axial_circular_frequencies() {
-                integrator = integrator.cap_phase_on(omega);
+            for index in rod.axial_mode_indices() {
+                integrator = integrator.cap_phase_on(index);
             }
             Box::new(integrator)
         }

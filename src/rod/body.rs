@@ -45,9 +45,9 @@ pub trait RodBody: Send {
     fn elastic_circular_frequencies(&self) -> Option<Vec<f64>> {
         None
     }
-    /// Circular frequencies (rad/s) of the retained axial modes (the FFR rod's; none
-    /// elsewhere): the integrator's exponential form caps its phase on them too.
-    fn axial_circular_frequencies(&self) -> Vec<f64> {
+    /// Indices among the elastic coordinates of the retained axial modes (the FFR rod's; none
+    /// elsewhere): the integrator's exponential form caps its phase on them while they ring.
+    fn axial_mode_indices(&self) -> Vec<usize> {
         Vec::new()
     }
     /// Indices of the body frame's origin `R` (x, y) and angle `phi` among the coordinates,

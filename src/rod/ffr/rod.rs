@@ -244,10 +244,9 @@ impl RodBody for FfrRod {
         Some(self.stiffness.iter().map(|w2| w2.sqrt()).collect())
     }
 
-    fn axial_circular_frequencies(&self) -> Vec<f64> {
+    fn axial_mode_indices(&self) -> Vec<usize> {
         (0..self.n)
             .filter(|&j| self.modes.is_axial(self.modes.retained[j]))
-            .map(|j| self.stiffness[j].sqrt())
             .collect()
     }
 
