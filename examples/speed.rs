@@ -165,7 +165,9 @@ fn automotive() -> Scene {
 /// The automotive rod: two revolutions at 628.3 rad/s from the undeformed start in one
 /// communication step (ms, steps, right-hand sides); the engine run of
 /// `flexrod::drive::engine` (ramp to 6000 rpm, gas pulse, 60 ms: ms); `fmi2DoStep` at 1e-5 s
-/// with the crank set before every call (us).
+/// with the crank set before every call (us); with the gas pulse as a `[slider.gas_force]`
+/// table, two revolutions in one communication step (ms) and the engine run on its row grid
+/// (ms), and that run's steps.
 fn automotive_speed() -> (f64, u64, u64, f64, f64, [f64; 2], u64) {
     let scene = automotive();
     let w = scene.experiment.crank_speed;

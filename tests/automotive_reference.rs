@@ -334,12 +334,13 @@ fn chain_against_the_euler_bernoulli_limit() {
 
 /// The gas force inside the model (`[slider.gas_force]`, the pulse as a table of crank angle,
 /// followed through every internal step):
-/// - in the engine run on the reference's grid it is as close to the reference as the pulse
-///   given through the `slider.force` input (held at its mid-step value on a grid of half the
-///   step);
+/// - in the engine run on the reference's grid it meets the bounds of the pulse given through
+///   the `slider.force` input (held at its mid-step value on a grid of half the step; the
+///   reference holds the force over each 1e-5 s step too): 0.5 % of the peaks, and within
+///   1.5 times the held input's errors;
 /// - two revolutions at 6000 rpm with the pulse, on a communication grid of 1e-3 s (50 times
-///   coarser): within 0.5 % of the same run on the 2e-5 s grid at the common points, where the
-///   input held over each step misses the pulse.
+///   coarser): within 0.5 % of the peaks of the same run on the 2e-5 s grid at the common
+///   points, where the input held over each step is off by more than the peaks.
 #[test]
 fn gas_force_table_is_exact_on_a_coarse_grid() {
     let reference = reference();
@@ -389,8 +390,5 @@ fn gas_force_table_is_exact_on_a_coarse_grid() {
             .fold(0.0, f64::max)
     };
     assert!(worst(&on_coarse) < 0.005, "{on_coarse:?}");
-    assert!(
-        worst(&held_on_coarse) > 10.0 * worst(&on_coarse),
-        "{held_on_coarse:?}"
-    );
+    assert!(worst(&held_on_coarse) > 1.0, "{held_on_coarse:?}");
 }

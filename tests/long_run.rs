@@ -11,6 +11,9 @@
 //! table: `cargo run --release --example long_run` (docs/generated/long-run.md).
 
 use flexrod::drive::CrankDrive;
+use flexrod::integrator::adaptive_runge_kutta::{
+    damped_max_phase, DRIFT_PER_PERIOD, EXPONENTIAL_MAX_PHASE,
+};
 use flexrod::{Scene, Simulation};
 
 const SPEED: f64 = 150.0;
@@ -21,21 +24,26 @@ const BOUND: f64 = 5e-4;
 
 /// Per-revolution peaks of `|v_mid/L|` on the grid `dt`, and on every tenth point of it.
 fn peaks(tolerance: f64, dt: f64) -> (Vec<f64>, Vec<f64>) {
+    peaks_damped(tolerance, dt, 0.0, REVOLUTIONS)
+}
+
+/// The same with the damping ratio `zeta` over `revolutions`.
+fn peaks_damped(tolerance: f64, dt: f64, zeta: f64, revolutions: usize) -> (Vec<f64>, Vec<f64>) {
     let mut scene = Scene::benchmark();
-    scene.rod.damping_ratio = 0.0;
+    scene.rod.damping_ratio = zeta;
     scene.solver.tolerance = tolerance;
     let mut sim = Simulation::new(&scene).unwrap();
     let law = CrankDrive::Constant { speed: SPEED };
     sim.start(0.0, law.at(0.0), 0.0).unwrap();
     let period = std::f64::consts::TAU / SPEED;
-    let n = (REVOLUTIONS as f64 * period / dt).floor() as usize;
-    let (mut all, mut tenth) = (vec![0.0f64; REVOLUTIONS], vec![0.0f64; REVOLUTIONS]);
+    let n = (revolutions as f64 * period / dt).floor() as usize;
+    let (mut all, mut tenth) = (vec![0.0f64; revolutions], vec![0.0f64; revolutions]);
     for k in 0..n {
         sim.set_input(law.at(k as f64 * dt)).unwrap();
         sim.advance((k + 1) as f64 * dt - sim.time()).unwrap();
         let j = ((k + 1) as f64 * dt / period) as usize;
         let v = sim.outputs().deflection_rel.abs();
-        if j < REVOLUTIONS {
+        if j < revolutions {
             all[j] = all[j].max(v);
             if (k + 1) % 10 == 0 {
                 tenth[j] = tenth[j].max(v);
@@ -72,4 +80,76 @@ fn undamped_amplitude_holds_over_two_thousand_revolutions() {
             assert!(d.abs() < BOUND, "grid {label}, window {i}: {d}");
         }
     }
+}
+
+/// A damped rod steps at the phase cap its damping lifts (`damped_max_phase`: the default
+/// scene with 3 % damping at the default tolerance, `w_1 h = 1` instead of 0.36): over 300
+/// revolutions its per-revolution peaks stay within a tenth of the tolerance of a converged
+/// run's, at the start and at the end.
+#[test]
+fn damped_rod_at_its_lifted_phase_cap() {
+    let zeta = 0.03;
+    assert_eq!(damped_max_phase(3e-5, zeta), EXPONENTIAL_MAX_PHASE);
+    let revolutions = 300;
+    let (reference, _) = peaks_damped(1e-7, 1e-4, zeta, revolutions);
+    let (run, _) = peaks_damped(1e-3, 1e-4, zeta, revolutions);
+    let peak = reference.iter().copied().fold(0.0, f64::max);
+    let worst = run
+        .iter()
+        .zip(&reference)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max)
+        / peak;
+    println!("3 % damping, 300 revolutions: largest per-revolution peak difference {worst:.2e} of the peak");
+    assert!(worst < 1e-4, "{worst}");
+}
+
+/// `DRIFT_PER_PERIOD` bounds the drift that the long-run table (docs/generated/long-run.md,
+/// 10,000 undamped revolutions of the default scene at three tolerances) measured, extrapolated
+/// to `w_1 h = 1` along the table's own steepest slope: the drift per first-mode period at the
+/// largest phase, times `(1 / w_1 h)^m` with `m` the exponent between the smallest and the
+/// largest phase (at least 5, so that `DRIFT_PER_PERIOD (w_1 h)^5` bounds it below 1 too).
+#[test]
+fn drift_per_period_bounds_the_long_run_table() {
+    let table = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/docs/generated/long-run.md"
+    ))
+    .unwrap();
+    let revolutions = 10_000.0;
+    let f1 = Simulation::new(&Scene::benchmark())
+        .unwrap()
+        .mechanism()
+        .frequencies_hz()[0];
+    let periods = revolutions * f1 * std::f64::consts::TAU / SPEED;
+    // Rows `| tolerance | largest w_1 h | steps | amplitude % |`.
+    let mut rows: Vec<(f64, f64)> = table
+        .lines()
+        .filter(|l| l.starts_with("| 1e-") || l.starts_with("| 3e-"))
+        .map(|l| {
+            let cells: Vec<&str> = l.split('|').map(str::trim).collect();
+            let phase: f64 = cells[2].parse().unwrap();
+            let drift: f64 = cells[4]
+                .trim_end_matches(" %")
+                .parse::<f64>()
+                .unwrap()
+                .abs()
+                / 100.0;
+            (phase, drift / periods)
+        })
+        .collect();
+    assert_eq!(rows.len(), 3, "{table}");
+    rows.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let ((p0, d0), (p1, d1)) = (rows[0], rows[2]);
+    let slope = (d1 / d0).ln() / (p1 / p0).ln();
+    let at_one = d1 * p1.powf(-slope);
+    println!(
+        "drift per period: {rows:?}, slope {slope:.2}, extrapolated to w_1 h = 1: {at_one:.2e}"
+    );
+    assert!(slope >= 5.0, "{slope}");
+    assert!(DRIFT_PER_PERIOD >= at_one, "{at_one:e}");
+    assert!(
+        DRIFT_PER_PERIOD <= 1.5 * at_one,
+        "{at_one:e}: the constant is stale"
+    );
 }

@@ -72,9 +72,10 @@ impl EngineRun {
         self.peak_force * (-d * d).exp()
     }
 
-    /// Time of the gas peak, s (at full speed after the ramp).
+    /// Time of the gas peak, s (at full speed after the ramp, which turns the crank by
+    /// `speed ramp / 2`).
     pub fn firing_time(&self) -> f64 {
-        self.ramp + (self.firing_angle - 4.0 * std::f64::consts::PI) / self.speed
+        self.ramp + (self.firing_angle - 0.5 * self.speed * self.ramp) / self.speed
     }
 
     /// The gas pulse as a `[slider.gas_force]` table: [`EngineRun::gas`] sampled every half

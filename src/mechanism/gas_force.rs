@@ -259,6 +259,68 @@ mod tests {
         }
     }
 
+    /// The cyclic tridiagonal solve against a dense solve of the same periodic system, on an
+    /// uneven table that starts at 30 degrees, with three points and with nine; and the spline's
+    /// slope and curvature from both sides of the cycle's end (between the last point and the
+    /// first one cycle on) agree.
+    #[test]
+    fn periodic_spline_matches_a_dense_solve_on_uneven_tables() {
+        for angle in [
+            vec![30.0, 100.0, 250.0],
+            vec![30.0, 31.0, 45.0, 90.0, 91.5, 200.0, 333.0, 350.0, 359.0],
+        ] {
+            let t = GasForceTable {
+                cycle: 360.0,
+                force: angle
+                    .iter()
+                    .map(|a: &f64| 1e3 * (a.to_radians() * 2.0).cos() + 0.5 * a)
+                    .collect(),
+                angle: angle.clone(),
+                scale: 1.0,
+            };
+            let g = GasForce::new(&t).unwrap();
+            let n = angle.len();
+            let h: Vec<f64> = (0..n).map(|i| g.angle[i + 1] - g.angle[i]).collect();
+            let mut a = nalgebra::DMatrix::<f64>::zeros(n, n);
+            let mut r = nalgebra::DVector::<f64>::zeros(n);
+            for i in 0..n {
+                let (prev, next) = ((i + n - 1) % n, (i + 1) % n);
+                let hp = h[prev];
+                a[(i, prev)] += hp;
+                a[(i, i)] += 2.0 * (hp + h[i]);
+                a[(i, next)] += h[i];
+                r[i] = 6.0
+                    * ((g.force[i + 1] - g.force[i]) / h[i] - (g.force[i] - g.force[prev]) / hp);
+            }
+            let dense = a.lu().solve(&r).unwrap();
+            for i in 0..n {
+                assert!(
+                    (g.curvature[i] - dense[i]).abs() < 1e-9 * dense.amax(),
+                    "{angle:?}: {i}"
+                );
+            }
+            // One-sided differences at the first point, from below (the end of the cycle) and
+            // from above.
+            let d = 1e-4f64;
+            let x0 = angle[0];
+            let f = |x: f64| g.at(x.to_radians());
+            let slope = |s: f64| (f(x0 + s * d) - f(x0 + s * 2.0 * d)) / (-s * d);
+            let (below, above) = (slope(-1.0), slope(1.0));
+            assert!(
+                (below - above).abs() < 1e-3 * below.abs().max(1.0),
+                "{below} {above}"
+            );
+            let curv = |s: f64| {
+                (f(x0 + s * 3.0 * d) - 2.0 * f(x0 + s * 2.0 * d) + f(x0 + s * d)) / (d * d)
+            };
+            let (below, above) = (curv(-1.0), curv(1.0));
+            assert!(
+                (below - above).abs() < 1e-2 * below.abs().max(1.0),
+                "{below} {above}"
+            );
+        }
+    }
+
     #[test]
     fn spline_is_smooth_across_the_cycle_end() {
         // Second differences on both sides of the wrap agree: C2 at the cycle's end.

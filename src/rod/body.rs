@@ -46,7 +46,7 @@ pub trait RodBody: Send {
         None
     }
     /// Indices among the elastic coordinates of the retained axial modes (the FFR rod's; none
-    /// elsewhere): the integrator's exponential form caps its phase on them while they ring.
+    /// elsewhere): the integrator's exponential form caps its phase on them.
     fn axial_mode_indices(&self) -> Vec<usize> {
         Vec::new()
     }
