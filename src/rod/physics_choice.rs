@@ -71,6 +71,8 @@ pub struct PhysicsChoice {
     pub shear: bool,
     /// The setting it came from.
     pub shear_setting: PhysicsSwitch,
+    /// `auto` may switch shear on in this model (the FFR rod with consistent mass).
+    pub shear_possible: bool,
     /// `e_shear`: the estimated effect of shear and rotary inertia on `v_mid / L`, relative to
     /// its peak (module docs).
     pub shear_effect: f64,
@@ -143,16 +145,23 @@ impl PhysicsChoice {
             s => format!("set {}", s.name()),
         };
         let on_off = |b: bool| if b { "on" } else { "off" };
-        let shear_reason = format!(
-            "auto: estimated effect on v_mid/L {:.1e} of its peak {} solver.tolerance {:.0e}",
-            self.shear_effect,
-            if self.shear_effect > self.tolerance {
-                ">"
-            } else {
-                "<="
-            },
-            self.tolerance
-        );
+        let shear_reason = if self.shear_possible || self.shear_effect <= self.tolerance {
+            format!(
+                "auto: estimated effect on v_mid/L {:.1e} of its peak {} solver.tolerance {:.0e}",
+                self.shear_effect,
+                if self.shear_effect > self.tolerance {
+                    ">"
+                } else {
+                    "<="
+                },
+                self.tolerance
+            )
+        } else {
+            format!(
+                "auto keeps it off in this model (the segment chain, or lumped mass), although its estimated effect on v_mid/L, {:.1e} of its peak, exceeds solver.tolerance {:.0e}: rod.error_estimate carries it; set rod.shear_deformation = on to include it",
+                self.shear_effect, self.tolerance
+            )
+        };
         let axial_reason = format!(
             "auto: slider-rod axial mode {:.0} Hz against {AXIAL_BAND_FACTOR} x the highest retained bending mode {:.0} Hz{}",
             self.axial_hz,
@@ -313,6 +322,7 @@ pub fn choose(
     let choice = PhysicsChoice {
         shear,
         shear_setting: spec.shear_deformation,
+        shear_possible,
         shear_effect,
         axial,
         axial_setting: spec.axial_dynamics,
@@ -375,6 +385,28 @@ mod tests {
         assert!(shear_effect(&spec).is_infinite());
         assert_eq!(c.error_estimate(0.01), MAX_ERROR_ESTIMATE);
         assert_eq!(c.error_estimate(1e200), MAX_ERROR_ESTIMATE);
+    }
+
+    /// Where `auto` cannot take shear in (the segment chain) the log says so and names the
+    /// effect left to the error estimate, instead of an "off" beside "effect > tolerance".
+    #[test]
+    fn auto_says_why_the_chain_keeps_shear_off() {
+        let mut spec = benchmark_rod();
+        let (_, ffr) = choose(&spec, 0.0, 1e-4).unwrap();
+        assert!(ffr.shear && ffr.describe().contains("on (auto: estimated effect"));
+        spec.model = RodModelKind::Segments;
+        let (_, chain) = choose(&spec, 0.0, 1e-4).unwrap();
+        let text = chain.describe();
+        assert!(!chain.shear, "{text}");
+        assert!(text.contains("auto keeps it off in this model"), "{text}");
+        assert!(text.contains("rod.shear_deformation = on"), "{text}");
+        assert_eq!(chain.model_error(), chain.shear_effect);
+        let (_, loose) = choose(&spec, 0.0, 0.1).unwrap();
+        assert!(
+            loose.describe().contains("<= solver.tolerance"),
+            "{}",
+            loose.describe()
+        );
     }
 
     #[test]
