@@ -1,13 +1,13 @@
 """The gas force as a function of crank angle (`[slider.gas_force]`, docs/fmu.md), through fmpy
 on an FMU of scenes/automotive_rod.toml with the engine run's pulse as a table: the parameter
-`slider.gas_force_scale` (VR 150) declared and range checked, the force followed inside every
+`slider.gas_force_scale` (VR 108) declared and range checked, the force followed inside every
 communication step (a 1 ms grid gives what a 20 us grid gives), and the scale acting."""
 
 import math
 
 import numpy as np
 import pytest
-from fmpy import extract
+from fmpy import extract, read_model_description
 from fmpy.fmi1 import FMICallException
 
 from helpers import ROOT, Slave, build_fmu
@@ -24,7 +24,7 @@ def pulse(angle_deg):
 
 
 @pytest.fixture(scope="module")
-def unzipdir(tmp_path_factory):
+def gas_fmu(tmp_path_factory):
     angles = [0.5 * i for i in range(int(CYCLE / 0.5))]
     table = (
         "\n[slider.gas_force]\n"
@@ -36,8 +36,12 @@ def unzipdir(tmp_path_factory):
     assert "[slider]" in text
     scene = tmp_path_factory.mktemp("gas_scene") / "automotive_gas.toml"
     scene.write_text(text + table)
-    fmu = build_fmu(tmp_path_factory.mktemp("gas_fmu"), scene)
-    return extract(str(fmu), str(tmp_path_factory.mktemp("gas_unzipped")))
+    return build_fmu(tmp_path_factory.mktemp("gas_fmu"), scene)
+
+
+@pytest.fixture(scope="module")
+def unzipdir(gas_fmu, tmp_path_factory):
+    return extract(str(gas_fmu), str(tmp_path_factory.mktemp("gas_unzipped")))
 
 
 def run(unzipdir, dt, scale=None):
@@ -65,9 +69,37 @@ def run(unzipdir, dt, scale=None):
 def test_scale_is_declared_with_its_window(unzipdir):
     s = Slave(unzipdir)
     v = {v.name: v for v in s.md.modelVariables}["slider.gas_force_scale"]
-    assert v.valueReference == 150 and v.causality == "parameter"
+    assert v.valueReference == 108 and v.causality == "parameter"
     assert float(v.start) == 1.0 and float(v.min) == 0.0 and float(v.max) == 100.0
     s.free()
+
+
+def test_fmi3_declares_the_scale_too(gas_fmu, tmp_path):
+    # The FMI 3.0 FMU written beside it, driven through fmpy's FMU3Slave: the same parameter,
+    # and the pulse acting (the pin force at C reaches the gas force's order).
+    from fmpy.fmi3 import FMU3Slave
+    unzipped = extract(str(gas_fmu.with_name(gas_fmu.stem + "-fmi3.fmu")), str(tmp_path))
+    md = read_model_description(unzipped)
+    v = {v.name: v for v in md.modelVariables}
+    scale = v["slider.gas_force_scale"]
+    assert scale.valueReference == 108 and scale.causality == "parameter"
+    assert float(scale.start) == 1.0 and float(scale.min) == 0.0 and float(scale.max) == 100.0
+    s = FMU3Slave(guid=md.guid, unzipDirectory=unzipped,
+                  modelIdentifier=md.coSimulation.modelIdentifier, instanceName="gas3")
+    s.instantiate()
+    s.enterInitializationMode(startTime=0.0)
+    s.setFloat64([v["crank.speed"].valueReference], [SPEED])
+    s.exitInitializationMode()
+    dt, pin_c = 2e-5, v["pinC.force_x"].valueReference
+    largest = 0.0
+    for k in range(int(round(STOP / dt))):
+        s.setFloat64([v["crank.angle"].valueReference, v["crank.speed"].valueReference],
+                     [SPEED * k * dt, SPEED])
+        s.doStep(currentCommunicationPoint=k * dt, communicationStepSize=dt)
+        largest = max(largest, abs(s.getFloat64([pin_c])[0]))
+    s.terminate()
+    s.freeInstance()
+    assert largest > 20e3
 
 
 @pytest.mark.parametrize("bad", [-0.5, 101.0, float("nan")])

@@ -55,6 +55,13 @@ impl<'a> Builder<'a> {
             .unwrap_or(0);
         let mut by_vr = vec![0u16; max_vr as usize + 1];
         for (i, v) in self.variables.iter().enumerate() {
+            // One variable a value reference, in every interface (a programming error
+            // otherwise: the table is built from constants).
+            assert_eq!(
+                by_vr[v.value_reference as usize], 0,
+                "value reference {} given twice ({})",
+                v.value_reference, v.name
+            );
             by_vr[v.value_reference as usize] = (i + 1) as u16;
         }
         VariableTable {

@@ -362,7 +362,7 @@ impl VariableTable {
         if scene.slider.gas_force.is_some() {
             b.real_parameter(
                 "slider.gas_force_scale",
-                150,
+                108,
                 DIMENSIONLESS,
                 |s| s.slider.gas_force.as_ref().map_or(1.0, |g| g.scale),
                 |s, v| {

@@ -180,6 +180,40 @@ mod tests {
         );
     }
 
+    /// Every optional variable at once (a section table with stress outputs, the mechanism
+    /// table, mass-loaded modes with a band, a gas-force table) in every combination of the
+    /// interface's variables (arrays, independent variable, input derivatives): one variable a
+    /// value reference (the builder asserts it).
+    #[test]
+    fn value_references_unique_with_every_optional_variable_and_interface() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/automotive_rod.toml");
+        let mut scene = Scene::from_file(std::path::Path::new(path)).unwrap();
+        scene.mechanism.gravity = [0.0, -9.81];
+        scene.slider.gas_force = Some(crate::mechanism::gas_force::GasForceTable {
+            cycle: 720.0,
+            angle: vec![0.0, 10.0, 20.0],
+            force: vec![0.0, -1e3, 0.0],
+            scale: 1.0,
+        });
+        for arrays in [false, true] {
+            for independent_variable in [false, true] {
+                for input_derivatives in [false, true] {
+                    let interface = Interface {
+                        arrays,
+                        independent_variable,
+                        input_derivatives,
+                        ..Interface::SCALARS
+                    };
+                    let table = VariableTable::for_interface(&scene, 6, interface);
+                    for v in table.variables() {
+                        assert_eq!(table.get(v.value_reference).unwrap().name, v.name);
+                    }
+                    assert!(table.by_name("slider.gas_force_scale").is_some());
+                }
+            }
+        }
+    }
+
     #[test]
     fn switched_off_variables_are_absent() {
         let mut scene = Scene::benchmark();
