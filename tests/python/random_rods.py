@@ -7,9 +7,13 @@ What is compared, per start type:
   force vector pointwise, relative to the peak magnitude of that pin's reference force;
 - abrupt start (the crank at full speed from t = 0, the rod undeformed): an undamped ringing,
   whose phase after many cycles measures nothing physical, so the ringing's amplitude and
-  frequency: the peak |v_mid / L| of every half revolution, relative to the overall peak, and
-  the frequency of the largest spectral peak of v_mid above twice the crank frequency
-  (Hann window, zero-padded 16 times, parabolic interpolation), relative. The reference's pin
+  frequency: the ringing is v_mid less its crank harmonics below two thirds of the ringing
+  frequency (fitted by least squares over the run), its amplitude the peak of every half
+  revolution, relative to the overall peak of v_mid; the frequency is that of the largest
+  spectral peak of v_mid above twice the crank frequency (Hann window, zero-padded 16 times,
+  parabolic interpolation), relative. The peak |v_mid / L| of every half revolution of the
+  whole motion is compared too: it also depends on the ringing's phase against the forced
+  motion. The reference's pin
   forces after an abrupt start do not converge pointwise (axial wave fronts, see rods.csv
   conv_f), so they are not compared there.
 """
@@ -134,6 +138,18 @@ def ringing_frequency(t, v, crank_hz):
     return f[i] + shift * (f[1] - f[0])
 
 
+def ringing(t, v, w, ringing_hz):
+    """v less its crank harmonics below two thirds of the ringing frequency (the forced
+    motion, fitted by least squares over the run): the free vibration."""
+    kmax = int((ringing_hz / 1.5) / (w / (2 * math.pi)))
+    cols = [np.ones_like(t)]
+    for k in range(1, kmax + 1):
+        cols += [np.cos(k * w * t), np.sin(k * w * t)]
+    basis = np.stack(cols, axis=1)
+    coefficients, *_ = np.linalg.lstsq(basis, v, rcond=None)
+    return v - basis @ coefficients
+
+
 def half_revolution_peaks(t, v, w):
     """The peak |v| in every whole half revolution of the crank from t = 0, as an array (t on
     the communication grid; a point on a boundary counts to the later half)."""
@@ -162,5 +178,8 @@ def compare(rod, run, ref):
     crank_hz = w / (2 * math.pi)
     f_run = ringing_frequency(run.t, run.v, crank_hz)
     f_ref = ringing_frequency(t, v, crank_hz)
-    return {"amplitude": np.abs(amp_run - amp_ref).max() / peak,
+    ring_run = half_revolution_peaks(t, ringing(t, run.v, w, f_ref), w)
+    ring_ref = half_revolution_peaks(t, ringing(t, v, w, f_ref), w)
+    return {"ringing": np.abs(ring_run - ring_ref).max() / peak,
+            "amplitude": np.abs(amp_run - amp_ref).max() / peak,
             "frequency": abs(f_run / f_ref - 1.0), "ringing_hz": f_ref}
