@@ -100,7 +100,7 @@ impl EngineRun {
     /// the gas force held over each communication step at its mid-step value. Returns the rows,
     /// the wall time of the run (`Simulation::new` excluded) and the integrator's name.
     pub fn run(&self, scene: &Scene) -> Result<(Vec<EngineRow>, Duration, String), ModelError> {
-        self.drive(scene, self.step, self.sample, true)
+        self.run_on_grid(scene, self.step, self.sample, true)
     }
 
     /// The same run with the gas force inside the model, as the table [`EngineRun::gas_table`]
@@ -114,10 +114,12 @@ impl EngineRun {
     ) -> Result<(Vec<EngineRow>, Duration, String), ModelError> {
         let mut scene = scene.clone();
         scene.slider.gas_force = Some(self.gas_table());
-        self.drive(&scene, step, step, false)
+        self.run_on_grid(&scene, step, step, false)
     }
 
-    fn drive(
+    /// The run on the communication step `step` with a row every `sample` s; `held_gas`: the
+    /// pulse through `slider.force`, held over each step at its mid-step value.
+    fn run_on_grid(
         &self,
         scene: &Scene,
         step: f64,
