@@ -372,6 +372,9 @@ fn evaluate<const N: usize, const PINNED: bool>(
             - u[1][i] * b_r[1]
             - m_phip[i] * b_phi;
     }
+    if let Some(ac) = &k.axial_coupling {
+        ac.add_forces(&p, &pd, w, &mut r_p);
+    }
     let r_s = inp.slider_force + inp.slider_mass * g.x - inp.slider_mass * b_x;
     // M T (row blocks over the modal columns) and the reduced system.
     // (Not needed by an intermediate stage of the pinned rod, whose reduced system comes from
@@ -442,6 +445,9 @@ fn evaluate<const N: usize, const PINNED: bool>(
             rhs[i] =
                 t_r[0][i] * r_r[0] + t_r[1][i] * r_r[1] + g_phi[i] * r_phi + r_p[i] + t_x[i] * r_s;
         }
+    }
+    if let Some(ac) = &k.axial_coupling {
+        ac.add_mass(&p, |i, j, x| reduced[i][j] += x);
     }
     solve(&mut reduced, &mut rhs)?;
     let zdd = rhs;

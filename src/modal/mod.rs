@@ -4,6 +4,7 @@
 //! (eq. 4.4), mode selection, and the inertia shape integrals of the retained modes (the
 //! "preprocessor" of that paper, Fig. 4).
 
+pub mod axial_coupling;
 pub mod component_modes;
 pub mod eigen;
 pub mod reference;

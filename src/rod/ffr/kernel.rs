@@ -67,6 +67,9 @@ pub struct FfrKernel {
     /// [`PINNED_MOBILITY`], and then `s_b`, `s_c` are set to zero (their round-off), so the
     /// closed form leaves their terms out.
     pub pinned: bool,
+    /// The axial strain's coupling with the bending ([`crate::modal::axial_coupling`]), where
+    /// the rod has it.
+    pub axial_coupling: Option<Box<crate::modal::axial_coupling::AxialCoupling>>,
 }
 
 /// [`FfrKernel::pin_mobility`] below which the pin rows are round-off of exact zeros (the
@@ -176,6 +179,7 @@ impl FfrKernel {
                 damping: row(n, |j| rod.damping[j]),
                 stiffening: stiff,
                 pinned: false,
+                axial_coupling: rod.axial_coupling.clone().map(Box::new),
             }
             .with_pins_checked(),
         )

@@ -22,6 +22,7 @@ use faer::MatMut;
 use nalgebra::{DMatrix, Vector2};
 
 use super::points::{rot, rotate, tilde};
+use crate::modal::axial_coupling::AxialCoupling;
 use crate::modal::{ComponentModes, ShapeIntegrals};
 use crate::rod::body::{RodBody, RodPoint};
 
@@ -53,6 +54,9 @@ pub struct FfrRod {
     /// ([`crate::rod::RodBody::coordinate_scale`]): `(w_1 / w_k)^2` for an axial mode `k`
     /// with `w_1` the lowest retained bending frequency, 1 for bending modes.
     pub(super) axial_scale_ratio: Vec<f64>,
+    /// The axial strain's coupling with the bending where axial modes are retained and the
+    /// stiffening is on ([`crate::modal::axial_coupling`]).
+    pub(super) axial_coupling: Option<AxialCoupling>,
 }
 
 /// `(w_1 / w_k)^2` for each retained axial mode `k` (`w_1`: the lowest retained bending
@@ -94,7 +98,13 @@ impl FfrRod {
         };
         let mass = integrals.mass;
         let axial_scale_ratio = axial_scale_ratios(&modes);
+        let axial_coupling = if axial_stiffening {
+            AxialCoupling::new(&modes)
+        } else {
+            None
+        };
         let mut rod = FfrRod {
+            axial_coupling,
             axial_scale_ratio,
             sampling: super::sections::Sampling::new(&modes),
             acceleration_stiffness,
@@ -257,7 +267,10 @@ impl RodBody for FfrRod {
     fn mass(&self, q: &[f64], mut m: MatMut<'_, f64>) {
         self.kinetic_mass(q, m.rb_mut());
         if self.axial_stiffening && self.n > 0 {
-            self.add_stiffening_coupling(q, m);
+            self.add_stiffening_coupling(q, m.rb_mut());
+        }
+        if let Some(ac) = &self.axial_coupling {
+            ac.add_mass(&q[3..3 + self.n], |i, j, x| m[(3 + i, 3 + j)] += x);
         }
     }
 
@@ -319,6 +332,9 @@ impl RodBody for FfrRod {
                 }
             }
             f[3 + i] = fi;
+        }
+        if let Some(ac) = &self.axial_coupling {
+            ac.add_forces(p, pd, w, &mut f[3..3 + n]);
         }
     }
 
