@@ -176,6 +176,7 @@ pub fn print_summary(scene: &Scene, run: &Run, fmu: Option<&Path>) {
         );
     }
     for (t, w) in &run.warnings {
+        let t = flexrod::drive::display_time(*t);
         println!("  warning after t = {t} s: {w}");
     }
     println!("  wall time: {:.3} s", run.wall_seconds);

@@ -389,6 +389,7 @@ fn simulate(args: &SimulateArgs) -> Result<(), Failure> {
         .map_err(|e| e.to_string())?;
     let elapsed = wall.elapsed().as_secs_f64();
     for (t, w) in &record.warnings {
+        let t = drive::display_time(*t);
         eprintln!("warning after t = {t} s: {w}");
     }
     let stats = record.stats;
