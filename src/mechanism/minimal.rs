@@ -372,7 +372,28 @@ fn evaluate<const N: usize, const PINNED: bool>(
             - u[1][i] * b_r[1]
             - m_phip[i] * b_phi;
     }
-    if let Some(ac) = &k.axial_coupling {
+    // The axial strain's coupling with the bending (crate::modal::axial_coupling; the same sums
+    // in the same order as `AxialCoupling::add_forces`, on fixed-size arrays for one axial mode).
+    if let Some(one) = &k.axial_one {
+        let (a, pa) = (one.a, p[one.a]);
+        let mut own = 0.0;
+        for i in 0..N {
+            for j in 0..N {
+                let pij = p[i] * p[j];
+                own += one.t3[i][j] * pij + one.z[i][j] * (pd[i] * pd[j] - 0.5 * w2 * pij);
+                own += one.t4[i][j] * pa * pij;
+            }
+        }
+        r_p[a] += own;
+        for m in 0..N {
+            let mut f = 0.0;
+            for j in 0..N {
+                let fourth = one.t4[m][j] * pa;
+                f += (2.0 * one.t3[m][j] - w2 * one.z[m][j] + fourth) * p[j];
+            }
+            r_p[m] += f * pa;
+        }
+    } else if let Some(ac) = &k.axial_coupling {
         ac.add_forces(&p, &pd, w, &mut r_p);
     }
     let r_s = inp.slider_force + inp.slider_mass * g.x - inp.slider_mass * b_x;
@@ -446,7 +467,16 @@ fn evaluate<const N: usize, const PINNED: bool>(
                 t_r[0][i] * r_r[0] + t_r[1][i] * r_r[1] + g_phi[i] * r_phi + r_p[i] + t_x[i] * r_s;
         }
     }
-    if let Some(ac) = &k.axial_coupling {
+    if let Some(one) = &k.axial_one {
+        for j in 0..N {
+            let mut x = 0.0;
+            for l in 0..N {
+                x -= one.z[j][l] * p[l];
+            }
+            reduced[one.a][j] += x;
+            reduced[j][one.a] += x;
+        }
+    } else if let Some(ac) = &k.axial_coupling {
         ac.add_mass(&p, |i, j, x| reduced[i][j] += x);
     }
     solve(&mut reduced, &mut rhs)?;

@@ -70,6 +70,34 @@ pub struct FfrKernel {
     /// The axial strain's coupling with the bending ([`crate::modal::axial_coupling`]), where
     /// the rod has it.
     pub axial_coupling: Option<Box<crate::modal::axial_coupling::AxialCoupling>>,
+    /// The same in fixed-size arrays where one mode is axial (the common case: the slider-rod
+    /// axial mode), which the closed form takes instead.
+    pub axial_one: Option<Box<AxialOne>>,
+}
+
+/// [`crate::modal::axial_coupling::AxialCoupling`] with one axial mode `a`: its rows `T_aij`,
+/// `Z_aij` and `F_aaij`.
+#[derive(Clone, Debug)]
+pub struct AxialOne {
+    pub a: usize,
+    pub t3: Square,
+    pub z: Square,
+    pub t4: Square,
+}
+
+impl AxialOne {
+    fn of(ac: &crate::modal::axial_coupling::AxialCoupling) -> Option<AxialOne> {
+        let n = ac.n;
+        if ac.axial.len() != 1 || n > MAX_MODES {
+            return None;
+        }
+        Some(AxialOne {
+            a: ac.axial[0],
+            t3: square(n, |i, j| ac.t3[i * n + j]),
+            z: square(n, |i, j| ac.z[i * n + j]),
+            t4: square(n, |i, j| ac.t4[i * n + j]),
+        })
+    }
 }
 
 /// [`FfrKernel::pin_mobility`] below which the pin rows are round-off of exact zeros (the
@@ -180,6 +208,11 @@ impl FfrKernel {
                 stiffening: stiff,
                 pinned: false,
                 axial_coupling: rod.axial_coupling.clone().map(Box::new),
+                axial_one: rod
+                    .axial_coupling
+                    .as_ref()
+                    .and_then(AxialOne::of)
+                    .map(Box::new),
             }
             .with_pins_checked(),
         )
