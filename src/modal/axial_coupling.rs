@@ -361,24 +361,14 @@ fn foreshortening_inertia(modes: &ComponentModes, axial: &[usize]) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::beam::{EndBody, MassKind, RodDefinition, RodProperties};
+    use crate::beam::MassKind;
     use crate::modal::loaded::{axial_coordinate_at_c, AddedMass};
     use crate::modal::{ModeSelection, ReferenceConditions, ReferenceKind};
 
     /// A steel rod, 0.15 m, with a small end; `slider` kg at C in the eigenproblem (2 kg
     /// brings the slider-rod axial mode to about 1.8 kHz, below the first bending mode).
     fn modes(shear: bool, slider: f64, count: usize) -> ComponentModes {
-        let mut def = RodDefinition::uniform(RodProperties {
-            length: 0.15,
-            youngs_modulus: 2e11,
-            density: 7800.0,
-            area: 2e-4,
-            area_moment: 1.5e-8,
-        });
-        def.small_end = EndBody {
-            mass: 0.05,
-            inertia: 1e-5,
-        };
+        let mut def = crate::modal::loaded::tests::rod();
         if shear {
             def.shear_modulus = Some(2e11 / 2.6);
         }

@@ -122,11 +122,13 @@ pub fn axial_coordinate_at_c(n_elements: usize) -> usize {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::beam::{EndBody, RodProperties};
 
-    fn rod() -> RodDefinition {
+    /// A steel rod, 0.15 m, with a small end (also the fixture of
+    /// `crate::modal::axial_coupling`'s tests).
+    pub(crate) fn rod() -> RodDefinition {
         let mut def = RodDefinition::uniform(RodProperties {
             length: 0.15,
             youngs_modulus: 2e11,

@@ -44,9 +44,8 @@ def unzipdir(gas_fmu, tmp_path_factory):
     return extract(str(gas_fmu), str(tmp_path_factory.mktemp("gas_unzipped")))
 
 
-def run(unzipdir, dt, scale=None):
-    """Two revolutions at constant speed from the undeformed start on the grid dt: the outputs
-    at every communication point."""
+def started(unzipdir, scale=None):
+    """An instance initialized at crank angle 0 and full speed (the scale set if given)."""
     s = Slave(unzipdir)
     s.fmu.setupExperiment(startTime=0.0)
     s.fmu.enterInitializationMode()
@@ -54,6 +53,13 @@ def run(unzipdir, dt, scale=None):
         s.set(**{"slider.gas_force_scale": scale})
     s.set(**{"crank.angle": 0.0, "crank.speed": SPEED})
     s.fmu.exitInitializationMode()
+    return s
+
+
+def run(unzipdir, dt, scale=None):
+    """Two revolutions at constant speed from the undeformed start on the grid dt: the outputs
+    at every communication point."""
+    s = started(unzipdir, scale)
     names = ["rod.deflection_rel", "pinB.force_x", "pinC.force_x", "crank.torque"]
     rows = [s.get(*names)]
     n = int(round(STOP / dt))
@@ -146,16 +152,6 @@ def test_serialized_state_replays_the_pulse_bit_for_bit(unzipdir):
     dt = 1e-4
     names = ["rod.deflection_rel", "pinC.force_x", "crank.torque"]
 
-    def started(scale=None):
-        s = Slave(unzipdir)
-        s.fmu.setupExperiment(startTime=0.0)
-        s.fmu.enterInitializationMode()
-        if scale is not None:
-            s.set(**{"slider.gas_force_scale": scale})
-        s.set(**{"crank.angle": 0.0, "crank.speed": SPEED})
-        s.fmu.exitInitializationMode()
-        return s
-
     def advance(s, k0, k1):
         out = []
         for k in range(k0, k1):
@@ -166,14 +162,14 @@ def test_serialized_state_replays_the_pulse_bit_for_bit(unzipdir):
 
     save_at = int(round(math.radians(300.0) / SPEED / dt))
     end = int(round(math.radians(450.0) / SPEED / dt))
-    first = started()
+    first = started(unzipdir)
     advance(first, 0, save_at)
     blob = first.fmu.serializeFMUstate(first.fmu.getFMUstate())
     through = advance(first, save_at, end)
     assert max(abs(r[1]) for r in through) > 20e3  # the pulse is in the replayed part
     # Restored into an instance with the table scaled otherwise: a state carries its
     # parameters (docs/fmu.md, "FMU states and serialization"), so it replays the same pulse.
-    second = started(scale=2.0)
+    second = started(unzipdir, scale=2.0)
     second.fmu.setFMUstate(second.fmu.deSerializeFMUstate(blob))
     assert advance(second, save_at, end) == through
     assert second.get("slider.gas_force_scale")[0] == 1.0
