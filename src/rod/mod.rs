@@ -82,5 +82,14 @@ pub fn build(spec: &RodSpec, slider_mass: f64) -> Result<Box<dyn RodBody>, Model
             spec.damping_ratio,
             spec.axial_springs,
         )?)),
+        RodModelKind::ModalSegments => {
+            let chain = segments::SegmentRod::from_definition(
+                &definition,
+                spec.elements,
+                spec.damping_ratio,
+                spec.axial_springs,
+            )?;
+            Ok(Box::new(segments::ModalSegmentRod::new(chain, spec.modes)?))
+        }
     }
 }

@@ -319,6 +319,7 @@ pub fn choose(
             resolved.axial_modes = Some(spec.axial_modes.unwrap_or(0));
         }
         RodModelKind::Segments => resolved.axial_springs = spec.axial_springs || axial,
+        RodModelKind::ModalSegments => {}
     }
     let choice = PhysicsChoice {
         shear,
@@ -332,7 +333,7 @@ pub fn choose(
         axial_hz,
         band_top_hz,
         tolerance,
-        geometrically_exact: spec.model == RodModelKind::Segments,
+        geometrically_exact: spec.model != RodModelKind::Ffr,
         depth_ratio: {
             let p = spec.properties();
             (12.0 * p.area_moment / p.area).sqrt() / p.length

@@ -14,17 +14,26 @@ pub enum RodModelKind {
     Ffr,
     /// Rigid segments joined by rotational springs (the finite segment method, Huston 1991).
     Segments,
+    /// The segment chain on its rigid motions and `modes` lowest bending modes
+    /// ([`crate::rod::segments::ModalSegmentRod`]): exact kinematics at large deflection, few
+    /// coordinates.
+    ModalSegments,
 }
 
 impl RodModelKind {
     /// Every variant, in the order of the FMU's enumeration items and Integer codes (1-based).
-    pub const ALL: [RodModelKind; 2] = [RodModelKind::Ffr, RodModelKind::Segments];
+    pub const ALL: [RodModelKind; 3] = [
+        RodModelKind::Ffr,
+        RodModelKind::Segments,
+        RodModelKind::ModalSegments,
+    ];
 
     /// The name used in scenes, the FMU's enumeration items and messages.
     pub fn name(self) -> &'static str {
         match self {
             RodModelKind::Ffr => "ffr",
             RodModelKind::Segments => "segments",
+            RodModelKind::ModalSegments => "modal_segments",
         }
     }
 

@@ -33,6 +33,9 @@ impl Kind for RodModelKind {
             RodModelKind::Segments => {
                 "Rigid segments joined by rotational springs (finite segment method)"
             }
+            RodModelKind::ModalSegments => {
+                "The segment chain on its lowest bending modes (exact kinematics, few coordinates)"
+            }
         }
     }
 }

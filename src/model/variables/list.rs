@@ -615,7 +615,7 @@ impl VariableTable {
 fn least_count(scene: &Scene, frequencies: usize) -> i32 {
     let least = match scene.rod.model {
         crate::scene::RodModelKind::Ffr => crate::beam::mesh::least_elements(frequencies),
-        crate::scene::RodModelKind::Segments => {
+        crate::scene::RodModelKind::Segments | crate::scene::RodModelKind::ModalSegments => {
             crate::rod::segments::least_segments(frequencies, scene.rod.axial_springs)
         }
     };

@@ -29,6 +29,15 @@ use crate::error::ModelError;
 use crate::modal::eigen::{generalized_symmetric_eigen, generalized_symmetric_eigen_by_stiffness};
 use crate::rod::RodBody;
 
+/// The pinned-pinned bending eigenproblem of a chain: the bending coordinates `z` (their
+/// indices `idx` in `q`), the end conditions `z = t r`, stiffness `k` and mass `m` on `z`.
+struct BendingProblem {
+    idx: Vec<usize>,
+    t: Mat<f64>,
+    k: Mat<f64>,
+    m: Mat<f64>,
+}
+
 /// `M_0` and the spring constants of a chain.
 pub(crate) struct LinearizedChain {
     mass: Mat<f64>,
@@ -140,13 +149,14 @@ impl LinearizedChain {
         )
     }
 
-    /// Pinned-pinned bending frequencies, Hz (N - 1 of them; 2 N with shear slides, the
-    /// N + 1 highest being the shear modes).
-    pub(crate) fn pinned_bending_hz(&self) -> Result<Vec<f64>, ModelError> {
+    /// The pinned-pinned bending problem: the indices in `q` of the bending coordinates `z`,
+    /// the basis `T` (`z = T r`) of the end conditions, and `K`, `M` on `z`; `None` for a chain
+    /// without bending modes.
+    fn pinned_bending_problem(&self) -> Option<BendingProblem> {
         let n = self.n_seg;
         let shear = !self.k_sh.is_empty();
         if n < 2 && !shear && self.end_rotations.is_empty() {
-            return Ok(Vec::new());
+            return None;
         }
         // Bending coordinates z: the angles, then (shear) y_0 and t_0 .. t_N, then the end body
         // rotations.
@@ -220,12 +230,70 @@ impl LinearizedChain {
                 0.0
             }
         });
+        Some(BendingProblem { idx, t, k, m })
+    }
+
+    /// Pinned-pinned bending frequencies, Hz (N - 1 of them; 2 N with shear slides, the
+    /// N + 1 highest being the shear modes).
+    pub(crate) fn pinned_bending_hz(&self) -> Result<Vec<f64>, ModelError> {
+        let Some(p) = self.pinned_bending_problem() else {
+            return Ok(Vec::new());
+        };
         frequencies(
-            &project(&k, &t),
-            &project(&m, &t),
+            &project(&p.k, &p.t),
+            &project(&p.m, &p.t),
             None,
             &self.describe("pinned-pinned bending"),
         )
+    }
+
+    /// The `count` lowest pinned-pinned bending modes: their circular frequencies squared,
+    /// (rad/s)^2, ascending, and their shapes as columns over the chain's coordinates `q`
+    /// (zero on `x_B`, the slides, and `y_B` without shear), each of unit modal mass
+    /// `a^T M_0 a = 1`. Refused where the chain has fewer modes or one is not finite and
+    /// positive.
+    pub(crate) fn pinned_bending_modes(
+        &self,
+        count: usize,
+        n_coordinates: usize,
+    ) -> Result<(Vec<f64>, Mat<f64>), ModelError> {
+        let chain = self.describe("pinned-pinned bending");
+        let p = self
+            .pinned_bending_problem()
+            .ok_or_else(|| ModelError::Numerical {
+                message: format!("{chain}: no bending modes"),
+            })?;
+        let (kr, mr) = (project(&p.k, &p.t), project(&p.m, &p.t));
+        let e = generalized_symmetric_eigen_by_stiffness(&kr, &mr)
+            .or_else(|_| generalized_symmetric_eigen(&kr, &mr))?;
+        if e.values.len() < count {
+            return Err(ModelError::Numerical {
+                message: format!(
+                    "{chain}: {count} modes asked for, it has {}",
+                    e.values.len()
+                ),
+            });
+        }
+        let mut shapes = Mat::<f64>::zeros(n_coordinates, count);
+        for j in 0..count {
+            let w2 = e.values[j];
+            if !(w2.is_finite() && w2 > 0.0) {
+                return Err(ModelError::Numerical {
+                    message: format!(
+                        "{chain}: natural frequency {} is not a finite positive value (eigenvalue {w2:e} (rad/s)^2)",
+                        j + 1
+                    ),
+                });
+            }
+            let r = e.vectors.col(j);
+            let z = &p.t * r;
+            let modal_mass: f64 = z.transpose() * &p.m * &z;
+            let scale = 1.0 / modal_mass.sqrt();
+            for (i, &qi) in p.idx.iter().enumerate() {
+                shapes[(qi, j)] = z[i] * scale;
+            }
+        }
+        Ok((e.values[..count].to_vec(), shapes))
     }
 
     /// Fixed-fixed axial frequencies, Hz (N - 2 of them; needs axial springs).

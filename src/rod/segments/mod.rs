@@ -147,9 +147,11 @@
 pub mod body;
 pub mod kinematics;
 pub mod linear;
+pub mod modal;
 pub mod rod;
 
 pub use linear::axial_chain_frequencies_hz;
+pub use modal::ModalSegmentRod;
 pub use rod::SegmentRod;
 
 use crate::error::ModelError;

@@ -1,0 +1,146 @@
+//! The segment chain on its lowest bending modes (`rod.model = "modal_segments"`,
+//! `flexrod::rod::segments::ModalSegmentRod`): with every mode it is the chain itself; with a
+//! few it converges to the geometrically exact beam as the chain is refined, and it stays exact
+//! at the deflections where the FFR rod's linear elastic field does not (300 rad/s).
+//!
+//! Run with `cargo test --release --test modal_segments -- --nocapture` to see the numbers.
+
+use flexrod::scene::{DeflectionPolicy, RodModelKind, SolverMethod};
+use flexrod::{Scene, Simulation};
+
+mod common;
+use common::exudyn;
+use common::runs::{self, max_diff, peak};
+
+/// The Euler-Bernoulli benchmark rod as the chain on `modes` modes of `segments` segments.
+fn modal(segments: usize, modes: usize) -> Scene {
+    let mut s = common::euler_bernoulli_benchmark();
+    s.rod.model = RodModelKind::ModalSegments;
+    s.rod.elements = segments;
+    s.rod.modes = modes;
+    s
+}
+
+fn pin_b(record: &flexrod::drive::Record) -> Vec<f64> {
+    record
+        .outputs
+        .iter()
+        .map(|o| o.pin_b_force[0].hypot(o.pin_b_force[1]))
+        .collect()
+}
+
+/// With all `N - 1` bending modes the basis spans the chain's coordinates: the same motion as
+/// the chain, to the integrator's Newton tolerance (same method and step).
+#[test]
+fn every_mode_is_the_chain() {
+    let fixed = |mut s: Scene| {
+        s.solver.method = SolverMethod::GeneralizedAlpha;
+        s.solver.step = 2e-5;
+        s
+    };
+    let mut chain = common::euler_bernoulli_benchmark();
+    chain.rod.model = RodModelKind::Segments;
+    chain.rod.elements = 6;
+    let (a, _) = runs::constant(&fixed(chain), 150.0, 1e-4, 1.0);
+    let (b, _) = runs::constant(&fixed(modal(6, 5)), 150.0, 1e-4, 1.0);
+    let (x, y) = (a.deflection_rel(), b.deflection_rel());
+    let d = max_diff(&x, &y) / peak(&x);
+    let f = max_diff(&pin_b(&a), &pin_b(&b)) / peak(&pin_b(&a));
+    println!("6 segments, 5 modes against the chain: v_mid {d:.2e}, pin B {f:.2e} of the peaks");
+    assert!(d < 1e-6 && f < 1e-6, "{d:e} {f:e}");
+}
+
+/// At 150 rad/s, 4 modes of 16 to 128 segments: the differences between successive
+/// refinements fall as `1 / N^2` (the chain's order, measured), and the Richardson limit lies
+/// within 0.2 % of the ANCF cable (Euler-Bernoulli, converged) pointwise, as the plain chain and
+/// the FFR rod do.
+#[test]
+fn converges_to_the_exact_beam_as_the_chain_is_refined() {
+    let reference = exudyn::samples();
+    let runs: Vec<Vec<f64>> = [16, 32, 64, 128]
+        .iter()
+        .map(|&n| {
+            let mut s = modal(n, 4);
+            s.solver.tolerance = 1e-6;
+            let (record, _) = runs::constant(&s, exudyn::SPEED, exudyn::DT, 2.0);
+            let c = exudyn::compare(&record, &reference);
+            println!(
+                "{n} segments, 4 modes, tolerance 1e-6: v_mid {:.4} % of the ANCF peak pointwise, peak {:+.4} %",
+                100.0 * c.pointwise,
+                100.0 * c.peak_error
+            );
+            record.deflection_rel()
+        })
+        .collect();
+    let p = peak(&runs[3]);
+    let steps: Vec<f64> = runs
+        .windows(2)
+        .map(|w| max_diff(&w[0], &w[1]) / p)
+        .collect();
+    let orders: Vec<f64> = steps.windows(2).map(|e| (e[0] / e[1]).log2()).collect();
+    let limit: Vec<f64> = runs[3]
+        .iter()
+        .zip(&runs[2])
+        .map(|(fine, coarse)| fine + (fine - coarse) / 3.0)
+        .collect();
+    let exact: Vec<f64> = reference.iter().map(|r| r.deflection_rel).collect();
+    let n = exact.len().min(limit.len());
+    let gap = max_diff(&limit[..n], &exact[..n]) / exudyn::peak(&reference);
+    println!(
+        "successive differences {:?}, orders {orders:.2?}; limit against ANCF {:.3} %",
+        steps.iter().map(|d| format!("{d:.1e}")).collect::<Vec<_>>(),
+        100.0 * gap
+    );
+    for p in orders {
+        assert!((1.7..2.4).contains(&p), "order {p}");
+    }
+    assert!(gap < 2e-3, "{gap:e}");
+}
+
+/// Two revolutions at 300 rad/s (peak `|v_mid / L|` 0.07, abrupt start) against the chain of 64
+/// segments converged in time: 3 modes within 0.1 % of the peak pointwise, where the FFR rod is
+/// 3.4 % off (tests/segments.rs, `ffr_levels_off_at_300_rad_s`).
+#[test]
+fn exact_at_300_rad_s() {
+    let omega = 300.0;
+    let mut chain = common::euler_bernoulli_benchmark();
+    chain.rod.model = RodModelKind::Segments;
+    chain.rod.elements = 64;
+    chain.solver.method = SolverMethod::GeneralizedAlpha;
+    chain.solver.step = 1e-5;
+    chain.rod.deflection_policy = DeflectionPolicy::Warn;
+    let (reference, _) = runs::constant(&chain, omega, 1e-4, 2.0);
+    let mut s = modal(64, 3);
+    s.rod.deflection_policy = DeflectionPolicy::Warn;
+    let (record, sim) = runs::constant(&s, omega, 1e-4, 2.0);
+    let (x, r) = (record.deflection_rel(), reference.deflection_rel());
+    let d = max_diff(&x, &r) / peak(&r);
+    let f = max_diff(&pin_b(&record), &pin_b(&reference)) / peak(&pin_b(&reference));
+    println!(
+        "300 rad/s, 64 segments on 3 modes: peak |v/L| {:.4}, v_mid {:.3} %, pin B {:.3} % of the peaks, {} steps",
+        peak(&x),
+        100.0 * d,
+        100.0 * f,
+        sim.stats().steps
+    );
+    assert!(peak(&r) > 0.06);
+    assert!(d < 1e-3 && f < 5e-3, "{d:e} {f:e}");
+}
+
+/// What the model cannot take is refused by name.
+#[test]
+fn refusals_name_the_setting() {
+    let message = |s: &Scene| match Simulation::new(s) {
+        Err(e) => e.to_string(),
+        Ok(_) => panic!("accepted"),
+    };
+    let mut s = modal(8, 3);
+    s.rod.axial_springs = true;
+    s.rod.axial_dynamics = flexrod::rod::PhysicsSwitch::Off;
+    assert!(message(&s).contains("rod.axial_springs"), "{}", message(&s));
+    let s = modal(4, 4);
+    let text = message(&s);
+    assert!(text.contains("4 modes asked for, it has 3"), "{text}");
+    let s = modal(8, 0);
+    assert!(message(&s).contains("rod.modes"), "{}", message(&s));
+}
