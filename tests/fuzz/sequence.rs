@@ -66,7 +66,7 @@ pub fn run(seq: u64, vars: &Vars, totals: &mut Totals, violations: &mut Violatio
         }
         // One legal call on both.
         let op = legal::next(&mut rng, vars, &model);
-        if let Op::SetInteger { vr, value: 2 } = op {
+        if let Op::SetInteger { vr, value: 2 | 3 } = op {
             segments |= vr == vars.rod_model;
         }
         let subject_saved: Vec<_> = model.saved.iter().map(|p| p.subject).collect();

@@ -193,10 +193,20 @@ mod tests {
             assert_eq!(ROD_REFERENCE.items()[i].name, k.name());
         }
         assert_eq!(from_code::<RodModelKind>(0), None);
-        assert_eq!(from_code::<RodModelKind>(3), None);
+        assert_eq!(
+            from_code::<RodModelKind>(3),
+            Some(RodModelKind::ModalSegments)
+        );
+        assert_eq!(from_code::<RodModelKind>(4), None);
         assert_eq!(from_code::<RodModelKind>(-1), None);
-        assert_eq!(ROD_MODEL.allowed_text(), "1 (ffr), 2 (segments)");
-        assert_eq!(ROD_MODEL.codes_text(), "1 = ffr, 2 = segments");
+        assert_eq!(
+            ROD_MODEL.allowed_text(),
+            "1 (ffr), 2 (segments), 3 (modal_segments)"
+        );
+        assert_eq!(
+            ROD_MODEL.codes_text(),
+            "1 = ffr, 2 = segments, 3 = modal_segments"
+        );
         assert_eq!(ROD_REFERENCE.max_code(), 4);
     }
 }

@@ -293,7 +293,7 @@ impl VariableTable {
             ValueType::Enumeration(&ROD_MODEL),
             |s| enumerations::code(s.rod.model),
             set_model,
-            "Rod model: ffr or segments",
+            "Rod model: ffr, segments or modal_segments",
         );
         b.integer_parameter(
             "rod.elements",

@@ -109,9 +109,11 @@ mod tests {
         let mut scene = Scene::benchmark();
         assert!(set_model(&mut scene, 2).is_ok());
         assert_eq!(scene.rod.model, RodModelKind::Segments);
+        assert!(set_model(&mut scene, 3).is_ok());
+        assert_eq!(scene.rod.model, RodModelKind::ModalSegments);
         assert_eq!(
-            set_model(&mut scene, 3).unwrap_err(),
-            "1 (ffr), 2 (segments)"
+            set_model(&mut scene, 4).unwrap_err(),
+            "1 (ffr), 2 (segments), 3 (modal_segments)"
         );
         assert!(set_reference(&mut scene, 0).is_err());
         assert!(set_reference(&mut scene, 4).is_ok());
