@@ -40,6 +40,8 @@ pub enum ModelError {
         limit: f64,
         /// Policy "discard" (the step refused, to be retried); false: "error".
         discard: bool,
+        /// What the limit stands for in this rod model, and what goes further (words).
+        range: &'static str,
     },
     /// A call that the model cannot serve in its current state (e.g. bad state bytes).
     State { message: String },
@@ -82,9 +84,10 @@ impl fmt::Display for ModelError {
                 deflection,
                 limit,
                 discard,
+                range,
             } => write!(
                 f,
-                "the step to t = {time} s reaches rod deflection |v_mid/L| = {deflection:.4e}, beyond rod.deflection_limit = {limit} (rod.deflection_policy = {}): the step is refused and the state before it kept",
+                "the step to t = {time} s reaches rod deflection |v_mid/L| = {deflection:.4e}, beyond rod.deflection_limit = {limit} ({range}; rod.deflection_policy = {}): the step is refused and the state before it kept",
                 if *discard { "discard" } else { "error" }
             ),
             ModelError::State { message } => write!(f, "{message}"),

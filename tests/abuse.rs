@@ -159,7 +159,7 @@ fn deflection_policy_warn_discard_error() {
     let run = |policy: DeflectionPolicy, limit: f64| {
         let mut s = Scene::benchmark();
         s.rod.deflection_policy = policy;
-        s.rod.deflection_limit = limit;
+        s.rod.deflection_limit = Some(limit);
         let mut sim = started(&s, 150.0);
         let mut rows = vec![sim.outputs()];
         let mut warnings = 0;
@@ -176,7 +176,7 @@ fn deflection_policy_warn_discard_error() {
             warnings += sim
                 .take_warnings()
                 .iter()
-                .filter(|w| w.contains("small-deformation range"))
+                .filter(|w| w.contains("exceeds rod.deflection_limit"))
                 .count();
         }
         (rows, warnings, None)

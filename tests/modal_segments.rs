@@ -18,7 +18,7 @@ use common::runs::{self, max_diff, peak};
 static MEASURED: Fragment = Fragment::new(
     "modal-segments",
     "Measured (`cargo test --release --test modal_segments -- --nocapture`):\n\n",
-    &["chain", "convergence", "high-load"],
+    &["chain", "convergence", "high-load", "limit"],
 );
 
 /// The Euler-Bernoulli benchmark rod as the chain on `modes` modes of `segments` segments.
@@ -164,6 +164,54 @@ fn exact_at_300_rad_s() {
             percent(d, 2),
             percent(f, 2),
             sim.stats().steps
+        ),
+    );
+}
+
+/// The deflection limit follows the model: at 450 rad/s (peak `|v_mid / L|` 0.18) the chain on
+/// its modes runs through under the default policy (discard) within 0.1 % of the chain of 64
+/// segments, where the FFR rod's step past 0.05 is refused with a message that names
+/// `modal_segments`.
+#[test]
+fn deflection_limit_follows_the_model() {
+    let omega = 450.0;
+    let mut chain = common::euler_bernoulli_benchmark();
+    chain.rod.model = RodModelKind::Segments;
+    chain.rod.elements = 64;
+    chain.solver.method = SolverMethod::GeneralizedAlpha;
+    chain.solver.step = 5e-6;
+    let (reference, _) = runs::constant(&chain, omega, 1e-4, 2.0);
+    let s = modal(64, 4);
+    assert_eq!(s.rod.deflection_limit(), 0.25);
+    let (record, sim) = runs::constant(&s, omega, 1e-4, 2.0);
+    let (x, r) = (record.deflection_rel(), reference.deflection_rel());
+    let d = max_diff(&x, &r) / peak(&r);
+    let f = max_diff(&pin_b(&record), &pin_b(&reference)) / peak(&pin_b(&reference));
+    println!(
+        "450 rad/s: peak |v/L| {:.3}; 64 segments on 4 modes: v_mid {:.3} %, pin B {:.3} %, {} steps",
+        peak(&r),
+        100.0 * d,
+        100.0 * f,
+        sim.stats().steps
+    );
+    assert!(peak(&r) > 0.15 && d < 1e-3 && f < 2e-3, "{d:e} {f:e}");
+    let ffr = common::euler_bernoulli_benchmark();
+    assert_eq!(ffr.rod.deflection_limit(), 0.05);
+    let message = match flexrod::drive::run_constant(&ffr, omega, 1e-4, 2.0) {
+        Err(e) => e.to_string(),
+        Ok(_) => panic!("the FFR rod's step past 0.05 is accepted"),
+    };
+    assert!(message.contains("rod.deflection_limit = 0.05"), "{message}");
+    assert!(message.contains("rod.model = modal_segments"), "{message}");
+    MEASURED.add(
+        "limit",
+        format!(
+            "- 450 rad/s (peak `|v_mid/L|` {:.2}): 64 segments on 4 modes within {} (`v_mid`) and {}\n  \
+             (pin B) of the chain of 64 segments; the chains' `rod.deflection_limit` is 0.25, the FFR\n  \
+             rod's 0.05.",
+            peak(&r),
+            percent(d, 2),
+            percent(f, 2)
         ),
     );
 }

@@ -491,16 +491,17 @@ impl Mechanism {
         o: &super::outputs::Outputs,
     ) -> Result<(), ModelError> {
         let d = o.deflection_rel.abs();
-        let limit = self.spec.rod.deflection_limit;
+        let limit = self.spec.rod.deflection_limit();
         if d <= limit {
             return Ok(());
         }
+        let range = self.spec.rod.model.validity();
         match self.spec.rod.deflection_policy {
             DeflectionPolicy::Warn => {
                 if !state.large_deflection_warned {
                     state.large_deflection_warned = true;
                     state.warnings.push(format!(
-                        "rod deflection |v_mid/L| = {d:.3e} at t = {} s exceeds rod.deflection_limit = {limit} (the small-deformation range of the rod model); results beyond it are not accurate",
+                        "rod deflection |v_mid/L| = {d:.3e} at t = {} s exceeds rod.deflection_limit = {limit} ({range}); results beyond it are not accurate",
                         state.time
                     ));
                 }
@@ -511,6 +512,7 @@ impl Mechanism {
                 deflection: d,
                 limit,
                 discard: policy == DeflectionPolicy::Discard,
+                range,
             }),
         }
     }

@@ -89,7 +89,7 @@ impl Run {
         self.record
             .warnings
             .iter()
-            .filter(|w| w.1.contains("small-deformation range"))
+            .filter(|w| w.1.contains("exceeds rod.deflection_limit"))
     }
 
     /// Time of the warning that `rod.error_estimate` passed `solver.tolerance`, s.

@@ -553,9 +553,9 @@ impl VariableTable {
             "rod.deflection_limit",
             120,
             DIMENSIONLESS,
-            |s| s.rod.deflection_limit,
-            |s, v| s.rod.deflection_limit = v,
-            "|v_mid/L| beyond which rod.deflection_policy applies, in (0, 1]",
+            |s| s.rod.deflection_limit(),
+            |s, v| s.rod.deflection_limit = Some(v),
+            "|v_mid/L| beyond which rod.deflection_policy applies, in (0, 1]; by default where the rod model is verified (ffr 0.05, segments and modal_segments 0.25)",
         );
         b.bounds(Some(Value::Real(0.0)), Some(Value::Real(1.0)));
         b.integer_parameter(

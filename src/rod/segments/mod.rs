@@ -148,6 +148,7 @@ pub mod body;
 pub mod kinematics;
 pub mod linear;
 pub mod modal;
+mod modal_plain;
 pub mod rod;
 
 pub use linear::axial_chain_frequencies_hz;

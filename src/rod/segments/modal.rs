@@ -22,6 +22,7 @@ use faer::{Mat, MatMut};
 use nalgebra::Vector2;
 
 use super::linear::LinearizedChain;
+use super::modal_plain::{Plain, Trig, MAX_REDUCED};
 use super::rod::SegmentRod;
 use crate::error::ModelError;
 use crate::rod::body::{RodBody, RodPoint};
@@ -36,6 +37,8 @@ struct Scratch {
     /// `A T` of [`ModalSegmentRod::add_congruent`].
     at: Mat<f64>,
     j: Mat<f64>,
+    /// The plain chain's angles at the last coordinates ([`Plain::angles`]).
+    trig: Trig,
 }
 
 /// The segment chain restricted to its rigid motions and lowest bending modes (module
@@ -46,7 +49,9 @@ pub struct ModalSegmentRod {
     basis: Mat<f64>,
     /// The retained modes' circular frequencies, rad/s.
     omega: Vec<f64>,
-    /// The retained modes' damping ratio times `2 omega` (modal damping), 1/s.
+    /// The direct evaluation in reduced coordinates, for a plain chain
+    /// ([`super::modal_plain`]); the projection of the chain's own functions otherwise.
+    plain: Option<Plain>,
     scratch: RefCell<Scratch>,
 }
 
@@ -97,13 +102,85 @@ impl ModalSegmentRod {
             m: Mat::zeros(n_full, n_full),
             at: Mat::zeros(n_full, n),
             j: Mat::zeros(2, n_full),
+            trig: Trig::new(n, chain.n_segments()),
         });
-        Ok(ModalSegmentRod {
+        let mut rod = ModalSegmentRod {
             chain,
             basis,
             omega: omega2.iter().map(|w2| w2.sqrt()).collect(),
+            plain: None,
             scratch,
-        })
+        };
+        let plain = !rod.chain.has_shear()
+            && !rod.chain.has_end_rotation(0)
+            && !rod.chain.has_end_rotation(1)
+            && n <= MAX_REDUCED;
+        if plain {
+            let (stiffness, damping) = rod.spring_matrices();
+            let chain = &rod.chain;
+            let basis = &rod.basis;
+            rod.plain = Some(Plain::new(
+                chain,
+                n,
+                |k, c| basis[(chain.theta_index(k), c)],
+                stiffness,
+                damping,
+            ));
+        }
+        Ok(rod)
+    }
+
+    /// `K_r = T^T K T` and `C_r = T^T C T` (row-major), from the chain's forces: its springs
+    /// and dampers are linear in the coordinates and velocities, the velocity products
+    /// quadratic, so central differences at the straight chain give them exactly (to round-off).
+    fn spring_matrices(&self) -> (Vec<f64>, Vec<f64>) {
+        let n = self.basis.ncols();
+        let (mut stiffness, mut damping) = (vec![0.0; n * n], vec![0.0; n * n]);
+        let zero = vec![0.0; n];
+        let (mut plus, mut minus) = (vec![0.0; n], vec![0.0; n]);
+        for d in 0..n {
+            let mut x = zero.clone();
+            x[d] = 1e-3;
+            self.generic_forces(&x, &zero, &mut plus);
+            x[d] = -1e-3;
+            self.generic_forces(&x, &zero, &mut minus);
+            for c in 0..n {
+                stiffness[c * n + d] = -(plus[c] - minus[c]) / 2e-3;
+            }
+            x[d] = 1e-3;
+            self.generic_forces(&zero, &x, &mut plus);
+            x[d] = -1e-3;
+            self.generic_forces(&zero, &x, &mut minus);
+            for c in 0..n {
+                damping[c * n + d] = -(plus[c] - minus[c]) / 2e-3;
+            }
+        }
+        (stiffness, damping)
+    }
+
+    /// The projection `T^T Q(T r, T r')` of the chain's forces.
+    fn generic_forces(&self, r: &[f64], rv: &[f64], out: &mut [f64]) {
+        let mut s = self.scratch.borrow_mut();
+        let Scratch { q, v, f, .. } = &mut *s;
+        self.expand(r, q);
+        self.expand(rv, v);
+        f.iter_mut().for_each(|x| *x = 0.0);
+        self.chain.forces(q, v, f);
+        out[..self.basis.ncols()].iter_mut().for_each(|x| *x = 0.0);
+        self.add_projected(f, out);
+    }
+
+    /// Whether the direct evaluation is in use (a plain chain).
+    pub fn is_direct(&self) -> bool {
+        self.plain.is_some()
+    }
+
+    /// `f(plain, trig)` with the angles at `r`, where the chain is plain.
+    fn direct<R>(&self, r: &[f64], f: impl FnOnce(&Plain, &Trig) -> R) -> Option<R> {
+        let plain = self.plain.as_ref()?;
+        let mut s = self.scratch.borrow_mut();
+        plain.angles(r, &mut s.trig);
+        Some(f(plain, &s.trig))
     }
 
     /// The chain underneath.
@@ -233,6 +310,9 @@ impl RodBody for ModalSegmentRod {
     }
 
     fn mass(&self, r: &[f64], mut out: MatMut<'_, f64>) {
+        if self.direct(r, |p, t| p.mass(t, out.rb_mut())).is_some() {
+            return;
+        }
         let mut s = self.scratch.borrow_mut();
         let Scratch { q, m, at, .. } = &mut *s;
         self.expand(r, q);
@@ -243,17 +323,15 @@ impl RodBody for ModalSegmentRod {
     }
 
     fn forces(&self, r: &[f64], rv: &[f64], out: &mut [f64]) {
-        let mut s = self.scratch.borrow_mut();
-        let Scratch { q, v, f, .. } = &mut *s;
-        self.expand(r, q);
-        self.expand(rv, v);
-        f.iter_mut().for_each(|x| *x = 0.0);
-        self.chain.forces(q, v, f);
-        out[..self.basis.ncols()].iter_mut().for_each(|x| *x = 0.0);
-        self.add_projected(f, out);
+        if self.direct(r, |p, t| p.forces(r, rv, t, out)).is_none() {
+            self.generic_forces(r, rv, out);
+        }
     }
 
     fn add_gravity(&self, r: &[f64], g: Vector2<f64>, out: &mut [f64]) {
+        if self.direct(r, |p, t| p.add_gravity(t, g, out)).is_some() {
+            return;
+        }
         let mut s = self.scratch.borrow_mut();
         let Scratch { q, f, .. } = &mut *s;
         self.expand(r, q);
@@ -289,6 +367,9 @@ impl RodBody for ModalSegmentRod {
     }
 
     fn point(&self, p: RodPoint, r: &[f64]) -> Vector2<f64> {
+        if let Some(x) = self.direct(r, |plain, t| plain.point(p, r, t)) {
+            return x;
+        }
         self.with_q(r, |c, q| c.point(p, q))
     }
 
@@ -297,14 +378,28 @@ impl RodBody for ModalSegmentRod {
     }
 
     fn points(&self, r: &[f64]) -> [Vector2<f64>; 3] {
+        if let Some(x) = self.direct(r, |plain, t| {
+            [RodPoint::B, RodPoint::C, RodPoint::Mid].map(|p| plain.point(p, r, t))
+        }) {
+            return x;
+        }
         self.with_q(r, |c, q| c.points(q))
     }
 
     fn mid_deflection(&self, r: &[f64]) -> f64 {
+        if self.plain.is_some() {
+            return crate::rod::body::chord_distance(self.points(r));
+        }
         self.with_q(r, |c, q| c.mid_deflection(q))
     }
 
     fn point_jacobian(&self, p: RodPoint, r: &[f64], mut out: MatMut<'_, f64>) {
+        if self
+            .direct(r, |plain, t| plain.point_jacobian(p, t, out.rb_mut()))
+            .is_some()
+        {
+            return;
+        }
         let mut s = self.scratch.borrow_mut();
         let Scratch { q, j, .. } = &mut *s;
         self.expand(r, q);
@@ -323,6 +418,9 @@ impl RodBody for ModalSegmentRod {
     }
 
     fn point_bias_acceleration(&self, p: RodPoint, r: &[f64], rv: &[f64]) -> Vector2<f64> {
+        if let Some(a) = self.direct(r, |plain, t| plain.point_bias(p, rv, t)) {
+            return a;
+        }
         // T is constant: the velocity-product part is the chain's at v = T r'.
         self.with_qv(r, rv, |c, q, v| c.point_bias_acceleration(p, q, v))
     }
@@ -384,5 +482,105 @@ impl RodBody for ModalSegmentRod {
 
     fn highest_frequency_hz(&self) -> f64 {
         self.omega.iter().copied().fold(0.0, f64::max) / (2.0 * std::f64::consts::PI)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::beam::section_table::EndBody;
+    use crate::beam::{RodDefinition, RodProperties};
+
+    /// The direct evaluation of a plain chain is the projection of the chain's own functions:
+    /// mass, forces, gravity, points, Jacobians and velocity products at bent, moving states,
+    /// with end masses at both pins and a damped chain.
+    #[test]
+    fn direct_evaluation_is_the_projection() {
+        let props = RodProperties::cdi_benchmark();
+        let definition = RodDefinition {
+            properties: props,
+            table: None,
+            shear_modulus: None,
+            uniform_shear_area: None,
+            big_end: EndBody {
+                mass: 0.03,
+                inertia: 0.0,
+            },
+            small_end: EndBody {
+                mass: 0.02,
+                inertia: 0.0,
+            },
+        };
+        let build = || {
+            let chain = SegmentRod::from_definition(&definition, 12, 0.02, false).unwrap();
+            ModalSegmentRod::new(chain, 4).unwrap()
+        };
+        let direct = build();
+        let mut projected = build();
+        assert!(direct.is_direct());
+        projected.plain = None;
+        let n = direct.n_coordinates();
+        for trial in 0..5 {
+            let x = trial as f64;
+            let r: Vec<f64> = (0..n)
+                .map(|i| match i {
+                    0 | 1 => 0.1 * (x + i as f64).sin(),
+                    2 => 0.7 * x - 1.0,
+                    _ => 0.02 * (1.3 * x + i as f64).cos(),
+                })
+                .collect();
+            let v: Vec<f64> = (0..n)
+                .map(|i| match i {
+                    0 | 1 => 3.0 * (x + 2.0 * i as f64).cos(),
+                    2 => 150.0 + 10.0 * x,
+                    _ => 5.0 * (0.7 * x + i as f64).sin(),
+                })
+                .collect();
+            let close = |a: f64, b: f64, scale: f64, what: &str| {
+                assert!((a - b).abs() <= 1e-11 * scale, "{what}: {a} vs {b}");
+            };
+            let (mut ma, mut mb) = (Mat::<f64>::zeros(n, n), Mat::<f64>::zeros(n, n));
+            direct.mass(&r, ma.as_mut());
+            projected.mass(&r, mb.as_mut());
+            let scale = (0..n).map(|i| mb[(i, i)].abs()).fold(0.0, f64::max);
+            for i in 0..n {
+                for j in 0..n {
+                    close(ma[(i, j)], mb[(i, j)], scale, "mass");
+                }
+            }
+            let (mut fa, mut fb) = (vec![0.0; n], vec![0.0; n]);
+            direct.forces(&r, &v, &mut fa);
+            projected.forces(&r, &v, &mut fb);
+            let g = Vector2::new(0.3, -9.81);
+            direct.add_gravity(&r, g, &mut fa);
+            projected.add_gravity(&r, g, &mut fb);
+            let scale = fb.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            for (a, b) in fa.iter().zip(&fb) {
+                close(*a, *b, scale, "forces");
+            }
+            for p in [RodPoint::B, RodPoint::C, RodPoint::Mid] {
+                let (xa, xb) = (direct.point(p, &r), projected.point(p, &r));
+                close((xa - xb).norm(), 0.0, 1.0, "point");
+                let (mut ja, mut jb) = (Mat::<f64>::zeros(2, n), Mat::<f64>::zeros(2, n));
+                direct.point_jacobian(p, &r, ja.as_mut());
+                projected.point_jacobian(p, &r, jb.as_mut());
+                for i in 0..2 {
+                    for j in 0..n {
+                        close(ja[(i, j)], jb[(i, j)], 1.0, "jacobian");
+                    }
+                }
+                let (aa, ab) = (
+                    direct.point_bias_acceleration(p, &r, &v),
+                    projected.point_bias_acceleration(p, &r, &v),
+                );
+                close((aa - ab).norm(), 0.0, ab.norm().max(1.0), "bias");
+            }
+            close(
+                direct.mid_deflection(&r),
+                projected.mid_deflection(&r),
+                1.0,
+                "v_mid",
+            );
+        }
     }
 }
