@@ -1,13 +1,14 @@
 """Shear-deformable reference for the benchmark rod (scenes/benchmark.toml): Exudyn's
 geometrically exact 2D beam (ObjectBeamGeometricallyExact2D, Simo-Reissner, linear elements) in
-the slider-crank at a constant 150 rad/s, the run of tests/data/exudyn_ancf_150rad_s.csv (Exudyn
-ANCF cable, no shear deformation) with shear deformation and the section's rotary inertia.
+the slider-crank at a constant crank speed W (--speed, 150 rad/s by default: the run of
+tests/data/exudyn_ancf_150rad_s.csv, Exudyn ANCF cable, no shear deformation, with shear
+deformation and the section's rotary inertia).
 
 The run:
-- the rod of the scene: length L, E, rho, area A, area moment I, crank radius r, slider mass;
-  shear modulus G = E / 2.6 (nu = 0.3), shear area A / 1.2, cross-section inertia rho I; no
+- the rod of the scene: length L, E (times --youngs-scale, 1 by default), rho, area A, area
+  moment I, crank radius r, slider mass; shear modulus G = E / 2.6 (nu = 0.3), shear area A / 1.2, cross-section inertia rho I; no
   damping, no gravity.
-- crank angle theta = W t exactly, W = 150 rad/s from t = 0 (abrupt start). At t = 0 the rod is
+- crank angle theta = W t exactly from t = 0 (abrupt start). At t = 0 the rod is
   undeformed along x from pin B (r, 0) to pin C (r + L, 0) and moves rigidly with the crank: the
   node at arc length s has the velocity (0, r W (1 - s/L)) and the rotation rate -r W / L; the
   slider is at rest.
@@ -37,7 +38,8 @@ inertia kept the shear-rigid limit (extrapolated) is 2.2e-3 off, about a quarter
 beam's 9.2e-3 (Timoshenko's frequency correction: rotary inertia 1 part, shear E / (k G) = 3.1
 parts). The shear-rigid runs need --newton-abs 1e-3 from 256 elements.
 
-Columns (every --sample s, 0 .. 0.0838 s: two revolutions on the 1e-4 s grid), the columns and
+Columns (every --sample s, 0 .. --stop, by default two revolutions, 4 pi / W rounded up to the
+sample grid: 0.0838 s at 150 rad/s), the columns and
 signs of tests/data/exudyn_ancf_150rad_s.csv: t, v_mid/L (distance of the material midpoint from
 the chord B->C, positive to the left, over L), the force of the rod on the crank pin (FBx, FBy)
 and on the slider (FCx, FCy), N.
@@ -78,8 +80,13 @@ from exudyn.itemInterface import (
     SensorObject,
 )
 
-W = 150.0  # rad/s
-T_STOP = 0.0838  # s: two revolutions (4 pi / W = 0.083776 s) rounded up to the 1e-4 s grid
+W_DEFAULT = 150.0  # rad/s
+
+
+def two_revolutions(w, sample):
+    """Two revolutions, 4 pi / w, rounded up to the sample grid (0.0838 s at 150 rad/s)."""
+    return round(math.ceil(4.0 * math.pi / w / sample - 1e-9) * sample, 12)
+
 COLUMNS = ["t", "v_mid_rel", "FBx", "FBy", "FCx", "FCy"]
 
 
@@ -110,8 +117,9 @@ def simulate(scene, n, step, args):
     """The run with n elements and step h: the rows (t, v_mid/L, FBx, FBy, FCx, FCy) and the CPU
     time of the integration, s."""
     rod = scene["rod"]
+    W = args.speed
     r, length = scene["crank"]["length"], rod["length"]
-    e_mod, rho = rod["youngs_modulus"], rod["density"]
+    e_mod, rho = rod["youngs_modulus"] * args.youngs_scale, rod["density"]
     area, area_moment = rod["area"], rod["area_moment"]
     g_mod = e_mod / 2.6
     shear_area = area / 1.2
@@ -215,7 +223,7 @@ def simulate(scene, n, step, args):
     settings.solution.sensors.writePeriod = args.sample
     settings.show.statistics = False
     start = time.process_time()
-    exu.SolveDynamic(mbs, settings, showHints=True)
+    ok = exu.SolveDynamic(mbs, settings, showHints=True)
     elapsed = time.process_time() - start
 
     def data(s):
@@ -242,6 +250,16 @@ def simulate(scene, n, step, args):
             fcx, fcy = 0.0, fc[k, 1]
         rows.append((grid, v / length, fbx[k, 1], fby[k, 1], fcx, fcy))
     rows = np.array(rows)
+    if not ok:
+        sys.exit(
+            f"{n} elements, h = {step:g} s: the solver failed at t = {rows[-1, 0]:g} s (last sample)"
+            f" after {elapsed:.0f} s of CPU; max |v_mid/L| up to then {np.max(np.abs(rows[:, 1])):.3e}"
+        )
+    print(
+        f"{n} elements, h = {step:g} s: {elapsed:.1f} s of CPU, max |v_mid/L| "
+        f"{np.max(np.abs(rows[:, 1])):.4e}",
+        file=sys.stderr,
+    )
     assert np.all(np.diff(rows[:, 0]) > 0.5 * args.sample), "sensor samples not one per grid point"
     return rows, elapsed
 
@@ -255,7 +273,19 @@ def main():
     ap.add_argument("--rho-inf", type=float, default=0.9)
     ap.add_argument("--newton-tol", type=float, default=1e-8)
     ap.add_argument("--newton-abs", type=float, default=1e-4)
-    ap.add_argument("--stop", type=float, default=T_STOP)
+    ap.add_argument("--speed", type=float, default=W_DEFAULT, help="constant crank speed W, rad/s")
+    ap.add_argument(
+        "--youngs-scale",
+        type=float,
+        default=1.0,
+        help="factor on the scene's Young's modulus E (G = E / 2.6 follows)",
+    )
+    ap.add_argument(
+        "--stop",
+        type=float,
+        default=None,
+        help="end time, s; default two revolutions, 4 pi / W rounded up to the --sample grid",
+    )
     ap.add_argument(
         "--euler-bernoulli",
         action="store_true",
@@ -267,7 +297,11 @@ def main():
         default=1.0,
         help="factor on the cross-section inertia rho I (1e-3 with --euler-bernoulli: the cable)",
     )
-    ap.add_argument("--out", default="tests/data/exudyn_shear_beam_150rad_s.csv")
+    ap.add_argument(
+        "--out",
+        default=None,
+        help="default tests/data/exudyn_shear_beam_<W>rad_s.csv (_E<factor> appended for an E factor)",
+    )
     ap.add_argument(
         "--check",
         action="store_true",
@@ -275,6 +309,12 @@ def main():
     )
     ap.add_argument("--compare", nargs="*", default=[], help="reference files (same columns)")
     args = ap.parse_args()
+    if args.stop is None:
+        args.stop = two_revolutions(args.speed, args.sample)
+    if args.out is None:
+        args.out = f"tests/data/exudyn_shear_beam_{args.speed:g}rad_s" + (
+            f"_E{args.youngs_scale:g}" if args.youngs_scale != 1.0 else ""
+        ) + ".csv"
     with open(args.scene, "rb") as f:
         scene = tomllib.load(f)
     m_s = scene.get("slider", {}).get("mass", 0.0)
@@ -304,19 +344,26 @@ def main():
         if extrapolated is not None:
             diff, _ = differences(extrapolated, ref, args.sample)
             notes.append(f"extrapolation in N against {name}: {diff}")
+    e_scaled = scene["rod"]["youngs_modulus"] * args.youngs_scale
     slider_line = (
         "slider mass 0: the last node's y held at 0 by a coordinate constraint, no slider body"
         if m_s == 0.0
         else f"slider: mass point {m_s:g} kg, revolute joint to the last node"
     )
     header = (
-        "# Shear-deformable reference, CDI benchmark rod (scenes/benchmark.toml) at a constant 150 rad/s\n"
+        "# Shear-deformable reference, CDI benchmark rod (scenes/benchmark.toml) at a constant "
+        f"{args.speed:g} rad/s\n"
         "# from t = 0, undeformed start moving rigidly with the crank; G = E / 2.6, shear area A / 1.2,\n"
         f"# section inertia rho I, no damping;\n# {slider_line}.\n"
         f"# Exudyn {exu.config.Version()} ObjectBeamGeometricallyExact2D, {n} elements, generalized-alpha\n"
         f"# (spectral radius {args.rho_inf}), h = {args.step:g} s; {elapsed:.0f} s of CPU"
         + (" with the two check runs" if args.check else "")
         + ".\n"
+        + (
+            f"# Young's modulus x {args.youngs_scale:g}: E = {e_scaled:.6g} Pa, G = E / 2.6.\n"
+            if args.youngs_scale != 1.0
+            else ""
+        )
         + ("# Shear-rigid limit: shear stiffness x 1e3.\n" if args.euler_bernoulli else "")
         + (
             f"# Cross-section inertia x {args.section_inertia_scale:g}.\n"
