@@ -223,7 +223,10 @@ def simulate(scene, n, step, args):
     settings.solution.sensors.writePeriod = args.sample
     settings.show.statistics = False
     start = time.process_time()
-    ok = exu.SolveDynamic(mbs, settings, showHints=True)
+    try:
+        ok = exu.SolveDynamic(mbs, settings, showHints=True)
+    except exu.SolverError:
+        ok = False
     elapsed = time.process_time() - start
 
     def data(s):
