@@ -6,12 +6,12 @@ deformation and the section's rotary inertia).
 
 The run:
 - the rod of the scene: length L, E (times --youngs-scale, 1 by default), rho, area A, area
-  moment I, crank radius r, slider mass; shear modulus G = E / 2.6 (nu = 0.3), shear area A / 1.2, cross-section inertia rho I; no
-  damping, no gravity.
-- crank angle theta = W t exactly from t = 0 (abrupt start). At t = 0 the rod is
-  undeformed along x from pin B (r, 0) to pin C (r + L, 0) and moves rigidly with the crank: the
-  node at arc length s has the velocity (0, r W (1 - s/L)) and the rotation rate -r W / L; the
-  slider is at rest.
+  moment I, crank radius r, slider mass; shear modulus G = E / 2.6 (nu = 0.3), shear area
+  A / 1.2, cross-section inertia rho I; no damping, no gravity.
+- crank angle theta = W t exactly from t = 0 (abrupt start). At t = 0 the rod is undeformed
+  along x from pin B (r, 0) to pin C (r + L, 0) and moves rigidly with the crank: the node at arc
+  length s has the velocity (0, r W (1 - s/L)) and the rotation rate -r W / L; the slider is at
+  rest.
 - the beam: N elements of equal length (NodeRigidBody2D nodes). Pin B: the first node's x and y
   prescribed by coordinate constraints (user functions of theta). Pin C: with the scene's slider
   mass 0, the last node's y is held at 0 by a coordinate constraint (no slider body: Exudyn's
@@ -255,8 +255,9 @@ def simulate(scene, n, step, args):
     rows = np.array(rows)
     if not ok:
         sys.exit(
-            f"{n} elements, h = {step:g} s: the solver failed at t = {rows[-1, 0]:g} s (last sample)"
-            f" after {elapsed:.0f} s of CPU; max |v_mid/L| up to then {np.max(np.abs(rows[:, 1])):.3e}"
+            f"{n} elements, h = {step:g} s: the solver failed at t = {rows[-1, 0]:g} s (last"
+            f" sample) after {elapsed:.0f} s of CPU; max |v_mid/L| up to then"
+            f" {np.max(np.abs(rows[:, 1])):.3e}"
         )
     print(
         f"{n} elements, h = {step:g} s: {elapsed:.1f} s of CPU, max |v_mid/L| "
@@ -303,7 +304,7 @@ def main():
     ap.add_argument(
         "--out",
         default=None,
-        help="default tests/data/exudyn_shear_beam_<W>rad_s.csv (_E<factor> appended for an E factor)",
+        help="default tests/data/exudyn_shear_beam_<W>rad_s.csv (_E<F> added for --youngs-scale F)",
     )
     ap.add_argument(
         "--check",
