@@ -38,11 +38,30 @@ inertia kept the shear-rigid limit (extrapolated) is 2.2e-3 off, about a quarter
 beam's 9.2e-3 (Timoshenko's frequency correction: rotary inertia 1 part, shear E / (k G) = 3.1
 parts). The shear-rigid runs need --newton-abs 1e-3 from 256 elements.
 
+Higher loads (--speed, --youngs-scale; the headers of the files hold the convergence numbers).
+The rod's inertial axial load, of order m r W^2 (m the rod's mass), against its Euler load
+pi^2 E I / L^2 = 1.75 kN: 0.26 kN at 150 rad/s, 1.04 kN at 300, 4.1 kN at 600; 0.26 kN against
+17.5 N with E / 100.
+- 300 rad/s, tests/data/exudyn_shear_beam_300rad_s.csv: peak |v_mid/L| 7.0e-2; 512 elements,
+  h = 5e-7 s as at 150 rad/s (extrapolation in N 8e-5 of the peak off, h 1e-6 s 4e-5).
+- 600 rad/s, tests/data/exudyn_shear_beam_600rad_s.csv: the rod buckles and folds: peak
+  |v_mid/L| 0.41, the chord B -> C down to a quarter of L, the slider behind the crank centre
+  (x down to -0.066 m) and the rod sweeping across the crank arm (no contact in this model). It
+  converges all the same: 1024 elements, h = 2.5e-7 s (extrapolation in N 1.8e-4, h 5e-7 s
+  1.7e-4; at 256 elements --newton-abs 1e-5 against 1e-4 moves v_mid by 5e-10 of its peak).
+- 150 rad/s with E / 100 (--youngs-scale 0.01): no reference over two revolutions. The rod
+  collapses (first |v_mid/L| maximum 0.34 at 15 ms, the slider behind the crank centre from
+  15 ms, the chord down to 0.064 L and the rod crossing itself from 20 ms) and the run becomes
+  chaotic: two 64-element runs that differ only in the Newton tolerance (absolute 1e-5 -> 1e-6,
+  relative 1e-8 -> 1e-10) part by 1e-4 of the peak at 49 ms and by more than the peak later.
+  The runs (h = 5e-7 s) agree to 1e-2 of the peak until 29 ms (128 against 256 elements) and
+  32 ms (256 against 512), to 1e-1 until 33 and 41 ms.
+
 Columns (every --sample s, 0 .. --stop, by default two revolutions, 4 pi / W rounded up to the
-sample grid: 0.0838 s at 150 rad/s), the columns and
-signs of tests/data/exudyn_ancf_150rad_s.csv: t, v_mid/L (distance of the material midpoint from
-the chord B->C, positive to the left, over L), the force of the rod on the crank pin (FBx, FBy)
-and on the slider (FCx, FCy), N.
+sample grid: 0.0838 s at 150 rad/s), the columns and signs of
+tests/data/exudyn_ancf_150rad_s.csv: t, v_mid/L (distance of the material midpoint from the
+chord B->C, positive to the left, over L), the force of the rod on the crank pin (FBx, FBy) and
+on the slider (FCx, FCy), N.
 
 Convergence and comparison (printed and written to the CSV header): --check also runs half the
 elements and twice the step and gives, for each column, the largest difference to this run over
@@ -56,6 +75,11 @@ the two check runs):
   python tests/data/benchmark_shear_reference.py --elements 512 --step 5e-7 --newton-abs 1e-4 \\
       --check --compare tests/data/exudyn_ancf_150rad_s.csv \\
       --out tests/data/exudyn_shear_beam_150rad_s.csv
+  python tests/data/benchmark_shear_reference.py --speed 300 --elements 512 --step 5e-7 \\
+      --newton-abs 1e-4 --check --out tests/data/exudyn_shear_beam_300rad_s.csv
+  python tests/data/benchmark_shear_reference.py --speed 600 --elements 1024 --step 2.5e-7 \\
+      --newton-abs 1e-4 --check --out tests/data/exudyn_shear_beam_600rad_s.csv
+(3 and 7 minutes of CPU).
 """
 
 import argparse
