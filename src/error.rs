@@ -87,7 +87,9 @@ impl fmt::Display for ModelError {
                 range,
             } => write!(
                 f,
-                "the step to t = {time} s reaches rod deflection |v_mid/L| = {deflection:.4e}, beyond rod.deflection_limit = {limit} ({range}; rod.deflection_policy = {}): the step is refused and the state before it kept",
+                "the step to t = {} s reaches rod deflection |v_mid/L| = {deflection:.4e}, beyond rod.deflection_limit = {limit} ({range}; rod.deflection_policy = {}): the step is refused and the state before it kept",
+                // Rounded to 1e-12 s: a communication point k dt prints as its decimal value.
+                (time * 1e12).round() / 1e12,
                 if *discard { "discard" } else { "error" }
             ),
             ModelError::State { message } => write!(f, "{message}"),

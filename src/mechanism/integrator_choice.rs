@@ -98,6 +98,9 @@ pub struct MechanismFacts {
     /// The slider's mass, kg: it moves with C's axial displacement, so it adds to the modal
     /// mass of the modes that move C ([`effective_modal_mass`]).
     pub slider_mass: f64,
+    /// The rod gives its elastic coordinates as the mechanism's own oscillators
+    /// ([`RodBody::modal_oscillators`]: the chain on its pinned modes).
+    pub modal_oscillators: bool,
 }
 
 impl MechanismFacts {
@@ -120,6 +123,7 @@ impl MechanismFacts {
                 .ffr_kernel()
                 .map(|k| modes_are_oscillators(k, slider_mass)),
             slider_mass,
+            modal_oscillators: rod.modal_oscillators().is_some(),
         }
     }
 
@@ -182,7 +186,8 @@ impl IntegratorChoice {
 /// (tests/automotive_rigid_limit.rs): pin forces and crank torque within 3e-6 of the rigid
 /// mechanism's peaks, where adaptive generalized-alpha was 1.3 to 3.4 % off.
 fn exact_oscillators(facts: &MechanismFacts) -> bool {
-    facts.closed_form && facts.kernel_oscillators == Some(true) && facts.damping_ratio <= 1.0
+    (facts.closed_form && facts.kernel_oscillators == Some(true) || facts.modal_oscillators)
+        && facts.damping_ratio <= 1.0
 }
 
 /// The integrator for `solver` on a mechanism with `facts` (module documentation), or why
@@ -210,7 +215,7 @@ pub fn choose(solver: &SolverSpec, facts: &MechanismFacts) -> Result<IntegratorC
                 });
             };
             let forced = method == SolverMethod::Exponential;
-            if forced && facts.kernel_oscillators.is_none() {
+            if forced && facts.kernel_oscillators.is_none() && !facts.modal_oscillators {
                 return Err(ModelError::InvalidParameter {
                     name: "solver.method",
                     value: modes as f64,
@@ -229,7 +234,7 @@ pub fn choose(solver: &SolverSpec, facts: &MechanismFacts) -> Result<IntegratorC
             let minimal = auto && facts.closed_form;
             let exponential = match facts.kernel_oscillators {
                 Some(pinned) => forced || minimal && pinned,
-                None => false,
+                None => (forced || auto) && facts.modal_oscillators,
             };
             Ok(IntegratorChoice::AdaptiveRungeKutta {
                 pair: Pair::Rk43,
@@ -280,13 +285,19 @@ pub fn build(
             if !exponential {
                 return Box::new(integrator);
             }
-            let kernel = rod.ffr_kernel().expect("the FFR rod's closed form");
-            let oscillators = (0..kernel.n)
-                .map(|i| {
-                    let mass = effective_modal_mass(kernel, facts.slider_mass, i);
-                    Oscillator::new(kernel.stiffness[i] / mass, kernel.damping[i] / mass)
-                })
-                .collect();
+            let oscillators = match (rod.ffr_kernel(), rod.modal_oscillators()) {
+                (Some(kernel), _) => (0..kernel.n)
+                    .map(|i| {
+                        let mass = effective_modal_mass(kernel, facts.slider_mass, i);
+                        Oscillator::new(kernel.stiffness[i] / mass, kernel.damping[i] / mass)
+                    })
+                    .collect(),
+                (None, Some(modes)) => modes
+                    .into_iter()
+                    .map(|(omega2, damping)| Oscillator::new(omega2, damping))
+                    .collect(),
+                (None, None) => unreachable!("the exponential form needs the rod's oscillators"),
+            };
             let mut integrator = integrator.exponential(oscillators);
             for index in rod.axial_mode_indices() {
                 integrator = integrator.cap_phase_on(index);
@@ -351,6 +362,18 @@ mod tests {
             closed_form: true,
             kernel_oscillators: Some(pinned),
             slider_mass: 0.5,
+            modal_oscillators: false,
+        }
+    }
+
+    /// The chain on its modes: modal coordinates that are the mechanism's own oscillators,
+    /// evaluated on the general partitioned path.
+    fn modal_chain(f_max: f64) -> MechanismFacts {
+        MechanismFacts {
+            closed_form: false,
+            kernel_oscillators: None,
+            modal_oscillators: true,
+            ..ffr(f_max, false)
         }
     }
 
@@ -438,6 +461,13 @@ mod tests {
         assert_eq!(choose(&auto, &overdamped).unwrap(), alpha);
         assert_eq!(choose(&auto, &segments(100.0)).unwrap(), alpha);
         assert_eq!(alpha.max_step(&auto), auto.step);
+        // The chain on its modes: the exponential form at any stiffness of its modes.
+        for f in [100.0, f_at_limit(100.0)] {
+            assert_eq!(
+                choose(&auto, &modal_chain(f)).unwrap(),
+                adaptive_rk(Pair::Rk43, true)
+            );
+        }
     }
 
     /// `dopri5` and `rk43` are the classic pairs wherever there are modal coordinates, also

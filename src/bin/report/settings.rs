@@ -27,6 +27,9 @@ pub enum Model {
     /// FFR with axial stiffening, `solver.method = "dopri5"`: Dormand-Prince 5(4) on the
     /// closed-form minimal coordinates; `h` is the tolerance.
     FfrDopri5,
+    /// The segment chain on its lowest modes (`rod.model = "modal_segments"`), `auto` (the
+    /// exponential RK4(3)); `h` is the tolerance.
+    ModalSegmentsAuto,
 }
 
 impl Model {
@@ -40,6 +43,7 @@ impl Model {
             Model::FfrAuto => "ffr_stiffened_auto",
             Model::SegmentsAuto => "segments_auto",
             Model::FfrDopri5 => "ffr_stiffened_dopri5",
+            Model::ModalSegmentsAuto => "modal_segments_auto",
         }
     }
 
@@ -116,6 +120,15 @@ impl Setting {
         }
     }
 
+    /// The chain of `n` segments on its `modes` lowest modes, `auto` at `tolerance`.
+    pub fn modal_auto(n: usize, modes: usize, tolerance: f64) -> Setting {
+        Setting {
+            model: Model::ModalSegmentsAuto,
+            modes,
+            ..Setting::seg(n, tolerance)
+        }
+    }
+
     pub fn seg(n: usize, h: f64) -> Setting {
         Setting {
             model: Model::Segments,
@@ -183,7 +196,9 @@ impl Setting {
     /// error-controlled settings (whose `h` is the tolerance) 3e-4 s, the default scene's.
     pub fn communication_step(&self) -> f64 {
         match self.model {
-            Model::FfrAuto | Model::SegmentsAuto | Model::FfrDopri5 => 3e-4,
+            Model::FfrAuto | Model::SegmentsAuto | Model::FfrDopri5 | Model::ModalSegmentsAuto => {
+                3e-4
+            }
             _ => self.h,
         }
     }
@@ -201,6 +216,7 @@ impl Setting {
             Model::FfrRk4 => format!("FFR stiffened RK4 {el}el/{modes}m {r} h={h:.1e}"),
             Model::FfrAuto => format!("FFR stiffened auto {el}el/{modes}m {r} tol={h:.0e}"),
             Model::SegmentsAuto => format!("segments auto N={el} tol={h:.0e}"),
+            Model::ModalSegmentsAuto => format!("modal segments auto N={el}/{modes}m tol={h:.0e}"),
             Model::FfrDopri5 => {
                 format!("FFR stiffened Dormand-Prince {el}el/{modes}m {r} tol={h:.0e}")
             }
@@ -226,6 +242,13 @@ impl Setting {
             Model::Segments => s.rod.model = RodModelKind::Segments,
             Model::SegmentsAuto => {
                 s.rod.model = RodModelKind::Segments;
+                s.solver.method = SolverMethod::Auto;
+                s.solver.step = 3e-4;
+                s.solver.tolerance = self.h;
+            }
+            Model::ModalSegmentsAuto => {
+                s.rod.model = RodModelKind::ModalSegments;
+                s.rod.modes = self.modes;
                 s.solver.method = SolverMethod::Auto;
                 s.solver.step = 3e-4;
                 s.solver.tolerance = self.h;

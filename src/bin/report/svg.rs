@@ -20,7 +20,7 @@ pub struct Panel {
     pub points: Vec<Point>,
 }
 
-const MODEL_NAMES: [&str; 7] = [
+const MODEL_NAMES: [&str; 8] = [
     "FFR linear",
     "FFR stiffened",
     "segments",
@@ -28,9 +28,10 @@ const MODEL_NAMES: [&str; 7] = [
     "FFR stiffened, auto (RK4(3), minimal coordinates)",
     "segments, auto (error control)",
     "FFR stiffened, Dormand-Prince (minimal coordinates)",
+    "segment chain on its modes, auto (exponential RK4(3))",
 ];
-const COLOURS: [&str; 7] = [
-    "#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#17becf",
+const COLOURS: [&str; 8] = [
+    "#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#17becf", "#e377c2",
 ];
 
 /// Models 0 to 3 of [`MODEL_NAMES`] step with a fixed step (no error control).

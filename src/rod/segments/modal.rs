@@ -49,7 +49,7 @@ pub struct ModalSegmentRod {
     basis: Mat<f64>,
     /// The retained modes' circular frequencies, rad/s.
     omega: Vec<f64>,
-    /// The direct evaluation in reduced coordinates, for a plain chain
+    /// The direct evaluation in reduced coordinates, for a chain without end body rotations
     /// ([`super::modal_plain`]); the projection of the chain's own functions otherwise.
     plain: Option<Plain>,
     scratch: RefCell<Scratch>,
@@ -111,18 +111,15 @@ impl ModalSegmentRod {
             plain: None,
             scratch,
         };
-        let plain = !rod.chain.has_shear()
-            && !rod.chain.has_end_rotation(0)
-            && !rod.chain.has_end_rotation(1)
-            && n <= MAX_REDUCED;
+        let plain =
+            !rod.chain.has_end_rotation(0) && !rod.chain.has_end_rotation(1) && n <= MAX_REDUCED;
         if plain {
             let (stiffness, damping) = rod.spring_matrices();
-            let chain = &rod.chain;
             let basis = &rod.basis;
             rod.plain = Some(Plain::new(
-                chain,
+                &rod.chain,
                 n,
-                |k, c| basis[(chain.theta_index(k), c)],
+                |row, c| basis[(row, c)],
                 stiffness,
                 damping,
             ));
@@ -309,6 +306,20 @@ impl RodBody for ModalSegmentRod {
         Some(self.omega.clone())
     }
 
+    /// The pinned modes with the chain's stiffness-proportional dampers: `(w^2, C_r,ii)` of the
+    /// reduced spring and damper matrices (diagonal on modes of unit modal mass).
+    fn modal_oscillators(&self) -> Option<Vec<(f64, f64)>> {
+        let n = self.basis.ncols();
+        let (_, damping) = self.spring_matrices();
+        Some(
+            self.omega
+                .iter()
+                .enumerate()
+                .map(|(i, w)| (w * w, damping[(3 + i) * n + 3 + i]))
+                .collect(),
+        )
+    }
+
     fn mass(&self, r: &[f64], mut out: MatMut<'_, f64>) {
         if self.direct(r, |p, t| p.mass(t, out.rb_mut())).is_some() {
             return;
@@ -491,9 +502,10 @@ mod tests {
     use crate::beam::section_table::EndBody;
     use crate::beam::{RodDefinition, RodProperties};
 
-    /// The direct evaluation of a plain chain is the projection of the chain's own functions:
-    /// mass, forces, gravity, points, Jacobians and velocity products at bent, moving states,
-    /// with end masses at both pins and a damped chain.
+    /// The direct evaluation is the projection of the chain's own functions: mass, forces,
+    /// gravity, points, Jacobians and velocity products at bent, moving states, with end masses
+    /// at both pins and a damped chain, with and without shear slides, even and odd segment
+    /// counts (the midpoint on a joint or inside a segment).
     #[test]
     fn direct_evaluation_is_the_projection() {
         let props = RodProperties::cdi_benchmark();
@@ -511,8 +523,22 @@ mod tests {
                 inertia: 0.0,
             },
         };
+        for shear in [None, Some(props.youngs_modulus / 2.6)] {
+            for segments in [12, 13] {
+                check_direct(
+                    &RodDefinition {
+                        shear_modulus: shear,
+                        ..definition.clone()
+                    },
+                    segments,
+                );
+            }
+        }
+    }
+
+    fn check_direct(definition: &RodDefinition, segments: usize) {
         let build = || {
-            let chain = SegmentRod::from_definition(&definition, 12, 0.02, false).unwrap();
+            let chain = SegmentRod::from_definition(definition, segments, 0.02, false).unwrap();
             ModalSegmentRod::new(chain, 4).unwrap()
         };
         let direct = build();
@@ -537,6 +563,10 @@ mod tests {
                 })
                 .collect();
             let close = |a: f64, b: f64, scale: f64, what: &str| {
+                let what = format!(
+                    "{what} ({segments} segments, shear {})",
+                    definition.shear_modulus.is_some()
+                );
                 assert!((a - b).abs() <= 1e-11 * scale, "{what}: {a} vs {b}");
             };
             let (mut ma, mut mb) = (Mat::<f64>::zeros(n, n), Mat::<f64>::zeros(n, n));
@@ -545,7 +575,15 @@ mod tests {
             let scale = (0..n).map(|i| mb[(i, i)].abs()).fold(0.0, f64::max);
             for i in 0..n {
                 for j in 0..n {
-                    close(ma[(i, j)], mb[(i, j)], scale, "mass");
+                    close(
+                        ma[(i, j)],
+                        mb[(i, j)],
+                        scale,
+                        &format!(
+                            "mass ({i}, {j}), {segments} segments, shear {}",
+                            definition.shear_modulus.is_some()
+                        ),
+                    );
                 }
             }
             let (mut fa, mut fb) = (vec![0.0; n], vec![0.0; n]);

@@ -1,21 +1,31 @@
-//! The chain on its modes evaluated directly in its reduced coordinates, for a plain chain (no
-//! shear slides, no end body rotations, no axial springs): the same equations as the projection
-//! `T^T M(T r) T`, `T^T Q(T r, T r')` of [`super::modal`], in `O(N n^2)` instead of `O(N^2 n)`,
-//! with one `sin`/`cos` per segment shared by every function at the same coordinates.
+//! The chain on its modes evaluated directly in its reduced coordinates, for a chain without
+//! axial springs and end body rotations (with or without shear slides): the same equations as
+//! the projection `T^T M(T r) T`, `T^T Q(T r, T r')` of [`super::modal`], in `O(N n^2)` instead
+//! of `O(N^2 n)`, with one `sin`/`cos` per segment shared by every function at the same
+//! coordinates.
 //!
-//! With `r = [x_B, y_B, alpha, p_1 .. p_m]` (`n = 3 + m`), the segment angles are
-//! `theta_k = sum_c Psi_kc r_c` (`Psi_k,alpha = 1`, `Psi_k,p_i` the mode's angle on segment
-//! `k`, zero on `x_B`, `y_B`), and with `e_k = (cos theta_k, sin theta_k)`,
-//! `n_k = (-sin theta_k, cos theta_k)` (docs/physics.md, "Rod model 2" and "Rod model 3"):
-//! - the centroid `g_k = B + sum_{j<k} l e_j + c_k e_k` has the reduced partial velocities
-//!   `G_k = d g_k / d r`: `(1, 0)`, `(0, 1)` on `x_B`, `y_B`, and
-//!   `P_k,c + c_k n_k Psi_kc` on the angle columns, `P_k,c = sum_{j<k} l n_j Psi_jc`;
-//! - mass `M_r = sum_k (m_k G_k^T G_k + I_k Psi_k Psi_k^T) + m_B J_B^T J_B + m_C J_C^T J_C`
-//!   (the end bodies' masses at the pins, `J_C = [I, P_N]`);
-//! - velocity products `Q_r = -sum_k m_k G_k^T gamma_k - m_C J_C^T gamma_C`, with
-//!   `gamma_k = -sum_{j<k} l w_j^2 e_j - c_k w_k^2 e_k` and `w_k = sum_c Psi_kc r_c'`;
-//! - joint springs and dampers, linear in the angle differences: the constant reduced
-//!   matrices `K_r = T^T K T`, `C_r = T^T C T` of the chain ([`Plain::new`] takes them).
+//! With `r = [x_B, y_B, alpha, p_1 .. p_m]` (`n = 3 + m`; `S_0`, the start of segment 0, is
+//! `(x_B, y_B)` plus the modes' share: a shear chain's modes move it across B's end slide), the
+//! segment angles are `theta_k = sum_c Psi_kc r_c` (`Psi_k,alpha = 1`)
+//! and the shear slides `t_i = sum_c Sigma_ic r_c` (`i = 0..N`: `t_B`, the joints', `t_C`; zero
+//! without shear). With `e_k = (cos theta_k, sin theta_k)`, `n_k = (-sin theta_k, cos theta_k)`,
+//! the offsets `d_k = l e_k + t_{k+1} n_k` (docs/physics.md, "Rod model 2", "Shear-deformable
+//! chains"; `d_{N-1}` ends at C) and `w_k`, `t_i'` the rates:
+//! - the centroid `g_k = S_0 + sum_{j<k} d_j + c_k e_k` has the reduced partial velocities
+//!   `G_k = d g_k / d r`: the unit vectors on `x_B`, `y_B`, and
+//!   `P_k,c + c_k n_k Psi_kc` on the others, `P_k,c = d S_0 / d r_c + sum_{j<k} (perp(d_j)
+//!   Psi_jc + n_j Sigma_{j+1,c})`, `perp(d_j) = l n_j - t_{j+1} e_j`;
+//! - its velocity-product acceleration `gamma_k = sum_{j<k} (-2 w_j t_{j+1}' e_j - w_j^2 d_j)
+//!   - c_k w_k^2 e_k`;
+//! - mass `M_r = sum_k (m_k G_k^T G_k + I_k Psi_k Psi_k^T) + m_B J_B^T J_B + m_C J_C^T J_C`,
+//!   velocity products `Q_r = -sum_k m_k G_k^T gamma_k - m_B J_B^T gamma_B - m_C J_C^T gamma_C`
+//!   (the end bodies' masses at the pins);
+//! - a point `S_0 + sum_{j<k} d_j + xi e_k + w t_i n_k` (B: `k = 0`, `xi = 0`, `t_B` with
+//!   `w = -1`; C: `k = N - 1`, `xi = l`, `t_C` with `w = 1`; the midpoint) has the Jacobian
+//!   `P_k + xi n_k Psi_k - w t_i e_k Psi_k + w n_k Sigma_i` and the velocity products
+//!   `gamma` of its segments, `- xi w_k^2 e_k - w (2 w_k t_i' e_k + w_k^2 t_i n_k)`;
+//! - joint springs and dampers, linear in the coordinates: the constant reduced matrices
+//!   `K_r = T^T K T`, `C_r = T^T C T` of the chain ([`Plain::new`] takes them).
 
 use faer::MatMut;
 use nalgebra::Vector2;
@@ -29,36 +39,53 @@ pub const MAX_REDUCED: usize = 3 + 16;
 /// One row of reduced coordinates on the stack.
 type Row = [f64; MAX_REDUCED];
 
-/// The plain chain's data in reduced coordinates.
+/// A point of the chain: on segment `k` at `xi` (m) from its start, plus `w t_i n_k` across
+/// the shear slide `i`.
+#[derive(Clone, Copy, Debug)]
+struct ChainPoint {
+    k: usize,
+    xi: f64,
+    slide: Option<(usize, f64)>,
+}
+
+/// The chain's data in reduced coordinates.
 pub(super) struct Plain {
     /// Reduced coordinates, `3 + m`.
     n: usize,
     /// Segment length l, m.
     l: f64,
-    /// Per segment: mass m_k (kg), centroid offset c_k (m), centroidal inertia I_k (kg m^2).
+    /// Per segment: mass m_k (kg), centroid offset c_k (m), inertia I_k about the centroid
+    /// (kg m^2, the sections' rotary inertia included).
     masses: Vec<f64>,
     centroids: Vec<f64>,
     inertias: Vec<f64>,
     /// `Psi`, segment-major: `psi[k * n + c]` (zero for c = 0, 1).
     psi: Vec<f64>,
+    /// `Sigma`, slide-major (`N + 1` slides): `sigma[i * n + c]`; all zero without shear.
+    sigma: Vec<f64>,
+    /// `S_0`'s share of the angle and slide columns (x, y): a shear chain's modes move `S_0`
+    /// across the end slide at B, so that B stays (`y_0 = t_B`); zero without shear.
+    base_x: Row,
+    base_y: Row,
     /// End bodies' masses at B and C, kg.
     end_mass: [f64; 2],
-    /// The material midpoint: segment and distance from its start, m.
-    mid: (usize, f64),
+    /// B, C and the midpoint.
+    points: [ChainPoint; 3],
     /// `K_r`, `C_r` (n x n, row-major).
     stiffness: Vec<f64>,
     damping: Vec<f64>,
 }
 
-/// Angles' cosines and sines at the last coordinates asked for: `theta_k = alpha + phi_k(p)`,
-/// the elastic part `phi_k` kept while the modal coordinates `p` stay (the constraint
-/// iterations change only `x_B`, `y_B`, `alpha`), turned by `alpha` without another `sin`,
-/// `cos` per segment.
+/// Angles' cosines and sines and the slides at the last coordinates asked for:
+/// `theta_k = alpha + phi_k(p)`, the elastic part `phi_k` kept while the modal coordinates `p`
+/// stay (the constraint iterations change only `x_B`, `y_B`, `alpha`), turned by `alpha`
+/// without another `sin`, `cos` per segment.
 pub(super) struct Trig {
     r: Vec<f64>,
     valid: bool,
     cos: Vec<f64>,
     sin: Vec<f64>,
+    slides: Vec<f64>,
     elastic_valid: bool,
     elastic_cos: Vec<f64>,
     elastic_sin: Vec<f64>,
@@ -71,40 +98,96 @@ impl Trig {
             valid: false,
             cos: vec![0.0; segments],
             sin: vec![0.0; segments],
+            slides: vec![0.0; segments + 1],
             elastic_valid: false,
             elastic_cos: vec![0.0; segments],
             elastic_sin: vec![0.0; segments],
         }
     }
+
+    fn axes(&self, k: usize) -> (Vector2<f64>, Vector2<f64>) {
+        let (c, s) = (self.cos[k], self.sin[k]);
+        (Vector2::new(c, s), Vector2::new(-s, c))
+    }
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
 impl Plain {
-    /// The plain chain `chain` with the basis `psi(k, c)` (segment `k`'s angle per reduced
-    /// coordinate `c`) and its reduced spring and damper matrices (row-major, `n x n`).
+    /// The chain `chain` (no axial springs, no end body rotations) with the basis `t(row, c)`
+    /// over its coordinates and its reduced spring and damper matrices (row-major, `n x n`).
     pub(super) fn new(
         chain: &SegmentRod,
         n: usize,
-        psi: impl Fn(usize, usize) -> f64,
+        t: impl Fn(usize, usize) -> f64,
         stiffness: Vec<f64>,
         damping: Vec<f64>,
     ) -> Plain {
         assert!(n <= MAX_REDUCED);
         let segments = chain.n_seg;
-        let mut table = vec![0.0; segments * n];
+        let mut psi = vec![0.0; segments * n];
         for k in 0..segments {
             for c in 2..n {
-                table[k * n + c] = psi(k, c);
+                psi[k * n + c] = t(chain.theta_index(k), c);
             }
         }
+        let mut sigma = vec![0.0; (segments + 1) * n];
+        if chain.has_shear() {
+            for i in 0..=segments {
+                for c in 2..n {
+                    sigma[i * n + c] = t(chain.shear_index(i), c);
+                }
+            }
+        }
+        let (mut base_x, mut base_y) = ([0.0; MAX_REDUCED], [0.0; MAX_REDUCED]);
+        for c in 2..n {
+            base_x[c] = t(0, c);
+            base_y[c] = t(1, c);
+        }
+        let shear = chain.has_shear();
+        let slide = |i: usize, w: f64| shear.then_some((i, w));
+        let (k_mid, xi_mid) = chain.mid;
+        let mid = if xi_mid == 0.0 && k_mid > 0 && shear {
+            // Halfway across the joint's slide (the chain's own midpoint).
+            ChainPoint {
+                k: k_mid - 1,
+                xi: chain.seg_len,
+                slide: Some((k_mid, 0.5)),
+            }
+        } else {
+            ChainPoint {
+                k: k_mid,
+                xi: xi_mid,
+                slide: None,
+            }
+        };
+        let points = [
+            ChainPoint {
+                k: 0,
+                xi: 0.0,
+                slide: slide(0, -1.0),
+            },
+            ChainPoint {
+                k: segments - 1,
+                xi: chain.seg_len,
+                slide: slide(segments, 1.0),
+            },
+            mid,
+        ];
         Plain {
             n,
             l: chain.seg_len,
             masses: chain.masses.clone(),
             centroids: chain.centroids.clone(),
             inertias: chain.inertias.clone(),
-            psi: table,
+            psi,
+            sigma,
+            base_x,
+            base_y,
             end_mass: chain.end_mass,
-            mid: chain.mid,
+            points,
             stiffness,
             damping,
         }
@@ -118,16 +201,20 @@ impl Plain {
         &self.psi[k * self.n..(k + 1) * self.n]
     }
 
-    /// The segment angle rates `w_k = Psi_k . r'`.
-    fn rate(&self, k: usize, v: &[f64]) -> f64 {
-        self.psi(k)[2..]
-            .iter()
-            .zip(&v[2..self.n])
-            .map(|(a, b)| a * b)
-            .sum()
+    fn sigma(&self, i: usize) -> &[f64] {
+        &self.sigma[i * self.n..(i + 1) * self.n]
     }
 
-    /// Cosines and sines of the angles at `r` into `trig` (kept while `r` is the same).
+    fn point_of(&self, p: RodPoint) -> ChainPoint {
+        match p {
+            RodPoint::B => self.points[0],
+            RodPoint::C => self.points[1],
+            RodPoint::Mid => self.points[2],
+        }
+    }
+
+    /// Cosines and sines of the angles and the slides at `r` into `trig` (kept while `r` is
+    /// the same).
     pub(super) fn angles(&self, r: &[f64], trig: &mut Trig) {
         let r = &r[..self.n];
         let same = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits());
@@ -135,16 +222,15 @@ impl Plain {
             return;
         }
         if !(trig.elastic_valid && same(&trig.r[3..], &r[3..])) {
-            // Psi_k,alpha = 1: the elastic part is the modes' share alone.
+            // Psi_k,alpha = 1: the elastic part is the modes' share alone; the slides are the
+            // modes' alone.
             for k in 0..self.segments() {
-                let phi: f64 = self.psi(k)[3..]
-                    .iter()
-                    .zip(&r[3..])
-                    .map(|(a, b)| a * b)
-                    .sum();
-                let (s, c) = phi.sin_cos();
+                let (s, c) = dot(&self.psi(k)[3..], &r[3..]).sin_cos();
                 trig.elastic_cos[k] = c;
                 trig.elastic_sin[k] = s;
+            }
+            for i in 0..=self.segments() {
+                trig.slides[i] = dot(&self.sigma(i)[3..], &r[3..]);
             }
             trig.elastic_valid = true;
         }
@@ -158,145 +244,137 @@ impl Plain {
         trig.valid = true;
     }
 
-    fn axes(trig: &Trig, k: usize) -> (Vector2<f64>, Vector2<f64>) {
-        let (c, s) = (trig.cos[k], trig.sin[k]);
-        (Vector2::new(c, s), Vector2::new(-s, c))
-    }
-
-    /// `J_P` of point `p` in reduced coordinates, column `c` of the angle part (`c >= 2`)
-    /// through `columns(c, vector)`; the columns of `x_B`, `y_B` are the unit vectors.
-    fn point_columns(
-        &self,
-        p: RodPoint,
-        trig: &Trig,
-        mut columns: impl FnMut(usize, Vector2<f64>),
-    ) {
-        let (k_end, xi) = match p {
-            RodPoint::B => (0, 0.0),
-            RodPoint::C => (self.segments() - 1, self.l),
-            RodPoint::Mid => self.mid,
-        };
-        let mut acc = [Vector2::zeros(); MAX_REDUCED];
-        if p != RodPoint::B {
-            for k in 0..=k_end {
-                let (_, nn) = Self::axes(trig, k);
-                let lever = if k < k_end { self.l } else { xi };
-                let psi = self.psi(k);
-                for c in 2..self.n {
-                    acc[c] += nn * (lever * psi[c]);
-                }
-            }
-        }
-        for (c, a) in acc.iter().enumerate().take(self.n).skip(2) {
-            columns(c, *a);
-        }
-    }
-
-    /// Position of `p`.
-    pub(super) fn point(&self, p: RodPoint, r: &[f64], trig: &Trig) -> Vector2<f64> {
-        let mut x = Vector2::new(r[0], r[1]);
-        let (k_end, xi) = match p {
-            RodPoint::B => return x,
-            RodPoint::C => (self.segments() - 1, self.l),
-            RodPoint::Mid => self.mid,
-        };
-        for k in 0..=k_end {
-            let (e, _) = Self::axes(trig, k);
-            x += e * if k < k_end { self.l } else { xi };
-        }
-        x
-    }
-
-    /// `J_P` (2 x n) into `out`.
-    pub(super) fn point_jacobian(&self, p: RodPoint, trig: &Trig, mut out: MatMut<'_, f64>) {
-        out[(0, 0)] = 1.0;
-        out[(1, 0)] = 0.0;
-        out[(0, 1)] = 0.0;
-        out[(1, 1)] = 1.0;
-        self.point_columns(p, trig, |c, u| {
-            out[(0, c)] = u.x;
-            out[(1, c)] = u.y;
-        });
-    }
-
-    /// `J_P' r'`: `-sum l w_k^2 e_k` over the segments up to the point.
-    pub(super) fn point_bias(&self, p: RodPoint, v: &[f64], trig: &Trig) -> Vector2<f64> {
-        let (k_end, xi) = match p {
-            RodPoint::B => return Vector2::zeros(),
-            RodPoint::C => (self.segments() - 1, self.l),
-            RodPoint::Mid => self.mid,
-        };
-        let mut a = Vector2::zeros();
-        for k in 0..=k_end {
-            let (e, _) = Self::axes(trig, k);
-            let w = self.rate(k, v);
-            a -= e * (w * w * if k < k_end { self.l } else { xi });
-        }
-        a
-    }
-
-    /// Walk the segments with their reduced partial velocities `G_k` (angle columns; the
-    /// columns of `x_B`, `y_B` are the unit vectors) and, with velocities `v`, the centroid's
-    /// velocity-product acceleration `gamma_k`: `visit(k, G_k, gamma_k)`. Returns `J_C`'s
-    /// angle columns and `gamma_C`.
+    /// Walk the segments: `visit(k, G_k x, G_k y, gamma_k)` with the reduced partial velocities
+    /// of the centroid (angle and slide columns; the columns of `x_B`, `y_B` are the unit
+    /// vectors) and, with velocities `v`, its velocity-product acceleration. Stops before
+    /// segment `stop` and returns the prefix sums `P` (x, y), `sum d_j` and `gamma` there.
     fn walk(
         &self,
         trig: &Trig,
         v: Option<&[f64]>,
-        mut visit: impl FnMut(usize, &[Vector2<f64>; MAX_REDUCED], Vector2<f64>),
-    ) -> ([Vector2<f64>; MAX_REDUCED], Vector2<f64>) {
+        stop: usize,
+        mut visit: impl FnMut(usize, &Row, &Row, Vector2<f64>),
+    ) -> (Row, Row, Vector2<f64>, Vector2<f64>) {
         let n = self.n;
-        let mut prefix = [Vector2::zeros(); MAX_REDUCED];
-        let mut g = [Vector2::zeros(); MAX_REDUCED];
-        let mut gamma_prefix = Vector2::zeros();
-        for k in 0..self.segments() {
-            let (e, nn) = Self::axes(trig, k);
-            let psi = self.psi(k);
-            let ck = self.centroids[k];
-            for c in 2..n {
-                g[c] = prefix[c] + nn * (ck * psi[c]);
-            }
-            let w2 = v.map_or(0.0, |v| {
-                let w = self.rate(k, v);
-                w * w
-            });
-            visit(k, &g, gamma_prefix - e * (ck * w2));
-            for c in 2..n {
-                prefix[c] += nn * (self.l * psi[c]);
-            }
-            gamma_prefix -= e * (self.l * w2);
-        }
-        (prefix, gamma_prefix)
-    }
-
-    /// The mass matrix (n x n) into `out` (overwritten): the walk of [`Self::walk`] with the
-    /// partial velocities' components in plain arrays (the inner loop of `O(N n^2)`).
-    pub(super) fn mass(&self, trig: &Trig, mut out: MatMut<'_, f64>) {
-        let n = self.n;
-        let mut m = [[0.0; MAX_REDUCED]; MAX_REDUCED];
-        let (mut px, mut py) = ([0.0; MAX_REDUCED], [0.0; MAX_REDUCED]);
+        let (mut px, mut py) = (self.base_x, self.base_y);
         let (mut gx, mut gy) = ([0.0; MAX_REDUCED], [0.0; MAX_REDUCED]);
-        let mut add = |mass: f64, gx: &Row, gy: &Row, m: &mut [Row; MAX_REDUCED]| {
-            for c in 2..n {
-                let (ax, ay) = (mass * gx[c], mass * gy[c]);
-                m[0][c] += ax;
-                m[1][c] += ay;
-                let row = &mut m[c];
-                for d in c..n {
-                    row[d] += ax * gx[d] + ay * gy[d];
-                }
-            }
-        };
-        for k in 0..self.segments() {
-            let (c_k, s_k) = (trig.cos[k], trig.sin[k]);
+        let mut offset = Vector2::zeros();
+        let mut gamma = Vector2::zeros();
+        for k in 0..stop {
+            let (e, nn) = trig.axes(k);
             let psi = self.psi(k);
             let ck = self.centroids[k];
             for c in 2..n {
                 let lever = ck * psi[c];
-                gx[c] = px[c] - s_k * lever;
-                gy[c] = py[c] + c_k * lever;
+                gx[c] = px[c] + nn.x * lever;
+                gy[c] = py[c] + nn.y * lever;
             }
-            add(self.masses[k], &gx, &gy, &mut m);
+            let (w, slide_rate) = match v {
+                Some(v) => (
+                    dot(&psi[2..], &v[2..n]),
+                    dot(&self.sigma(k + 1)[2..], &v[2..n]),
+                ),
+                None => (0.0, 0.0),
+            };
+            visit(k, &gx, &gy, gamma - e * (ck * w * w));
+            let t = trig.slides[k + 1];
+            let perp = nn * self.l - e * t;
+            let sigma = self.sigma(k + 1);
+            for c in 2..n {
+                px[c] += perp.x * psi[c] + nn.x * sigma[c];
+                py[c] += perp.y * psi[c] + nn.y * sigma[c];
+            }
+            let d = e * self.l + nn * t;
+            offset += d;
+            gamma -= e * (2.0 * w * slide_rate) + d * (w * w);
+        }
+        (px, py, offset, gamma)
+    }
+
+    /// Position, Jacobian (angle and slide columns, x and y) and, with `v`, the velocity
+    /// products of point `p`.
+    fn point_parts(
+        &self,
+        p: RodPoint,
+        trig: &Trig,
+        v: Option<&[f64]>,
+    ) -> (Vector2<f64>, Row, Row, Vector2<f64>) {
+        let n = self.n;
+        let cp = self.point_of(p);
+        let (mut jx, mut jy, offset, mut gamma) = self.walk(trig, v, cp.k, |_, _, _, _| {});
+        let (e, nn) = trig.axes(cp.k);
+        let psi = self.psi(cp.k);
+        let w = v.map_or(0.0, |v| dot(&psi[2..], &v[2..n]));
+        let mut x = offset + e * cp.xi;
+        gamma -= e * (cp.xi * w * w);
+        for c in 2..n {
+            jx[c] += nn.x * cp.xi * psi[c];
+            jy[c] += nn.y * cp.xi * psi[c];
+        }
+        if let Some((i, weight)) = cp.slide {
+            let t = trig.slides[i];
+            let sigma = self.sigma(i);
+            x += nn * (weight * t);
+            for c in 2..n {
+                jx[c] += weight * (nn.x * sigma[c] - e.x * t * psi[c]);
+                jy[c] += weight * (nn.y * sigma[c] - e.y * t * psi[c]);
+            }
+            let rate = v.map_or(0.0, |v| dot(&sigma[2..], &v[2..n]));
+            gamma -= (e * (2.0 * w * rate) + nn * (w * w * t)) * weight;
+        }
+        (x, jx, jy, gamma)
+    }
+
+    /// Position of `p`.
+    pub(super) fn point(&self, p: RodPoint, r: &[f64], trig: &Trig) -> Vector2<f64> {
+        let (x, _, _, _) = self.point_parts(p, trig, None);
+        let n = self.n;
+        let s0 = Vector2::new(
+            r[0] + dot(&self.base_x[2..n], &r[2..n]),
+            r[1] + dot(&self.base_y[2..n], &r[2..n]),
+        );
+        x + s0
+    }
+
+    /// `J_P` (2 x n) into `out`.
+    pub(super) fn point_jacobian(&self, p: RodPoint, trig: &Trig, mut out: MatMut<'_, f64>) {
+        let (_, jx, jy, _) = self.point_parts(p, trig, None);
+        out[(0, 0)] = 1.0;
+        out[(1, 0)] = 0.0;
+        out[(0, 1)] = 0.0;
+        out[(1, 1)] = 1.0;
+        for c in 2..self.n {
+            out[(0, c)] = jx[c];
+            out[(1, c)] = jy[c];
+        }
+    }
+
+    /// `J_P' r'`, the velocity products of `p`'s acceleration.
+    pub(super) fn point_bias(&self, p: RodPoint, v: &[f64], trig: &Trig) -> Vector2<f64> {
+        self.point_parts(p, trig, Some(v)).3
+    }
+
+    /// `m J^T J` of a point mass into the upper triangle of `m`.
+    fn add_point_mass(&self, mass: f64, gx: &Row, gy: &Row, m: &mut [Row; MAX_REDUCED]) {
+        let n = self.n;
+        for c in 2..n {
+            let (ax, ay) = (mass * gx[c], mass * gy[c]);
+            m[0][c] += ax;
+            m[1][c] += ay;
+            let row = &mut m[c];
+            for d in c..n {
+                row[d] += ax * gx[d] + ay * gy[d];
+            }
+        }
+    }
+
+    /// The mass matrix (n x n) into `out` (overwritten).
+    pub(super) fn mass(&self, trig: &Trig, mut out: MatMut<'_, f64>) {
+        let n = self.n;
+        let mut m = [[0.0; MAX_REDUCED]; MAX_REDUCED];
+        let (jcx, jcy, _, _) = self.walk(trig, None, self.segments(), |k, gx, gy, _| {
+            self.add_point_mass(self.masses[k], gx, gy, &mut m);
+            let psi = self.psi(k);
             let inertia = self.inertias[k];
             for c in 2..n {
                 let a = inertia * psi[c];
@@ -305,16 +383,16 @@ impl Plain {
                     row[d] += a * psi[d];
                 }
             }
-            for c in 2..n {
-                let lever = self.l * psi[c];
-                px[c] -= s_k * lever;
-                py[c] += c_k * lever;
-            }
+        });
+        if self.end_mass[0] > 0.0 {
+            let (_, jx, jy, _) = self.point_parts(RodPoint::B, trig, None);
+            self.add_point_mass(self.end_mass[0], &jx, &jy, &mut m);
         }
-        let total: f64 = self.masses.iter().sum::<f64>() + self.end_mass[0] + self.end_mass[1];
         if self.end_mass[1] > 0.0 {
-            add(self.end_mass[1], &px, &py, &mut m);
+            // C ends the last offset: J_C = P_N.
+            self.add_point_mass(self.end_mass[1], &jcx, &jcy, &mut m);
         }
+        let total = self.masses.iter().sum::<f64>() + self.end_mass[0] + self.end_mass[1];
         m[0][0] = total;
         m[1][1] = total;
         for c in 0..n {
@@ -325,22 +403,28 @@ impl Plain {
         }
     }
 
+    /// `q -= m J^T gamma` of a point mass.
+    fn add_point_inertia(&self, mass: f64, gx: &Row, gy: &Row, gamma: Vector2<f64>, q: &mut Row) {
+        q[0] -= mass * gamma.x;
+        q[1] -= mass * gamma.y;
+        for c in 2..self.n {
+            q[c] -= mass * (gx[c] * gamma.x + gy[c] * gamma.y);
+        }
+    }
+
     /// Velocity products, springs and dampers (n entries, overwritten).
     pub(super) fn forces(&self, r: &[f64], v: &[f64], trig: &Trig, f: &mut [f64]) {
         let n = self.n;
         let mut q = [0.0; MAX_REDUCED];
-        let mut project = |mass: f64, g: &[Vector2<f64>; MAX_REDUCED], gamma: Vector2<f64>| {
-            q[0] -= mass * gamma.x;
-            q[1] -= mass * gamma.y;
-            for c in 2..n {
-                q[c] -= mass * g[c].dot(&gamma);
-            }
-        };
-        let (j_c, gamma_c) = self.walk(trig, Some(v), |k, g, gamma| {
-            project(self.masses[k], g, gamma)
+        let (jcx, jcy, _, gamma_c) = self.walk(trig, Some(v), self.segments(), |k, gx, gy, g| {
+            self.add_point_inertia(self.masses[k], gx, gy, g, &mut q)
         });
+        if self.end_mass[0] > 0.0 {
+            let (_, jx, jy, gamma) = self.point_parts(RodPoint::B, trig, Some(v));
+            self.add_point_inertia(self.end_mass[0], &jx, &jy, gamma, &mut q);
+        }
         if self.end_mass[1] > 0.0 {
-            project(self.end_mass[1], &j_c, gamma_c);
+            self.add_point_inertia(self.end_mass[1], &jcx, &jcy, gamma_c, &mut q);
         }
         for (c, fc) in f[..n].iter_mut().enumerate() {
             let row = c * n;
@@ -355,21 +439,19 @@ impl Plain {
     /// Add the gravity forces `sum m_k G_k^T g` (rod and end bodies) into `f`.
     pub(super) fn add_gravity(&self, trig: &Trig, g: Vector2<f64>, f: &mut [f64]) {
         let n = self.n;
-        let mut total = self.end_mass[0];
         let mut q = [0.0; MAX_REDUCED];
-        let (j_c, _) = self.walk(trig, None, |k, gk, _| {
-            total += self.masses[k];
-            for c in 2..n {
-                q[c] += self.masses[k] * gk[c].dot(&g);
-            }
+        // Gravity is the point-inertia term with gamma = -g.
+        let (jcx, jcy, _, _) = self.walk(trig, None, self.segments(), |k, gx, gy, _| {
+            self.add_point_inertia(self.masses[k], gx, gy, -g, &mut q)
         });
-        total += self.end_mass[1];
-        for c in 2..n {
-            q[c] += self.end_mass[1] * j_c[c].dot(&g);
+        if self.end_mass[0] > 0.0 {
+            let (_, jx, jy, _) = self.point_parts(RodPoint::B, trig, None);
+            self.add_point_inertia(self.end_mass[0], &jx, &jy, -g, &mut q);
         }
-        f[0] += total * g.x;
-        f[1] += total * g.y;
-        for c in 2..n {
+        if self.end_mass[1] > 0.0 {
+            self.add_point_inertia(self.end_mass[1], &jcx, &jcy, -g, &mut q);
+        }
+        for c in 0..n {
             f[c] += q[c];
         }
     }

@@ -26,6 +26,7 @@ pub fn matrix(quick: bool) -> Vec<Setting> {
         v.push(Setting::auto(8, 3, 1e-3));
         v.push(Setting::dopri5(8, 3, 1e-3));
         v.push(Setting::seg_auto(16, 1e-3));
+        v.push(Setting::modal_auto(32, 3, 1e-3));
         v.push(reference_setting(true));
         return v;
     }
@@ -75,6 +76,12 @@ pub fn matrix(quick: bool) -> Vec<Setting> {
     for n in [16, 32] {
         for tol in [1e-2, 1e-3] {
             v.push(Setting::seg_auto(n, tol));
+        }
+    }
+    // The chain on its modes: segments and tolerance.
+    for n in [16, 32, 64] {
+        for tol in [1e-3, 1e-4] {
+            v.push(Setting::modal_auto(n, 3, tol));
         }
     }
     // Linear FFR modes (1985).

@@ -1,0 +1,88 @@
+"""Large deflection through fmpy: the benchmark rod at 300 rad/s (peak |v_mid/L| 0.07, abrupt
+start) against Exudyn's geometrically exact shear beam (tests/data/exudyn_shear_beam_300rad_s.csv,
+512 elements, converged). The default FFR rod refuses the step past its limit 0.05 with
+fmi2Discard and names the model that goes further; `rod.model_index = 3` (the segment chain on
+its modes) follows the exact beam, in fmi2OK steps and in one fmi2DoStep alike."""
+
+import math
+
+import numpy as np
+import pytest
+from fmpy import extract
+from fmpy.fmi1 import FMICallException
+
+from helpers import ROOT, Slave
+
+W = 300.0
+DT = 1e-4
+DISCARD = 2
+
+
+@pytest.fixture(scope="module")
+def default_dir(default_fmu, tmp_path_factory):
+    """The default FMU (scenes/benchmark.toml: the FFR rod), unzipped."""
+    return extract(str(default_fmu), str(tmp_path_factory.mktemp("high_load")))
+
+
+def exact_beam():
+    rows = [
+        [float(x) for x in line.split(",")]
+        for line in open(ROOT / "tests" / "data" / "exudyn_shear_beam_300rad_s.csv")
+        if line.strip() and not line.startswith("#") and not line.startswith("t")
+    ]
+    return np.array(rows)
+
+
+def started(unzipdir, params=None, integers=None):
+    s = Slave(unzipdir, logging_on=True)
+    for name, value in (integers or {}).items():
+        s.fmu.setInteger([s.vr[name]], [value])
+    s.init(speed=W, params=params)
+    return s
+
+
+def test_ffr_refuses_the_step_past_its_limit_and_names_the_model_that_goes_on(default_dir):
+    s = started(default_dir)
+    exact = exact_beam()
+    peak = np.abs(exact[:, 1]).max()
+    with pytest.raises(FMICallException) as refused:
+        for k in range(len(exact) - 1):
+            t = k * DT
+            s.set(crank__angle=W * t, crank__speed=W)
+            s.fmu.doStep(t, DT)
+            # Every accepted step is within 1 % of the exact beam's peak.
+            (v,) = s.get("rod.deflection_rel")
+            assert abs(v - exact[k + 1, 1]) < 1e-2 * peak, (t, v)
+    assert refused.value.status == DISCARD
+    text = s.log.text()
+    assert "rod.deflection_limit = 0.05" in text and "rod.model = modal_segments" in text, text
+    s.free()
+
+
+def test_modal_segments_follow_the_exact_beam(default_dir):
+    exact = exact_beam()
+    peak = np.abs(exact[:, 1]).max()
+    s = started(default_dir, integers={"rod.model_index": 3, "rod.elements": 32})
+    assert s.fmu.getInteger([s.vr["rod.model_index"]]) == [3]
+    (limit,) = s.get("rod.deflection_limit")
+    assert limit == 0.25
+    worst = 0.0
+    for k in range(len(exact) - 1):
+        t = k * DT
+        s.set(crank__angle=W * t, crank__speed=W)
+        s.fmu.doStep(t, DT)
+        (v,) = s.get("rod.deflection_rel")
+        worst = max(worst, abs(v - exact[k + 1, 1]) / peak)
+    assert worst < 5e-3, worst
+    # Its error estimate says what it is (the chain's discretization at 32 segments).
+    (estimate,) = s.get("rod.error_estimate")
+    assert worst / 3 < estimate < 3 * worst, (estimate, worst)
+    s.free()
+    # Two revolutions in one fmi2DoStep: the same motion at its end.
+    one = started(default_dir, integers={"rod.model_index": 3, "rod.elements": 32})
+    stop = 4 * math.pi / W
+    one.fmu.doStep(0.0, stop)
+    (v,) = one.get("rod.deflection_rel")
+    k = round(stop / DT)
+    assert abs(v - np.interp(stop, exact[:, 0], exact[:, 1])) < 5e-3 * peak, (v, exact[k, 1])
+    one.free()
