@@ -5,7 +5,7 @@
 //!
 //! Run with `cargo test --release --test modal_segments -- --nocapture` to see the numbers.
 
-use flexrod::scene::{DeflectionPolicy, RodModelKind, SolverMethod};
+use flexrod::scene::{RodModelKind, SolverMethod};
 use flexrod::{Scene, Simulation};
 
 mod common;
