@@ -1087,9 +1087,9 @@ fn ffr_levels_off_at_300_rad_s() {
             "At 300 rad/s (v/L up to {}) the FFR rod levels off at {} of the peak pointwise\n\
              (peak {}) at a converged step (stiffened, 8 elements, 3 modes, generalized-alpha,\n\
              h = 1e-5 s; 6 modes: {}, 16 elements: {}; the default scene's RK4 at h = 3e-4 s:\n\
-             {}), against a segment chain N = 64 at h = 1e-5 s (N = 32 is within {} of it;\n\
-             tests/data has no exact-beam data at 300 rad/s); there the segment chain is the accurate\n\
-             choice (`cargo test --release --test segments ffr_levels_off`).",
+             {}), against a segment chain N = 64 at h = 1e-5 s (N = 32 is within {} of it); there\n\
+             the chain on its modes (`rod.model = \"modal_segments\"`, docs/physics.md, \"Rod model 3\") is\n\
+             the accurate and fast choice (`cargo test --release --test segments ffr_levels_off`).",
             percent(p, 2),
             percent(m3.0, 2),
             signed_percent(m3.1, 2),

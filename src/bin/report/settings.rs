@@ -27,8 +27,8 @@ pub enum Model {
     /// FFR with axial stiffening, `solver.method = "dopri5"`: Dormand-Prince 5(4) on the
     /// closed-form minimal coordinates; `h` is the tolerance.
     FfrDopri5,
-    /// The segment chain on its lowest modes (`rod.model = "modal_segments"`), `auto` (the
-    /// exponential RK4(3)); `h` is the tolerance.
+    /// The segment chain on its lowest modes (`rod.model = "modal_segments"`, shear off as in
+    /// the reference chain), `auto` (the exponential RK4(3)); `h` is the tolerance.
     ModalSegmentsAuto,
 }
 
@@ -247,7 +247,10 @@ impl Setting {
                 s.solver.tolerance = self.h;
             }
             Model::ModalSegmentsAuto => {
+                // The reference chain's physics (Euler-Bernoulli, as the chain's `auto` keeps
+                // it): like with like.
                 s.rod.model = RodModelKind::ModalSegments;
+                s.rod.shear_deformation = flexrod::rod::PhysicsSwitch::Off;
                 s.rod.modes = self.modes;
                 s.solver.method = SolverMethod::Auto;
                 s.solver.step = 3e-4;
