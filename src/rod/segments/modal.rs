@@ -173,11 +173,11 @@ impl ModalSegmentRod {
     }
 
     /// `f(plain, trig)` with the angles at `r`, where the chain is plain.
-    fn direct<R>(&self, r: &[f64], f: impl FnOnce(&Plain, &Trig) -> R) -> Option<R> {
+    fn direct<R>(&self, r: &[f64], f: impl FnOnce(&Plain, &mut Trig) -> R) -> Option<R> {
         let plain = self.plain.as_ref()?;
         let mut s = self.scratch.borrow_mut();
         plain.angles(r, &mut s.trig);
-        Some(f(plain, &s.trig))
+        Some(f(plain, &mut s.trig))
     }
 
     /// The chain underneath.

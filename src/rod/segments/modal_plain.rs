@@ -89,6 +89,9 @@ pub(super) struct Trig {
     elastic_valid: bool,
     elastic_cos: Vec<f64>,
     elastic_sin: Vec<f64>,
+    /// B's, C's and the midpoint's position (from `S_0`) and Jacobian columns at `r`, once
+    /// computed (the constraint iterations ask for both at the same coordinates).
+    points: [Option<(Vector2<f64>, Row, Row)>; 3],
 }
 
 impl Trig {
@@ -102,6 +105,7 @@ impl Trig {
             elastic_valid: false,
             elastic_cos: vec![0.0; segments],
             elastic_sin: vec![0.0; segments],
+            points: [None; 3],
         }
     }
 
@@ -242,6 +246,23 @@ impl Plain {
         }
         trig.r.copy_from_slice(r);
         trig.valid = true;
+        trig.points = [None; 3];
+    }
+
+    /// Position (from `S_0`) and Jacobian columns of `p` at the coordinates of `trig`, kept in
+    /// it.
+    fn point_cached(&self, p: RodPoint, trig: &mut Trig) -> (Vector2<f64>, Row, Row) {
+        let i = match p {
+            RodPoint::B => 0,
+            RodPoint::C => 1,
+            RodPoint::Mid => 2,
+        };
+        if let Some(x) = trig.points[i] {
+            return x;
+        }
+        let (x, jx, jy, _) = self.point_parts(p, trig, None);
+        trig.points[i] = Some((x, jx, jy));
+        (x, jx, jy)
     }
 
     /// Walk the segments: `visit(k, G_k x, G_k y, gamma_k)` with the reduced partial velocities
@@ -326,8 +347,8 @@ impl Plain {
     }
 
     /// Position of `p`.
-    pub(super) fn point(&self, p: RodPoint, r: &[f64], trig: &Trig) -> Vector2<f64> {
-        let (x, _, _, _) = self.point_parts(p, trig, None);
+    pub(super) fn point(&self, p: RodPoint, r: &[f64], trig: &mut Trig) -> Vector2<f64> {
+        let (x, _, _) = self.point_cached(p, trig);
         let n = self.n;
         let s0 = Vector2::new(
             r[0] + dot(&self.base_x[2..n], &r[2..n]),
@@ -337,8 +358,8 @@ impl Plain {
     }
 
     /// `J_P` (2 x n) into `out`.
-    pub(super) fn point_jacobian(&self, p: RodPoint, trig: &Trig, mut out: MatMut<'_, f64>) {
-        let (_, jx, jy, _) = self.point_parts(p, trig, None);
+    pub(super) fn point_jacobian(&self, p: RodPoint, trig: &mut Trig, mut out: MatMut<'_, f64>) {
+        let (_, jx, jy) = self.point_cached(p, trig);
         out[(0, 0)] = 1.0;
         out[(1, 0)] = 0.0;
         out[(0, 1)] = 0.0;
