@@ -89,7 +89,14 @@ pub fn build(spec: &RodSpec, slider_mass: f64) -> Result<Box<dyn RodBody>, Model
                 spec.damping_ratio,
                 spec.axial_springs,
             )?;
-            Ok(Box::new(segments::ModalSegmentRod::new(chain, spec.modes)?))
+            let axial = spec.axial_modes.unwrap_or(1);
+            let modes = segments::modal::band_modes(&chain, spec.modes);
+            Ok(Box::new(segments::ModalSegmentRod::new(
+                chain,
+                modes,
+                axial,
+                slider_mass,
+            )?))
         }
     }
 }

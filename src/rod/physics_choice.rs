@@ -72,14 +72,6 @@ pub const NONLINEAR_COEFFICIENT: f64 = 80.0;
 /// the other shares taken off), at 150 rad/s 0.29 % at 16 (tests/modal_segments.rs).
 pub const CHAIN_DISCRETIZATION_COEFFICIENT: f64 = 1.4;
 
-/// The share of the error estimate for axial dynamics left out by a model that cannot carry
-/// them (the chain on its modes, inextensible) where `auto` would take them in: 1 % of the peak.
-/// Measured on the random rods of docs/verification.md whose slider-rod axial mode lies in the
-/// band, 48 segments on 3 modes against the geometrically exact shear beam: 0.02 to 1.5 % of
-/// the peak `v_mid` after smooth starts, ringing amplitudes up to 5.8 % after abrupt ones
-/// (tests/python/test_random_rods.py): a mark that the FMU warns on, not a bound.
-pub const AXIAL_LEFT_OUT_SHARE: f64 = 1e-2;
-
 /// What `auto` chose, and the numbers it chose on.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PhysicsChoice {
@@ -113,23 +105,17 @@ pub struct PhysicsChoice {
     /// The segment chains' discretization share, [`CHAIN_DISCRETIZATION_COEFFICIENT`] `/ N^2`
     /// (0 for the FFR rod).
     pub discretization: f64,
-    /// Axial dynamics would be taken in by `auto` but the model cannot carry them (the chain on
-    /// its modes): [`AXIAL_LEFT_OUT_SHARE`] joins the model's share.
-    pub axial_left_out: bool,
 }
 
 impl PhysicsChoice {
     /// The model's share of the error estimate, relative to the peak of `v_mid / L`: the
-    /// effect of what is left out (shear and rotary inertia where off; axial dynamics where the
-    /// model cannot carry them and `auto` would take them in).
+    /// effect of what is left out (shear and rotary inertia where off).
     pub fn model_error(&self) -> f64 {
-        let shear = if self.shear { 0.0 } else { self.shear_effect };
-        let axial = if self.axial_left_out {
-            AXIAL_LEFT_OUT_SHARE
-        } else {
+        if self.shear {
             0.0
-        };
-        shear + axial
+        } else {
+            self.shear_effect
+        }
     }
 
     /// `rod.error_estimate`: the estimated pointwise error of `v_mid / L` relative to its
@@ -167,13 +153,8 @@ impl PhysicsChoice {
         } else {
             String::new()
         };
-        let left_out = if self.axial_left_out {
-            " (left out by this model)"
-        } else {
-            ""
-        };
         format!(
-            "shear deformation {}, axial dynamics {}{left_out}{chain}",
+            "shear deformation {}, axial dynamics {}{chain}",
             on_off(self.shear),
             on_off(self.axial)
         )
@@ -215,10 +196,6 @@ impl PhysicsChoice {
         );
         let axial_reason = if self.axial_count_given {
             "rod.axial_modes given".to_string()
-        } else if self.axial_left_out {
-            format!(
-                "{axial_reason}: auto would take it in, this model is inextensible; {AXIAL_LEFT_OUT_SHARE:.0e} of the peak joins the error estimate; rod.model = ffr or segments carries it"
-            )
         } else {
             axial_reason
         };
@@ -342,21 +319,9 @@ pub fn choose(
         (RodModelKind::Ffr, PhysicsSwitch::Auto, Some(n)) => Some(n),
         _ => None,
     };
-    // The chain on its modes is inextensible (its modes are the bending ones): `auto` keeps
-    // axial dynamics off there, `on` is refused.
-    if spec.model == RodModelKind::ModalSegments && spec.axial_dynamics == PhysicsSwitch::On {
-        return Err(ModelError::InvalidParameter {
-            name: "rod.axial_dynamics",
-            value: 2.0,
-            allowed: "auto or off with rod.model = modal_segments (its modes are bending modes; rod.model = ffr or segments carries the axial dynamics)".into(),
-        });
-    }
-    let axial_wanted = heavy_at_c || axial_hz <= AXIAL_BAND_FACTOR * band_top_hz;
-    let inextensible = spec.model == RodModelKind::ModalSegments;
     let axial = match (spec.axial_dynamics, explicit_count) {
         (_, Some(n)) => n > 0,
-        _ if inextensible => false,
-        (PhysicsSwitch::Auto, None) => axial_wanted,
+        (PhysicsSwitch::Auto, None) => heavy_at_c || axial_hz <= AXIAL_BAND_FACTOR * band_top_hz,
         (s, None) => s == PhysicsSwitch::On,
     };
     let mut resolved = spec.clone();
@@ -380,7 +345,7 @@ pub fn choose(
             resolved.axial_modes = Some(spec.axial_modes.unwrap_or(0));
         }
         RodModelKind::Segments => resolved.axial_springs = spec.axial_springs || axial,
-        RodModelKind::ModalSegments => {}
+        RodModelKind::ModalSegments => resolved.axial_springs = spec.axial_springs || axial,
     }
     let choice = PhysicsChoice {
         shear,
@@ -395,7 +360,6 @@ pub fn choose(
         band_top_hz,
         tolerance,
         geometrically_exact: spec.model != RodModelKind::Ffr,
-        axial_left_out: inextensible && axial_wanted,
         discretization: match spec.model {
             RodModelKind::Ffr => 0.0,
             _ => CHAIN_DISCRETIZATION_COEFFICIENT / (spec.elements.max(1) as f64).powi(2),

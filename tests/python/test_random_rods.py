@@ -121,7 +121,8 @@ MODAL = {"rod.model_index": 3, "rod.elements": 48}
 
 @pytest.fixture(scope="module")
 def modal_results(default_unzipdir):
-    """The same rods with rod.model = modal_segments (48 segments, 3 modes)."""
+    """The same rods with rod.model = modal_segments (48 segments; the bending modes up to 30
+    times the first, the slider-rod axial mode where `auto` takes it in)."""
     out = []
     for rod in rr.rods():
         run = rr.simulate(default_unzipdir, rod, MODAL)
@@ -129,36 +130,24 @@ def modal_results(default_unzipdir):
     return out
 
 
-def left_out(run):
-    """The model class log says axial dynamics are left out: `auto` would take them in."""
-    return run.estimate >= 1e-2
-
-
-def test_modal_segments_hold_where_axial_dynamics_are_out_of_band(modal_results):
-    """The chain on its modes is inextensible. Where `auto` would keep the axial dynamics out
-    (the slider-rod axial mode above the band), it is held to the default FMU's targets; where
-    it would take them in, rod.error_estimate carries 1 % of the peak for them and the FMU
-    warns (the errors there: the table). The estimate is never below a third of the measured
-    error, and above three times it only where it stays below the tolerance (the chain's
-    discretization share is conservative on slender rods)."""
+def test_modal_segments_on_the_random_rods(modal_results):
+    """The chain on its modes with only the physical parameters and the model set: after smooth
+    starts v_mid within 0.5 % of its peak, the pin forces within 1.5 %, and rod.error_estimate
+    never below a third of the measured error (above three times it only where it stays below
+    the tolerance: the chain's discretization share is conservative on slender rods); after
+    abrupt starts the ringing frequency within 0.5 % and its amplitude within 2.5 % (what the
+    table of the docs states, rod by rod in the test output)."""
     failures = []
     for rod, run, m in modal_results:
-        warned = any(msg.startswith("rod.error_estimate") for msg in run.log)
-        if left_out(run):
-            if not warned:
-                failures.append(f"rod {rod['id']:.0f}: axial dynamics left out without a warning")
-            continue
         if rod["start"] == "smooth":
-            if m["v"] > 0.005 or max(m["pin_b"], m["pin_c"]) > 0.01:
+            if m["v"] > 0.005 or max(m["pin_b"], m["pin_c"]) > 0.015:
                 failures.append(f"rod {rod['id']:.0f}: {m}")
-            # Never below a third of the error; above three times it only below the tolerance.
             if not (run.estimate >= m["v"] / 3 and (run.estimate <= 3 * m["v"] or run.estimate <= 1e-3)):
                 failures.append(f"rod {rod['id']:.0f}: estimate {run.estimate:.2e} against {m['v']:.2e}")
-        elif m["frequency"] > 0.005 or m["ringing"] > 0.005:
+        elif m["frequency"] > 0.005 or m["ringing"] > 0.025:
             failures.append(f"rod {rod['id']:.0f}: {m}")
+        print(rod["id"], rod["start"], m, run.estimate)
     assert not failures, "\n".join(failures)
-    inside = [r for r in modal_results if not left_out(r[1])]
-    assert len(inside) >= 6, len(inside)
     text = modal_table(modal_results)
     if os.environ.get("FLEXROD_BLESS"):
         MODAL_FRAGMENT.write_text(text)
@@ -166,24 +155,19 @@ def test_modal_segments_hold_where_axial_dynamics_are_out_of_band(modal_results)
 
 
 def modal_table(results):
-    def error(m):
-        return m["v"] if "v" in m else m["ringing"]
-
-    inside = [(r, run, m) for r, run, m in results if not left_out(run)]
-    outside = [(r, run, m) for r, run, m in results if left_out(run)]
-    ratios = [run.estimate / m["v"] for r, run, m in inside if r["start"] == "smooth"]
+    smooth = [(r, run, m) for r, run, m in results if r["start"] == "smooth"]
+    abrupt = [(r, run, m) for r, run, m in results if r["start"] == "abrupt"]
+    ratios = [run.estimate / m["v"] for _, run, m in smooth]
     lines = [
         "<!-- written by `FLEXROD_BLESS=1 .venv/bin/python -m pytest tests/python/test_random_rods.py` (after `cargo run --release -p fmu`): rerun it, do not edit -->",
-        f"The same {len(results)} rods with `rod.model_index = 3` (the chain on its modes, 48 segments, 3 modes):",
+        f"The same {len(results)} rods with `rod.model_index = 3` (the chain on its modes, `rod.elements = 48`), only the physical parameters set otherwise:",
         "",
-        f"- {len(inside)} rods whose slider-rod axial mode lies above the band (`auto` keeps axial "
-        f"dynamics out; slenderness {min(r['slenderness'] for r, _, _ in inside):.1f} to "
-        f"{max(r['slenderness'] for r, _, _ in inside):.1f}): v_mid/L (smooth) or the ringing amplitude "
-        f"(abrupt) within {pct(max(error(m) for _, _, m in inside))} of the peak; rod.error_estimate / "
-        f"measured error {min(ratios):.2f} to {max(ratios):.2f} (smooth starts).",
-        f"- {len(outside)} rods where `auto` would take axial dynamics in: this inextensible model "
-        f"is {pct(min(error(m) for _, _, m in outside))} to {pct(max(error(m) for _, _, m in outside))} "
-        "off (the FFR rod with its axial mode: the table above); its error estimate carries 1 % of "
-        "the peak for them and the FMU warns.",
+        f"- {len(smooth)} smooth starts: v_mid/L within {pct(max(m['v'] for _, _, m in smooth))} of its peak "
+        f"pointwise; pin forces within {pct(max(max(m['pin_b'], m['pin_c']) for _, _, m in smooth))}; "
+        f"rod.error_estimate / measured error {min(ratios):.2f} to {max(ratios):.2f}.",
+        f"- {len(abrupt)} abrupt starts: ringing frequency within "
+        f"{pct(max(m['frequency'] for _, _, m in abrupt))}; ringing amplitude within 0.5 % of the peak "
+        f"on {sum(m['ringing'] <= 0.005 for _, _, m in abrupt)} (largest "
+        f"{pct(max(m['ringing'] for _, _, m in abrupt))}).",
     ]
     return "\n".join(lines) + "\n"

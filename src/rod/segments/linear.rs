@@ -296,6 +296,60 @@ impl LinearizedChain {
         Ok((e.values[..count].to_vec(), shapes))
     }
 
+    /// The `count` lowest axial modes of the chain held at B with `slider_mass` (kg) moving
+    /// with C along the rod (the slider-rod axial modes of the mechanism at its dead centres;
+    /// the small end's mass is in the chain's own mass matrix): `(w^2, shapes)` as in
+    /// [`Self::pinned_bending_modes`], over the slides (`x_C - x_B = sum_j s_j` at the straight
+    /// chain, so the slider adds `m_s 1 1^T`), of unit modal mass with the slider. Needs axial
+    /// springs.
+    pub(crate) fn loaded_axial_modes(
+        &self,
+        count: usize,
+        slider_mass: f64,
+        n_coordinates: usize,
+    ) -> Result<(Vec<f64>, Mat<f64>), ModelError> {
+        let chain = self.describe("axial, held at B, the slider at C");
+        let n = self.n_seg;
+        if !self.axial || n < 2 {
+            return Err(ModelError::Numerical {
+                message: format!("{chain}: no axial springs"),
+            });
+        }
+        let ns = n - 1;
+        let s0 = 2 + n;
+        let m = Mat::from_fn(ns, ns, |i, j| self.mass[(s0 + i, s0 + j)] + slider_mass);
+        let k = Mat::from_fn(ns, ns, |i, j| if i == j { self.k_ax[i] } else { 0.0 });
+        let e = generalized_symmetric_eigen_by_stiffness(&k, &m)
+            .or_else(|_| generalized_symmetric_eigen(&k, &m))?;
+        if e.values.len() < count {
+            return Err(ModelError::Numerical {
+                message: format!(
+                    "{chain}: {count} modes asked for, it has {}",
+                    e.values.len()
+                ),
+            });
+        }
+        let mut shapes = Mat::<f64>::zeros(n_coordinates, count);
+        for j in 0..count {
+            let w2 = e.values[j];
+            if !(w2.is_finite() && w2 > 0.0) {
+                return Err(ModelError::Numerical {
+                    message: format!(
+                        "{chain}: natural frequency {} is not a finite positive value (eigenvalue {w2:e} (rad/s)^2)",
+                        j + 1
+                    ),
+                });
+            }
+            let a = e.vectors.col(j);
+            let modal_mass: f64 = a.transpose() * &m * a;
+            let scale = 1.0 / modal_mass.sqrt();
+            for i in 0..ns {
+                shapes[(s0 + i, j)] = a[i] * scale;
+            }
+        }
+        Ok((e.values[..count].to_vec(), shapes))
+    }
+
     /// Fixed-fixed axial frequencies, Hz (N - 2 of them; needs axial springs).
     pub(crate) fn pinned_axial_hz(&self) -> Result<Vec<f64>, ModelError> {
         let n = self.n_seg;

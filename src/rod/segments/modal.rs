@@ -27,6 +27,26 @@ use super::rod::SegmentRod;
 use crate::error::ModelError;
 use crate::rod::body::{RodBody, RodPoint};
 
+/// The chain on its modes keeps every bending mode up to this multiple of its first bending
+/// frequency (at least `rod.modes` of them): the response of the modes left out has no static
+/// correction here. On the random rods of docs/verification.md (smooth starts, 48 segments)
+/// three modes left stubby rods 0.4 % of the peak off, the modes to 20 or 30 times the first
+/// 0.19 % at most (tests/python/test_random_rods.py); the Euler-Bernoulli rod keeps five
+/// (`f_k = k^2 f_1`).
+pub const BAND_FACTOR: f64 = 30.0;
+
+/// The number of bending modes the chain on its modes keeps: `modes`, or more, every pinned
+/// bending mode of `chain` up to [`BAND_FACTOR`] times the first (at most the chain's own count).
+pub fn band_modes(chain: &SegmentRod, modes: usize) -> usize {
+    let factor = BAND_FACTOR;
+    let hz = chain.bending_frequencies_hz();
+    let Some(&first) = hz.first() else {
+        return modes;
+    };
+    let in_band = hz.iter().filter(|&&f| f <= factor * first).count();
+    modes.max(in_band.min(hz.len())).min(MAX_REDUCED - 4)
+}
+
 /// Buffers over the chain's coordinates, sized at construction.
 struct Scratch {
     q: Vec<f64>,
@@ -47,8 +67,10 @@ pub struct ModalSegmentRod {
     chain: SegmentRod,
     /// `T`, the chain's coordinates (rows) over the reduced ones (columns).
     basis: Mat<f64>,
-    /// The retained modes' circular frequencies, rad/s.
+    /// The retained modes' circular frequencies, rad/s: the bending modes, then the axial ones.
     omega: Vec<f64>,
+    /// The number of retained axial modes (the last columns of `T`).
+    axial: usize,
     /// The direct evaluation in reduced coordinates, for a chain without end body rotations
     /// ([`super::modal_plain`]); the projection of the chain's own functions otherwise.
     plain: Option<Plain>,
@@ -56,18 +78,21 @@ pub struct ModalSegmentRod {
 }
 
 impl ModalSegmentRod {
-    /// The chain `chain` on its `modes` lowest pinned-pinned bending modes. Refused where the
-    /// chain has axial springs (their modes are not among the bending ones) or fewer modes.
-    pub fn new(chain: SegmentRod, modes: usize) -> Result<ModalSegmentRod, ModelError> {
-        if chain.has_axial_springs() {
-            return Err(ModelError::InvalidParameter {
-                name: "rod.axial_springs",
-                value: 1.0,
-                allowed:
-                    "off with rod.model = modal_segments (the modes are the chain's bending modes)"
-                        .into(),
-            });
-        }
+    /// The chain `chain` on its `modes` lowest pinned-pinned bending modes and, where it has
+    /// axial springs, its `axial` lowest axial modes held at B with the slider's
+    /// `slider_mass` (kg) at C ([`LinearizedChain::loaded_axial_modes`]; at least one there).
+    /// Refused where the chain has fewer modes.
+    pub fn new(
+        chain: SegmentRod,
+        modes: usize,
+        axial: usize,
+        slider_mass: f64,
+    ) -> Result<ModalSegmentRod, ModelError> {
+        let axial = if chain.has_axial_springs() {
+            axial.max(1)
+        } else {
+            0
+        };
         if modes == 0 {
             return Err(ModelError::InvalidParameter {
                 name: "rod.modes",
@@ -76,8 +101,20 @@ impl ModalSegmentRod {
             });
         }
         let n_full = chain.n_coordinates();
-        let (omega2, shapes) = LinearizedChain::new(&chain).pinned_bending_modes(modes, n_full)?;
-        let n = 3 + modes;
+        let linear = LinearizedChain::new(&chain);
+        let (mut omega2, mut shapes) = linear.pinned_bending_modes(modes, n_full)?;
+        if axial > 0 {
+            let (w2, a) = linear.loaded_axial_modes(axial, slider_mass, n_full)?;
+            omega2.extend(w2);
+            shapes = Mat::from_fn(n_full, modes + axial, |i, j| {
+                if j < modes {
+                    shapes[(i, j)]
+                } else {
+                    a[(i, j - modes)]
+                }
+            });
+        }
+        let n = 3 + modes + axial;
         let mut basis = Mat::<f64>::zeros(n_full, n);
         basis[(0, 0)] = 1.0;
         basis[(1, 1)] = 1.0;
@@ -89,7 +126,7 @@ impl ModalSegmentRod {
                 basis[(chain.end_rotation_index(e), 2)] = 1.0;
             }
         }
-        for j in 0..modes {
+        for j in 0..modes + axial {
             for i in 0..n_full {
                 basis[(i, 3 + j)] = shapes[(i, j)];
             }
@@ -108,11 +145,14 @@ impl ModalSegmentRod {
             chain,
             basis,
             omega: omega2.iter().map(|w2| w2.sqrt()).collect(),
+            axial,
             plain: None,
             scratch,
         };
-        let plain =
-            !rod.chain.has_end_rotation(0) && !rod.chain.has_end_rotation(1) && n <= MAX_REDUCED;
+        let plain = !rod.chain.has_axial_springs()
+            && !rod.chain.has_end_rotation(0)
+            && !rod.chain.has_end_rotation(1)
+            && n <= MAX_REDUCED;
         if plain {
             let (stiffness, damping) = rod.spring_matrices();
             let basis = &rod.basis;
@@ -304,6 +344,12 @@ impl RodBody for ModalSegmentRod {
 
     fn elastic_circular_frequencies(&self) -> Option<Vec<f64>> {
         Some(self.omega.clone())
+    }
+
+    /// The axial modes, the last elastic coordinates.
+    fn axial_mode_indices(&self) -> Vec<usize> {
+        let n = self.omega.len();
+        (n - self.axial..n).collect()
     }
 
     /// The pinned modes with the chain's stiffness-proportional dampers: `(w^2, C_r,ii)` of the
@@ -539,7 +585,7 @@ mod tests {
     fn check_direct(definition: &RodDefinition, segments: usize) {
         let build = || {
             let chain = SegmentRod::from_definition(definition, segments, 0.02, false).unwrap();
-            ModalSegmentRod::new(chain, 4).unwrap()
+            ModalSegmentRod::new(chain, 4, 0, 0.0).unwrap()
         };
         let direct = build();
         let mut projected = build();
