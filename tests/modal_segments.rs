@@ -71,7 +71,7 @@ fn every_mode_is_the_chain() {
     );
 }
 
-/// At 150 rad/s, 16 to 128 segments (`rod.modes = 3`: the band keeps 5): the differences between successive
+/// At 150 rad/s, 16 to 128 segments (`rod.modes = 3`: the band keeps 4): the differences between successive
 /// refinements fall as `1 / N^2` (the chain's order, measured), and the Richardson limit lies
 /// within 0.2 % of the ANCF cable (Euler-Bernoulli, converged) pointwise, as the plain chain and
 /// the FFR rod do.
@@ -86,7 +86,7 @@ fn converges_to_the_exact_beam_as_the_chain_is_refined() {
             let (record, _) = runs::constant(&s, exudyn::SPEED, exudyn::DT, 2.0);
             let c = exudyn::compare(&record, &reference);
             println!(
-                "{n} segments, 5 modes, tolerance 1e-6: v_mid {:.4} % of the ANCF peak pointwise, peak {:+.4} %",
+                "{n} segments, 4 modes, tolerance 1e-6: v_mid {:.4} % of the ANCF peak pointwise, peak {:+.4} %",
                 100.0 * c.pointwise,
                 100.0 * c.peak_error
             );
@@ -119,7 +119,7 @@ fn converges_to_the_exact_beam_as_the_chain_is_refined() {
     MEASURED.add(
         "convergence",
         format!(
-            "- 150 rad/s, 5 modes, 16 / 32 / 64 / 128 segments: successive differences {}\n  \
+            "- 150 rad/s, 4 modes, 16 / 32 / 64 / 128 segments: successive differences {}\n  \
              of the peak, order {:.2} and {:.2}; the Richardson limit lies {} of the peak from the ANCF cable\n  \
              pointwise (the plain chain and the FFR rod lie as far from it).",
             steps.iter().map(|d| percent(*d, 2)).collect::<Vec<_>>().join(" / "),
@@ -131,7 +131,7 @@ fn converges_to_the_exact_beam_as_the_chain_is_refined() {
 }
 
 /// Two revolutions at 300 rad/s (peak `|v_mid / L|` 0.07, abrupt start): the benchmark scene
-/// with `rod.model = "modal_segments"`, 32 segments, `rod.modes = 3` (the band keeps the 5 bending modes up to 30 times the first) and its defaults otherwise (`auto`
+/// with `rod.model = "modal_segments"`, 32 segments, `rod.modes = 3` (the band keeps the 4 bending modes up to 20 times the first) and its defaults otherwise (`auto`
 /// takes shear in) against Exudyn's geometrically exact shear beam (512 elements, converged to
 /// 8e-5 of the peak; tests/data/exudyn_shear_beam_300rad_s.csv): `v_mid` pointwise. The exact
 /// beam's pin forces carry its axial ringing after the abrupt start (not converged pointwise:
@@ -175,7 +175,7 @@ fn exact_at_300_rad_s() {
     };
     let (fb, fc) = (force_error(0), force_error(1));
     println!(
-        "300 rad/s, 32 segments on 5 modes: v_mid {:.3} % of the exact beam's peak pointwise (peak {:+.3} %); pins B, C {:.3} %, {:.3} % of the chain's peaks; {} steps; warnings {:?}",
+        "300 rad/s, 32 segments on 4 modes: v_mid {:.3} % of the exact beam's peak pointwise (peak {:+.3} %); pins B, C {:.3} %, {:.3} % of the chain's peaks; {} steps; warnings {:?}",
         100.0 * c.pointwise,
         100.0 * c.peak_error,
         100.0 * fb,
@@ -196,7 +196,7 @@ fn exact_at_300_rad_s() {
         "high-load",
         format!(
             "- 300 rad/s (abrupt start, two revolutions, peak `|v_mid/L|` {:.3}): the benchmark scene\n  \
-             with 32 segments on 5 modes (shear by `auto`) within {} of the peak `v_mid` of Exudyn's\n  \
+             with 32 segments on 4 modes (shear by `auto`) within {} of the peak `v_mid` of Exudyn's\n  \
              geometrically exact shear beam pointwise (the FFR rod: 3.4 %), pin forces B and C within\n  \
              {} and {} of the full chain of 64 segments, in {} steps of `auto` at tolerance 1e-3;\n  \
              `rod.error_estimate` {:.1e}, {:.1} times the measured error.",
@@ -231,7 +231,7 @@ fn deflection_limit_follows_the_model() {
     let d = max_diff(&x, &r) / peak(&r);
     let f = max_diff(&pin_b(&record), &pin_b(&reference)) / peak(&pin_b(&reference));
     println!(
-        "450 rad/s: peak |v/L| {:.3}; 64 segments on 5 modes: v_mid {:.3} %, pin B {:.3} %, {} steps",
+        "450 rad/s: peak |v/L| {:.3}; 64 segments on 4 modes: v_mid {:.3} %, pin B {:.3} %, {} steps",
         peak(&r),
         100.0 * d,
         100.0 * f,
@@ -249,7 +249,7 @@ fn deflection_limit_follows_the_model() {
     MEASURED.add(
         "limit",
         format!(
-            "- 450 rad/s (peak `|v_mid/L|` {:.2}): 64 segments on 5 modes within {} (`v_mid`) and {}\n  \
+            "- 450 rad/s (peak `|v_mid/L|` {:.2}): 64 segments on 4 modes within {} (`v_mid`) and {}\n  \
              (pin B) of the chain of 64 segments; the chains' `rod.deflection_limit` is 0.25, the FFR\n  \
              rod's 0.05.",
             peak(&r),

@@ -121,7 +121,7 @@ MODAL = {"rod.model_index": 3, "rod.elements": 48}
 
 @pytest.fixture(scope="module")
 def modal_results(default_unzipdir):
-    """The same rods with rod.model = modal_segments (48 segments; the bending modes up to 30
+    """The same rods with rod.model = modal_segments (48 segments; the bending modes up to 20
     times the first, the slider-rod axial mode where `auto` takes it in)."""
     out = []
     for rod in rr.rods():
