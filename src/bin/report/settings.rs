@@ -216,7 +216,9 @@ impl Setting {
             Model::FfrRk4 => format!("FFR stiffened RK4 {el}el/{modes}m {r} h={h:.1e}"),
             Model::FfrAuto => format!("FFR stiffened auto {el}el/{modes}m {r} tol={h:.0e}"),
             Model::SegmentsAuto => format!("segments auto N={el} tol={h:.0e}"),
-            Model::ModalSegmentsAuto => format!("modal segments auto N={el}/{modes}m tol={h:.0e}"),
+            Model::ModalSegmentsAuto => {
+                format!("modal segments auto N={el} rod.modes={modes} tol={h:.0e}")
+            }
             Model::FfrDopri5 => {
                 format!("FFR stiffened Dormand-Prince {el}el/{modes}m {r} tol={h:.0e}")
             }
