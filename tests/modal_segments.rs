@@ -18,7 +18,14 @@ use common::runs::{self, max_diff, peak};
 static MEASURED: Fragment = Fragment::new(
     "modal-segments",
     "Measured (`cargo test --release --test modal_segments -- --nocapture`):\n\n",
-    &["chain", "convergence", "high-load", "limit", "folding"],
+    &[
+        "chain",
+        "convergence",
+        "high-load",
+        "discretization",
+        "limit",
+        "folding",
+    ],
 );
 
 /// The Euler-Bernoulli benchmark rod as the chain on `modes` modes of `segments` segments.
@@ -207,6 +214,48 @@ fn exact_at_300_rad_s() {
             sim.stats().steps,
             estimate,
             ratio
+        ),
+    );
+}
+
+/// The chains' discretization share of the error estimate, `C / N^2`
+/// (`flexrod::rod::physics_choice::CHAIN_DISCRETIZATION_COEFFICIENT`): at 300 rad/s against the
+/// exact beam, 8, 16 and 24 segments, `C_N = (e_N - 0.1 %) N^2` (the other shares taken off)
+/// stays below the coefficient, and the estimate within a factor 3 of the measured error.
+#[test]
+fn discretization_share_of_the_estimate() {
+    let exact = exudyn::samples_of("exudyn_shear_beam_300rad_s.csv");
+    let c = flexrod::rod::physics_choice::CHAIN_DISCRETIZATION_COEFFICIENT;
+    let mut rows = Vec::new();
+    for n in [8usize, 16, 24] {
+        let mut s = flexrod::Scene::benchmark();
+        s.rod.model = RodModelKind::ModalSegments;
+        s.rod.elements = n;
+        let (record, _) = runs::constant(&s, 300.0, exudyn::DT, 2.0);
+        let e = exudyn::compare(&record, &exact).pointwise;
+        let estimate = record.outputs.last().unwrap().error_estimate;
+        let c_n = (e - 1e-3) * (n * n) as f64;
+        println!(
+            "{n} segments: {:.3} % of the exact peak, C_N {c_n:.2}, estimate / error {:.2}",
+            100.0 * e,
+            estimate / e
+        );
+        assert!(c_n > 0.5 && c_n < c, "{n}: {c_n}");
+        assert!(
+            (1.0 / 3.0..3.0).contains(&(estimate / e)),
+            "{n}: {estimate} vs {e}"
+        );
+        rows.push((n, e, c_n));
+    }
+    MEASURED.add(
+        "discretization",
+        format!(
+            "- The chains' discretization share of `rod.error_estimate`, {c} / N^2: at 300 rad/s 8, 16, 24\n  \
+             segments are {} off the exact beam (`C_N` = {:.2}, {:.2}, {:.2} with 0.1 % for the other shares).",
+            rows.iter().map(|r| percent(r.1, 2)).collect::<Vec<_>>().join(", "),
+            rows[0].2,
+            rows[1].2,
+            rows[2].2
         ),
     );
 }

@@ -263,6 +263,10 @@ pub fn damped_max_phase(tolerance: f64, zeta: f64) -> f64 {
 const EXPONENTIAL_NAME: &str =
     "exponential Runge-Kutta 4(3) (ETDRK4, modal oscillators exact) on minimal coordinates (closed form)";
 
+/// The same on the general partitioned evaluation (the chain on its modes).
+const EXPONENTIAL_NAME_GENERAL: &str =
+    "exponential Runge-Kutta 4(3) (ETDRK4, modal oscillators exact) on the modal coordinates (general evaluation)";
+
 impl AdaptiveRungeKutta {
     /// The pair `tableau` with the error control `control` on the coordinates `independent`
     /// of `system` (classic form; [`AdaptiveRungeKutta::exponential`] for the other).
@@ -630,7 +634,11 @@ impl Integrator for AdaptiveRungeKutta {
 
     fn name(&self) -> &'static str {
         if self.exponential.is_some() {
-            EXPONENTIAL_NAME
+            if self.closed_form {
+                EXPONENTIAL_NAME
+            } else {
+                EXPONENTIAL_NAME_GENERAL
+            }
         } else if self.closed_form {
             self.tableau.name_minimal
         } else {

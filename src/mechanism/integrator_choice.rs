@@ -11,6 +11,9 @@
 //!   adaptive generalized-alpha method.
 //! - `"dopri5"`, `"rk43"`: that pair, classic form, on the modal coordinates; refused without
 //!   them (the segment chain).
+//! - The chain on its modes ([`RodBody::modal_oscillators`]): `auto` takes the exponential form
+//!   on its modal coordinates (the general partitioned evaluation), its pinned bending modes
+//!   and loaded axial mode the mechanism's own oscillators.
 //! - `"exponential"`: the exponential form wherever the closed form exists (an FFR rod of 1 to
 //!   [`crate::rod::ffr::MAX_MODES`] modes), also where `auto` would not take it; refused
 //!   elsewhere.
@@ -220,7 +223,7 @@ pub fn choose(solver: &SolverSpec, facts: &MechanismFacts) -> Result<IntegratorC
                     name: "solver.method",
                     value: modes as f64,
                     allowed: format!(
-                        "exponential with an FFR rod of 1 to {} modes (its closed form; this rod has more), or auto, rk43, dopri5",
+                        "exponential with an FFR rod of 1 to {} modes (its closed form; this rod has more) or the chain on its modes, or auto, rk43, dopri5",
                         crate::rod::ffr::MAX_MODES
                     ),
                 });

@@ -62,7 +62,8 @@ pub enum StartDeflection {
     #[default]
     Undeformed,
     /// Deflected by the inertia loads of the start motion, with no elastic velocity or
-    /// acceleration (FFR rod): no start transient at constant speed.
+    /// acceleration (the rods with modal coordinates: FFR, the chain on its modes): no start
+    /// transient at constant speed.
     QuasiStatic,
 }
 

@@ -18,8 +18,8 @@
 //! slenderness 8 to 60 in the slider-crank, the measured effect of switching shear on was 0.5 to
 //! 1.6 times `e_shear` in smooth starts (docs/verification.md, "Any rod"). `auto` switches shear
 //! and rotary inertia on where `e_shear > solver.tolerance` in the FFR rod with consistent mass
-//! (the segment chain and lumped mass keep them off unless set `on`; the error estimate then
-//! carries `e_shear`).
+//! and the chain on its modes (the full segment chain and lumped mass keep them off unless set
+//! `on`; the error estimate then carries `e_shear`).
 //!
 //! # Axial dynamics
 //! The slider-rod axial mode: the rod pinned axially at B, the masses at C (slider and small end,
@@ -67,9 +67,9 @@ pub const NONLINEAR_COEFFICIENT: f64 = 80.0;
 
 /// The coefficient `C` of the segment chains' discretization share of the error estimate,
 /// `C / N^2` for `N` segments (the chain converges at second order in `1 / N`): the chain on
-/// its modes against the geometrically exact shear beam at 300 rad/s (abrupt start) is 2.1 %,
-/// 0.52 %, 0.24 % of the peak off at 8, 16, 24 segments (`C` 1.3, 1.3, 1.4 with the 0.1 % of
-/// the other shares taken off), at 150 rad/s 0.29 % at 16 (tests/modal_segments.rs).
+/// its modes against the geometrically exact shear beam at 300 rad/s (abrupt start), 8, 16 and
+/// 24 segments, gives `C_N = (e_N - 0.1 %) N^2` of 0.8 to 1.3
+/// (tests/modal_segments.rs, `discretization_share_of_the_estimate`).
 pub const CHAIN_DISCRETIZATION_COEFFICIENT: f64 = 1.4;
 
 /// What `auto` chose, and the numbers it chose on.

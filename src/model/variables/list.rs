@@ -301,7 +301,7 @@ impl VariableTable {
             ValueType::Integer,
             |s| usize_to_i32(s.rod.elements),
             |s, v| element_count(v).map(|n| s.rod.elements = n),
-            "Beam elements (FFR) or rigid segments (segments)",
+            "Beam elements (FFR) or rigid segments (segments, modal_segments)",
         );
         b.bounds(
             Some(Value::Integer(least_count(scene, n_frequencies))),
@@ -325,7 +325,7 @@ impl VariableTable {
                 ValueType::Integer,
                 |s| usize_to_i32(s.rod.modes),
                 |s, v| non_negative(v).map(|n| s.rod.modes = n),
-                "Retained modes (FFR), lowest first; with axial dynamics on (auto or on) the bending modes, the slider-rod axial mode in addition",
+                "Retained modes (FFR), lowest first; with axial dynamics on (auto or on) the bending modes, the slider-rod axial mode in addition; modal_segments: at least this many bending modes (every one up to 20 times the first)",
             );
             b.bounds(Some(Value::Integer(0)), None);
         }
