@@ -517,16 +517,25 @@ impl RodBody for ModalSegmentRod {
     }
 
     fn describe(&self) -> String {
-        let hz: Vec<String> = self
-            .omega
-            .iter()
-            .map(|w| format!("{:.1}", w / (2.0 * std::f64::consts::PI)))
-            .collect();
+        let hz = |w: &[f64]| {
+            w.iter()
+                .map(|w| format!("{:.1}", w / (2.0 * std::f64::consts::PI)))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let bending = self.omega.len() - self.axial;
+        let axial = match self.axial {
+            0 => String::new(),
+            1 => format!(
+                " and its slider-rod axial mode ({} Hz)",
+                hz(&self.omega[bending..])
+            ),
+            n => format!(" and {n} axial modes ({} Hz)", hz(&self.omega[bending..])),
+        };
         format!(
-            "segment chain of {} segments on its {} lowest bending modes ({} Hz)",
+            "segment chain of {} segments on its {bending} lowest bending modes ({} Hz){axial}",
             self.chain.n_segments(),
-            self.omega.len(),
-            hz.join(", ")
+            hz(&self.omega[..bending]),
         )
     }
 
