@@ -92,6 +92,20 @@ pub(super) struct Trig {
     /// B's, C's and the midpoint's position (from `S_0`) and Jacobian columns at `r`, once
     /// computed (the constraint iterations ask for both at the same coordinates).
     points: [Option<(Vector2<f64>, Row, Row)>; 3],
+    /// The same in the frame turned by `-alpha` without `S_0`'s share, kept while the modal
+    /// coordinates stay: every vector of the walk turns with `alpha`, so the constraint
+    /// iterations rotate these instead of walking the chain again.
+    body_points: [Option<(Vector2<f64>, Row, Row)>; 3],
+    /// `cos alpha`, `sin alpha` at `r`.
+    alpha: (f64, f64),
+}
+
+/// The axes a walk uses: the segments' own, or those of the frame turned by `-alpha` (the
+/// elastic angles alone; `S_0`'s share of the columns left out).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Frame {
+    Global,
+    Body,
 }
 
 impl Trig {
@@ -106,6 +120,18 @@ impl Trig {
             elastic_cos: vec![0.0; segments],
             elastic_sin: vec![0.0; segments],
             points: [None; 3],
+            body_points: [None; 3],
+            alpha: (1.0, 0.0),
+        }
+    }
+
+    fn axes_in(&self, frame: Frame, k: usize) -> (Vector2<f64>, Vector2<f64>) {
+        match frame {
+            Frame::Global => self.axes(k),
+            Frame::Body => {
+                let (c, s) = (self.elastic_cos[k], self.elastic_sin[k]);
+                (Vector2::new(c, s), Vector2::new(-s, c))
+            }
         }
     }
 
@@ -237,6 +263,7 @@ impl Plain {
                 trig.slides[i] = dot(&self.sigma(i)[3..], &r[3..]);
             }
             trig.elastic_valid = true;
+            trig.body_points = [None; 3];
         }
         let (sa, ca) = r[2].sin_cos();
         for k in 0..self.segments() {
@@ -247,6 +274,7 @@ impl Plain {
         trig.r.copy_from_slice(r);
         trig.valid = true;
         trig.points = [None; 3];
+        trig.alpha = (ca, sa);
     }
 
     /// Position (from `S_0`) and Jacobian columns of `p` at the coordinates of `trig`, kept in
@@ -260,7 +288,24 @@ impl Plain {
         if let Some(x) = trig.points[i] {
             return x;
         }
-        let (x, jx, jy, _) = self.point_parts(p, trig, None);
+        let (xb, jxb, jyb) = match trig.body_points[i] {
+            Some(b) => b,
+            None => {
+                let (x, jx, jy, _) = self.point_parts(p, trig, None, Frame::Body);
+                trig.body_points[i] = Some((x, jx, jy));
+                (x, jx, jy)
+            }
+        };
+        let (ca, sa) = trig.alpha;
+        let turn = |x: f64, y: f64| (ca * x - sa * y, sa * x + ca * y);
+        let (px, py) = turn(xb.x, xb.y);
+        let (mut jx, mut jy) = (self.base_x, self.base_y);
+        for c in 2..self.n {
+            let (u, w) = turn(jxb[c], jyb[c]);
+            jx[c] += u;
+            jy[c] += w;
+        }
+        let x = Vector2::new(px, py);
         trig.points[i] = Some((x, jx, jy));
         (x, jx, jy)
     }
@@ -274,15 +319,19 @@ impl Plain {
         trig: &Trig,
         v: Option<&[f64]>,
         stop: usize,
+        frame: Frame,
         mut visit: impl FnMut(usize, &Row, &Row, Vector2<f64>),
     ) -> (Row, Row, Vector2<f64>, Vector2<f64>) {
         let n = self.n;
-        let (mut px, mut py) = (self.base_x, self.base_y);
+        let (mut px, mut py) = match frame {
+            Frame::Global => (self.base_x, self.base_y),
+            Frame::Body => ([0.0; MAX_REDUCED], [0.0; MAX_REDUCED]),
+        };
         let (mut gx, mut gy) = ([0.0; MAX_REDUCED], [0.0; MAX_REDUCED]);
         let mut offset = Vector2::zeros();
         let mut gamma = Vector2::zeros();
         for k in 0..stop {
-            let (e, nn) = trig.axes(k);
+            let (e, nn) = trig.axes_in(frame, k);
             let psi = self.psi(k);
             let ck = self.centroids[k];
             for c in 2..n {
@@ -319,11 +368,12 @@ impl Plain {
         p: RodPoint,
         trig: &Trig,
         v: Option<&[f64]>,
+        frame: Frame,
     ) -> (Vector2<f64>, Row, Row, Vector2<f64>) {
         let n = self.n;
         let cp = self.point_of(p);
-        let (mut jx, mut jy, offset, mut gamma) = self.walk(trig, v, cp.k, |_, _, _, _| {});
-        let (e, nn) = trig.axes(cp.k);
+        let (mut jx, mut jy, offset, mut gamma) = self.walk(trig, v, cp.k, frame, |_, _, _, _| {});
+        let (e, nn) = trig.axes_in(frame, cp.k);
         let psi = self.psi(cp.k);
         let w = v.map_or(0.0, |v| dot(&psi[2..], &v[2..n]));
         let mut x = offset + e * cp.xi;
@@ -372,7 +422,26 @@ impl Plain {
 
     /// `J_P' r'`, the velocity products of `p`'s acceleration.
     pub(super) fn point_bias(&self, p: RodPoint, v: &[f64], trig: &Trig) -> Vector2<f64> {
-        self.point_parts(p, trig, Some(v)).3
+        // The velocity products of `point_parts` alone (no Jacobian columns): the segments'
+        // `-2 w_j t_{j+1}' e_j - w_j^2 d_j` up to the point, then its own segment's share.
+        let n = self.n;
+        let cp = self.point_of(p);
+        let mut gamma = Vector2::zeros();
+        for k in 0..cp.k {
+            let (e, nn) = trig.axes(k);
+            let w = dot(&self.psi(k)[2..], &v[2..n]);
+            let rate = dot(&self.sigma(k + 1)[2..], &v[2..n]);
+            let d = e * self.l + nn * trig.slides[k + 1];
+            gamma -= e * (2.0 * w * rate) + d * (w * w);
+        }
+        let (e, nn) = trig.axes(cp.k);
+        let w = dot(&self.psi(cp.k)[2..], &v[2..n]);
+        gamma -= e * (cp.xi * w * w);
+        if let Some((i, weight)) = cp.slide {
+            let rate = dot(&self.sigma(i)[2..], &v[2..n]);
+            gamma -= (e * (2.0 * w * rate) + nn * (w * w * trig.slides[i])) * weight;
+        }
+        gamma
     }
 
     /// `m J^T J` of a point mass into the upper triangle of `m`.
@@ -393,20 +462,26 @@ impl Plain {
     pub(super) fn mass(&self, trig: &Trig, mut out: MatMut<'_, f64>) {
         let n = self.n;
         let mut m = [[0.0; MAX_REDUCED]; MAX_REDUCED];
-        let (jcx, jcy, _, _) = self.walk(trig, None, self.segments(), |k, gx, gy, _| {
-            self.add_point_mass(self.masses[k], gx, gy, &mut m);
-            let psi = self.psi(k);
-            let inertia = self.inertias[k];
-            for c in 2..n {
-                let a = inertia * psi[c];
-                let row = &mut m[c];
-                for d in c..n {
-                    row[d] += a * psi[d];
+        let (jcx, jcy, _, _) = self.walk(
+            trig,
+            None,
+            self.segments(),
+            Frame::Global,
+            |k, gx, gy, _| {
+                self.add_point_mass(self.masses[k], gx, gy, &mut m);
+                let psi = self.psi(k);
+                let inertia = self.inertias[k];
+                for c in 2..n {
+                    let a = inertia * psi[c];
+                    let row = &mut m[c];
+                    for d in c..n {
+                        row[d] += a * psi[d];
+                    }
                 }
-            }
-        });
+            },
+        );
         if self.end_mass[0] > 0.0 {
-            let (_, jx, jy, _) = self.point_parts(RodPoint::B, trig, None);
+            let (_, jx, jy, _) = self.point_parts(RodPoint::B, trig, None, Frame::Global);
             self.add_point_mass(self.end_mass[0], &jx, &jy, &mut m);
         }
         if self.end_mass[1] > 0.0 {
@@ -437,11 +512,15 @@ impl Plain {
     pub(super) fn forces(&self, r: &[f64], v: &[f64], trig: &Trig, f: &mut [f64]) {
         let n = self.n;
         let mut q = [0.0; MAX_REDUCED];
-        let (jcx, jcy, _, gamma_c) = self.walk(trig, Some(v), self.segments(), |k, gx, gy, g| {
-            self.add_point_inertia(self.masses[k], gx, gy, g, &mut q)
-        });
+        let (jcx, jcy, _, gamma_c) = self.walk(
+            trig,
+            Some(v),
+            self.segments(),
+            Frame::Global,
+            |k, gx, gy, g| self.add_point_inertia(self.masses[k], gx, gy, g, &mut q),
+        );
         if self.end_mass[0] > 0.0 {
-            let (_, jx, jy, gamma) = self.point_parts(RodPoint::B, trig, Some(v));
+            let (_, jx, jy, gamma) = self.point_parts(RodPoint::B, trig, Some(v), Frame::Global);
             self.add_point_inertia(self.end_mass[0], &jx, &jy, gamma, &mut q);
         }
         if self.end_mass[1] > 0.0 {
@@ -462,11 +541,15 @@ impl Plain {
         let n = self.n;
         let mut q = [0.0; MAX_REDUCED];
         // Gravity is the point-inertia term with gamma = -g.
-        let (jcx, jcy, _, _) = self.walk(trig, None, self.segments(), |k, gx, gy, _| {
-            self.add_point_inertia(self.masses[k], gx, gy, -g, &mut q)
-        });
+        let (jcx, jcy, _, _) = self.walk(
+            trig,
+            None,
+            self.segments(),
+            Frame::Global,
+            |k, gx, gy, _| self.add_point_inertia(self.masses[k], gx, gy, -g, &mut q),
+        );
         if self.end_mass[0] > 0.0 {
-            let (_, jx, jy, _) = self.point_parts(RodPoint::B, trig, None);
+            let (_, jx, jy, _) = self.point_parts(RodPoint::B, trig, None, Frame::Global);
             self.add_point_inertia(self.end_mass[0], &jx, &jy, -g, &mut q);
         }
         if self.end_mass[1] > 0.0 {
