@@ -383,4 +383,7 @@ fn refusals_name_the_setting() {
     let s = modal(4, 4);
     let text = message(&s);
     assert!(text.contains("4 modes asked for, it has 3"), "{text}");
+    let text = message(&modal(1, 1));
+    println!("1 segment: {text}");
+    assert!(!text.contains("inf"), "{text}");
 }

@@ -132,6 +132,9 @@ impl LinearizedChain {
     /// range of its joint springs.
     fn describe(&self, modes: &str) -> String {
         let range = |v: &[f64]| {
+            if v.is_empty() {
+                return "none (one segment): 0".to_string();
+            }
             let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
             let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
             format!("{lo:e} to {hi:e}")
