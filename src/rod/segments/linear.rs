@@ -38,6 +38,51 @@ struct BendingProblem {
     m: Mat<f64>,
 }
 
+/// The `count` lowest modes of `K z = w^2 M z` on the coordinates `z = t r` (rows `idx` of the
+/// chain's `q`): `(w^2, shapes)` with the shapes as columns over `q` (`n_coordinates` rows, zero
+/// outside `idx`), each of unit modal mass `z^T M z = 1`. Refused, naming `chain`, where there
+/// are fewer modes or one is not finite and positive.
+fn lowest_modes(
+    chain: &str,
+    k: &Mat<f64>,
+    m: &Mat<f64>,
+    t: &Mat<f64>,
+    idx: &[usize],
+    count: usize,
+    n_coordinates: usize,
+) -> Result<(Vec<f64>, Mat<f64>), ModelError> {
+    let (kr, mr) = (project(k, t), project(m, t));
+    let e = generalized_symmetric_eigen_by_stiffness(&kr, &mr)
+        .or_else(|_| generalized_symmetric_eigen(&kr, &mr))?;
+    if e.values.len() < count {
+        return Err(ModelError::Numerical {
+            message: format!(
+                "{chain}: {count} modes asked for, it has {}",
+                e.values.len()
+            ),
+        });
+    }
+    let mut shapes = Mat::<f64>::zeros(n_coordinates, count);
+    for j in 0..count {
+        let w2 = e.values[j];
+        if !(w2.is_finite() && w2 > 0.0) {
+            return Err(ModelError::Numerical {
+                message: format!(
+                    "{chain}: natural frequency {} is not a finite positive value (eigenvalue {w2:e} (rad/s)^2)",
+                    j + 1
+                ),
+            });
+        }
+        let z = t * e.vectors.col(j);
+        let modal_mass: f64 = z.transpose() * m * &z;
+        let scale = 1.0 / modal_mass.sqrt();
+        for (i, &qi) in idx.iter().enumerate() {
+            shapes[(qi, j)] = z[i] * scale;
+        }
+    }
+    Ok((e.values[..count].to_vec(), shapes))
+}
+
 /// `M_0` and the spring constants of a chain.
 pub(crate) struct LinearizedChain {
     mass: Mat<f64>,
@@ -266,37 +311,7 @@ impl LinearizedChain {
             .ok_or_else(|| ModelError::Numerical {
                 message: format!("{chain}: no bending modes"),
             })?;
-        let (kr, mr) = (project(&p.k, &p.t), project(&p.m, &p.t));
-        let e = generalized_symmetric_eigen_by_stiffness(&kr, &mr)
-            .or_else(|_| generalized_symmetric_eigen(&kr, &mr))?;
-        if e.values.len() < count {
-            return Err(ModelError::Numerical {
-                message: format!(
-                    "{chain}: {count} modes asked for, it has {}",
-                    e.values.len()
-                ),
-            });
-        }
-        let mut shapes = Mat::<f64>::zeros(n_coordinates, count);
-        for j in 0..count {
-            let w2 = e.values[j];
-            if !(w2.is_finite() && w2 > 0.0) {
-                return Err(ModelError::Numerical {
-                    message: format!(
-                        "{chain}: natural frequency {} is not a finite positive value (eigenvalue {w2:e} (rad/s)^2)",
-                        j + 1
-                    ),
-                });
-            }
-            let r = e.vectors.col(j);
-            let z = &p.t * r;
-            let modal_mass: f64 = z.transpose() * &p.m * &z;
-            let scale = 1.0 / modal_mass.sqrt();
-            for (i, &qi) in p.idx.iter().enumerate() {
-                shapes[(qi, j)] = z[i] * scale;
-            }
-        }
-        Ok((e.values[..count].to_vec(), shapes))
+        lowest_modes(&chain, &p.k, &p.m, &p.t, &p.idx, count, n_coordinates)
     }
 
     /// The `count` lowest axial modes of the chain held at B with `slider_mass` (kg) moving
@@ -322,35 +337,9 @@ impl LinearizedChain {
         let s0 = 2 + n;
         let m = Mat::from_fn(ns, ns, |i, j| self.mass[(s0 + i, s0 + j)] + slider_mass);
         let k = Mat::from_fn(ns, ns, |i, j| if i == j { self.k_ax[i] } else { 0.0 });
-        let e = generalized_symmetric_eigen_by_stiffness(&k, &m)
-            .or_else(|_| generalized_symmetric_eigen(&k, &m))?;
-        if e.values.len() < count {
-            return Err(ModelError::Numerical {
-                message: format!(
-                    "{chain}: {count} modes asked for, it has {}",
-                    e.values.len()
-                ),
-            });
-        }
-        let mut shapes = Mat::<f64>::zeros(n_coordinates, count);
-        for j in 0..count {
-            let w2 = e.values[j];
-            if !(w2.is_finite() && w2 > 0.0) {
-                return Err(ModelError::Numerical {
-                    message: format!(
-                        "{chain}: natural frequency {} is not a finite positive value (eigenvalue {w2:e} (rad/s)^2)",
-                        j + 1
-                    ),
-                });
-            }
-            let a = e.vectors.col(j);
-            let modal_mass: f64 = a.transpose() * &m * a;
-            let scale = 1.0 / modal_mass.sqrt();
-            for i in 0..ns {
-                shapes[(s0 + i, j)] = a[i] * scale;
-            }
-        }
-        Ok((e.values[..count].to_vec(), shapes))
+        let slides: Vec<usize> = (s0..s0 + ns).collect();
+        let all = Mat::<f64>::identity(ns, ns);
+        lowest_modes(&chain, &k, &m, &all, &slides, count, n_coordinates)
     }
 
     /// Fixed-fixed axial frequencies, Hz (N - 2 of them; needs axial springs).

@@ -72,6 +72,9 @@ pub struct ModalSegmentRod {
     omega: Vec<f64>,
     /// The number of retained axial modes (the last columns of `T`).
     axial: usize,
+    /// The retained modes' damping `C_r,ii`, 1/s (the diagonal of `T^T C T` on the modes of
+    /// unit modal mass), computed once at construction.
+    modal_damping: Vec<f64>,
     /// The direct evaluation in reduced coordinates, for a chain without end body rotations
     /// ([`super::modal_plain`]); the projection of the chain's own functions otherwise.
     plain: Option<Plain>,
@@ -147,15 +150,17 @@ impl ModalSegmentRod {
             basis,
             omega: omega2.iter().map(|w2| w2.sqrt()).collect(),
             axial,
+            modal_damping: Vec::new(),
             plain: None,
             scratch,
         };
+        let (stiffness, damping) = rod.spring_matrices();
+        rod.modal_damping = (3..n).map(|c| damping[c * n + c]).collect();
         let plain = !rod.chain.has_axial_springs()
             && !rod.chain.has_end_rotation(0)
             && !rod.chain.has_end_rotation(1)
             && n <= MAX_REDUCED;
         if plain {
-            let (stiffness, damping) = rod.spring_matrices();
             let basis = &rod.basis;
             rod.plain = Some(Plain::new(
                 &rod.chain,
@@ -356,13 +361,11 @@ impl RodBody for ModalSegmentRod {
     /// The pinned modes with the chain's stiffness-proportional dampers: `(w^2, C_r,ii)` of the
     /// reduced spring and damper matrices (diagonal on modes of unit modal mass).
     fn modal_oscillators(&self) -> Option<Vec<(f64, f64)>> {
-        let n = self.basis.ncols();
-        let (_, damping) = self.spring_matrices();
         Some(
             self.omega
                 .iter()
-                .enumerate()
-                .map(|(i, w)| (w * w, damping[(3 + i) * n + 3 + i]))
+                .zip(&self.modal_damping)
+                .map(|(w, c)| (w * w, *c))
                 .collect(),
         )
     }
