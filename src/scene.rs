@@ -240,8 +240,12 @@ impl Scene {
 
     /// The mechanism this scene describes (what [`crate::mechanism::Mechanism::new`] takes).
     pub fn mechanism_spec(&self) -> MechanismSpec {
+        let mut crank = self.crank.clone();
+        if crank.design_speed == 0.0 && self.experiment.crank_speed.is_finite() {
+            crank.design_speed = self.experiment.crank_speed.abs();
+        }
         MechanismSpec {
-            crank: self.crank.clone(),
+            crank,
             rod: self.rod.clone(),
             slider: self.slider.clone(),
             solver: self.solver.clone(),

@@ -21,7 +21,8 @@ pub struct Snapshot {
 /// One slider-crank simulation.
 pub struct Simulation {
     mechanism: Mechanism,
-    /// Identifies the model in serialized states ([`Scene::fingerprint`]).
+    /// Identifies the model in serialized states ([`Scene::fingerprint`] with the rod model
+    /// `auto` built and its segment count).
     fingerprint: u64,
     state: MechanismState,
     /// The warning that `rod.error_estimate` passed `solver.tolerance` was given (once per
@@ -62,9 +63,15 @@ impl Simulation {
     pub fn new(scene: &Scene) -> Result<Simulation, ModelError> {
         let mechanism = Mechanism::new(&scene.mechanism_spec())?;
         let state = mechanism.initial_state(0.0, CrankInput::default(), 0.0)?;
+        let built = format!(
+            "{:016x} {} {}",
+            scene.fingerprint(),
+            mechanism.spec.rod.model.name(),
+            mechanism.spec.rod.elements
+        );
         Ok(Simulation {
             mechanism,
-            fingerprint: scene.fingerprint(),
+            fingerprint: crate::hash::fnv1a_64(built.as_bytes()),
             state,
             error_estimate_warned: false,
             estimate_warning: None,

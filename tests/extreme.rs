@@ -810,6 +810,7 @@ fn default_integrator_refuses_out_of_range_steps() {
     let dt = 1e-4;
     let n = runs::steps_for(W, 2.0, dt);
     let mut s = Scene::benchmark();
+    s.rod.model = RodModelKind::Ffr;
     s.rod.deflection_policy = DeflectionPolicy::Warn;
     s.rod.youngs_modulus /= 100.0;
     let run = drive(&s, dt, n, 0.0, |_, t| constant(t, W));
@@ -855,6 +856,7 @@ fn deflection_policy_at_work() {
         DeflectionPolicy::Error,
     ] {
         let s = scene(|s| {
+            s.rod.model = RodModelKind::Ffr;
             s.rod.youngs_modulus /= 100.0;
             s.rod.deflection_policy = policy;
         });

@@ -138,8 +138,9 @@ fn converges_to_the_exact_beam_as_the_chain_is_refined() {
 }
 
 /// Two revolutions at 300 rad/s (peak `|v_mid / L|` 0.07, abrupt start): the benchmark scene
-/// with `rod.model = "modal_segments"`, 32 segments, `rod.modes = 3` (the band keeps the 4 bending modes up to 20 times the first) and its defaults otherwise (`auto`
-/// takes shear in) against Exudyn's geometrically exact shear beam (512 elements, converged to
+/// with its defaults (`rod.model = auto` takes the chain on its modes, with the segments the
+/// tolerance asks for; the band keeps the 4 bending modes up to 20 times the first; `auto` takes
+/// shear in) against Exudyn's geometrically exact shear beam (512 elements, converged to
 /// 8e-5 of the peak; tests/data/exudyn_shear_beam_300rad_s.csv): `v_mid` pointwise. The exact
 /// beam's pin forces carry its axial ringing after the abrupt start (not converged pointwise:
 /// 5 to 7 % of the peak between its own refinements), which the inextensible chain has not:
@@ -157,11 +158,14 @@ fn exact_at_300_rad_s() {
     chain.solver.method = SolverMethod::GeneralizedAlpha;
     chain.solver.step = 5e-6;
     let (reference, _) = runs::constant(&chain, omega, 1e-4, 2.0);
-    let mut s = flexrod::Scene::benchmark();
-    s.rod.model = RodModelKind::ModalSegments;
-    s.rod.elements = 32;
-    s.rod.modes = 3;
+    // The FMU's defaults, only the crank speed set: `rod.model = auto` takes the chain on its
+    // modes for the load, with the segments the tolerance asks for.
+    let s = flexrod::Scene::benchmark();
+    assert_eq!(s.rod.model, RodModelKind::Auto);
     let (record, sim) = runs::constant(&s, omega, 1e-4, 2.0);
+    let built = &sim.mechanism().spec.rod;
+    assert_eq!(built.model, RodModelKind::ModalSegments);
+    let (segments, modes) = (built.elements, sim.mechanism().rod.n_coordinates() - 3);
     let c = exudyn::compare(&record, &exact);
     let forces = |r: &flexrod::drive::Record, pin: usize| -> Vec<f64> {
         r.outputs
@@ -182,7 +186,7 @@ fn exact_at_300_rad_s() {
     };
     let (fb, fc) = (force_error(0), force_error(1));
     println!(
-        "300 rad/s, 32 segments on 4 modes: v_mid {:.3} % of the exact beam's peak pointwise (peak {:+.3} %); pins B, C {:.3} %, {:.3} % of the chain's peaks; {} steps; warnings {:?}",
+        "300 rad/s, the defaults (auto: {segments} segments on {modes} modes): v_mid {:.3} % of the exact beam's peak pointwise (peak {:+.3} %); pins B, C {:.3} %, {:.3} % of the chain's peaks; {} steps; warnings {:?}",
         100.0 * c.pointwise,
         100.0 * c.peak_error,
         100.0 * fb,
@@ -193,6 +197,8 @@ fn exact_at_300_rad_s() {
     assert!(exudyn::peak(&exact) > 0.06);
     assert!(c.pointwise < 3e-3, "{c:?}");
     assert!(fb < 1e-2 && fc < 1e-2, "{fb:e} {fc:e}");
+    // Within the tolerance: no warning that the estimate passed it.
+    assert!(record.warnings.is_empty(), "{:?}", record.warnings);
     // The error estimate (the chain's discretization share 1.4 / N^2 with the integration's)
     // is within a factor 3 of the measured error.
     let estimate = record.outputs.last().unwrap().error_estimate;
@@ -203,9 +209,10 @@ fn exact_at_300_rad_s() {
         "high-load",
         format!(
             "- 300 rad/s (abrupt start, two revolutions, peak `|v_mid/L|` {:.3}): the benchmark scene\n  \
-             with 32 segments on 4 modes (shear by `auto`) within {} of the peak `v_mid` of Exudyn's\n  \
-             geometrically exact shear beam pointwise (the FFR rod: 3.4 %), pin forces B and C within\n  \
-             {} and {} of the full chain of 64 segments, in {} steps of `auto` at tolerance 1e-3;\n  \
+             with only the crank speed set (`rod.model = auto` takes the chain on its modes: {segments}\n  \
+             segments on {modes} modes at tolerance 1e-3, shear by `auto`) within {} of the peak `v_mid`\n  \
+             of Exudyn's geometrically exact shear beam pointwise (the FFR rod: 3.4 %), pin forces B\n  \
+             and C within {} and {} of the full chain of 64 segments, in {} steps;\n  \
              `rod.error_estimate` {:.1e}, {:.1} times the measured error.",
             exudyn::peak(&exact),
             percent(c.pointwise, 2),

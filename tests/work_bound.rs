@@ -33,6 +33,7 @@ fn start(sim: &mut Simulation) {
 /// The largest FFR rod: 128 elements, every mode retained, soft and heavy (many internal steps).
 fn largest_ffr() -> Scene {
     let mut s = Scene::benchmark();
+    s.rod.model = flexrod::rod::RodModelKind::Ffr;
     s.rod.elements = flexrod::beam::mesh::MAX_ELEMENTS;
     s.rod.modes = 3 * s.rod.elements;
     s.rod.youngs_modulus = 1e6;

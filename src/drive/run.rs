@@ -91,14 +91,20 @@ pub fn run(
 }
 
 /// Build `scene`'s simulation and run it at constant crank speed `speed` from `t = 0` for
-/// `revolutions` crank revolutions at communication step `dt` (the number of steps rounded).
+/// `revolutions` crank revolutions at communication step `dt` (the number of steps rounded);
+/// `rod.model = auto` chooses for `speed` where the scene gives no `crank.design_speed`.
 pub fn run_constant(
     scene: &Scene,
     speed: f64,
     dt: f64,
     revolutions: f64,
 ) -> Result<(Record, Simulation), ModelError> {
-    let mut simulation = Simulation::new(scene)?;
+    // `rod.model = auto` chooses for this speed unless the scene names its design speed.
+    let mut scene = scene.clone();
+    if scene.crank.design_speed == 0.0 && speed.is_finite() {
+        scene.crank.design_speed = speed.abs().min(crate::mechanism::DESIGN_SPEED_MAX);
+    }
+    let mut simulation = Simulation::new(&scene)?;
     let steps = (revolutions * 2.0 * std::f64::consts::PI / speed.abs() / dt).round() as usize;
     let record = run(
         &mut simulation,

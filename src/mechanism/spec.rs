@@ -11,6 +11,19 @@ use crate::error::{require_positive, require_within, ModelError};
 pub struct CrankSpec {
     /// Crank length r, m.
     pub length: f64,
+    /// The highest crank speed `|omega|` the run reaches, rad/s, for which `rod.model = auto`
+    /// chooses the rod model ([`crate::rod::physics_choice`], "Rod model"); 0: the crank speed
+    /// at the start (a scene: `[experiment] crank_speed`; the FMU: `crank.speed` when the model
+    /// is built, written here then).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub design_speed: f64,
+}
+
+/// The largest `crank.design_speed`, rad/s: the window of the crank speed input.
+pub const DESIGN_SPEED_MAX: f64 = 1e4;
+
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 /// The slider at C.
@@ -266,6 +279,13 @@ impl MechanismSpec {
             rod.require_fibre_distance()?;
         }
         require_positive("crank.length", self.crank.length)?;
+        require_within(
+            "crank.design_speed",
+            self.crank.design_speed,
+            0.0,
+            DESIGN_SPEED_MAX,
+            "rad/s (0: the crank speed at the start)",
+        )?;
         if self.crank.length >= rod.length {
             return Err(ModelError::InvalidParameter {
                 name: "crank.length",

@@ -29,6 +29,10 @@ pub struct Model {
     simulation: Option<Simulation>,
     /// The simulation was started with the current inputs.
     started: bool,
+    /// `crank.design_speed` was 0 and took this crank speed when the model was built: a new
+    /// crank speed or parameter before stepping puts 0 back, so the next build takes the
+    /// speed then.
+    design_speed_filled: Option<f64>,
 }
 
 /// A saved model: everything [`Model::restore`] needs to continue bit for bit.
@@ -90,6 +94,7 @@ impl Model {
             inputs: Inputs::from_start_values(table),
             simulation: None,
             started: false,
+            design_speed_filled: None,
         }
     }
 
@@ -99,6 +104,7 @@ impl Model {
         self.inputs = Inputs::from_start_values(table);
         self.simulation = None;
         self.started = false;
+        self.design_speed_filled = None;
     }
 
     /// The start time of the scene's default experiment, s.
@@ -127,6 +133,14 @@ impl Model {
     /// A parameter or input changed before stepping: the start must be redone (and, for a
     /// parameter, the model rebuilt).
     pub fn invalidate(&mut self, parameter_changed: bool) {
+        if let Some(filled) = self.design_speed_filled {
+            let speed_changed = self.inputs.speed.abs() != filled;
+            if (parameter_changed || speed_changed) && self.scene.crank.design_speed == filled {
+                self.scene.crank.design_speed = 0.0;
+                self.design_speed_filled = None;
+                self.simulation = None;
+            }
+        }
         if parameter_changed {
             self.simulation = None;
         }
@@ -144,6 +158,16 @@ impl Model {
     pub fn ensure_started(&mut self, t0: f64, table: &VariableTable) -> Result<(), ModelError> {
         if self.simulation.is_none() {
             check_geometry(&self.scene)?;
+            // `crank.design_speed = 0`: the crank speed at initialization (its start value
+            // where that is 0), written into the parameter so that saved states, the model's
+            // fingerprint and a reader see the speed the rod model was chosen for.
+            if self.scene.crank.design_speed == 0.0 && self.inputs.speed != 0.0 {
+                let speed = self.inputs.speed.abs();
+                if speed <= crate::mechanism::DESIGN_SPEED_MAX {
+                    self.scene.crank.design_speed = speed;
+                    self.design_speed_filled = Some(speed);
+                }
+            }
             let simulation = Simulation::new(&self.scene)?;
             let available = simulation.frequencies_hz().len();
             let declared = table.frequency_count();
@@ -397,6 +421,7 @@ impl Model {
         self.scene.clone_from(&saved.scene);
         self.inputs = saved.inputs;
         self.started = saved.started;
+        self.design_speed_filled = None;
         Ok(())
     }
 

@@ -98,5 +98,8 @@ pub fn build(spec: &RodSpec, slider_mass: f64) -> Result<Box<dyn RodBody>, Model
                 slider_mass,
             )?))
         }
+        RodModelKind::Auto => Err(ModelError::State {
+            message: "rod.model = auto is resolved to a rod model before one is built (rod::physics_choice::choose)".into(),
+        }),
     }
 }

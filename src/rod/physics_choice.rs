@@ -1,7 +1,29 @@
-//! The model class chosen from the rod's own numbers: shear deformation and rotary inertia
-//! (`rod.shear_deformation`), axial dynamics (`rod.axial_dynamics`), and the model's share of
-//! the error estimate (`rod.error_estimate`). `auto` settings are resolved here, once, when the
-//! model is built; `on` and `off` are the user's.
+//! The model class chosen from the rod's own numbers: the rod model (`rod.model`), shear
+//! deformation and rotary inertia (`rod.shear_deformation`), axial dynamics
+//! (`rod.axial_dynamics`), and the model's share of the error estimate (`rod.error_estimate`).
+//! `auto` settings are resolved here, once, when the model is built; the others are the user's.
+//!
+//! # Rod model
+//! `rod.model = auto` takes the FFR rod where its linear modes hold at the load, the chain on its
+//! modes (geometrically exact) where they do not. The load is predicted from the rod's numbers at
+//! the design speed `omega` (`crank.design_speed`, else the crank speed at the start): the
+//! crank pin's centripetal acceleration `r omega^2` loads the rod across with `q(x) = rho A r
+//! omega^2 (1 - x / L)` where the crank stands across the rod, whose quasi-static midspan
+//! deflection on pinned ends is `v_s = 5 q_0 L^4 / (768 E I)` (the simply supported beam under a
+//! linearly varying load: W. C. Young and R. G. Budynas, *Roark's Formulas for Stress and
+//! Strain*, 7th ed., 2002, table 8.1). The predicted peak
+//! `p = 2 v_s / L / ((1 - (omega / w_1)^2) (1 - P / P_cr))` takes the suddenly applied load
+//! (factor 2), the first harmonic's resonance (`w_1` the pinned rod's first bending frequency;
+//! R. W. Clough and J. Penzien, *Dynamics of Structures*, 1993, ch. 3) and the axial
+//! compression `P = (m / 2 + M) r omega^2` against Euler's load `P_cr = pi^2 E I / L^2`
+//! (S. P. Timoshenko and J. M. Gere, *Theory of Elastic Stability*, 1961, section 1.11) as
+//! amplifications; at or past resonance or buckling it is infinite. Length means of the section
+//! stand for a tapered rod; gravity and the slider force are left out. On the benchmark rod it
+//! predicts 0.021 at 150 rad/s and 0.12 at 300 rad/s, against measured abrupt-start peaks of
+//! 0.015 and 0.07 (an upper estimate). `auto` takes the chain on its modes where the FFR rod's
+//! nonlinear share of the estimate at that peak, [`NONLINEAR_COEFFICIENT`] `p^2 sqrt(h / L)`,
+//! exceeds [`LARGE_DEFLECTION_SHARE`], with the segments the tolerance asks for
+//! ([`auto_segments`]).
 //!
 //! # Shear deformation and rotary inertia
 //! For a simply supported Timoshenko beam, mode n's frequency relative to the Euler-Bernoulli
@@ -72,9 +94,79 @@ pub const NONLINEAR_COEFFICIENT: f64 = 80.0;
 /// (tests/modal_segments.rs, `discretization_share_of_the_estimate`).
 pub const CHAIN_DISCRETIZATION_COEFFICIENT: f64 = 1.4;
 
+/// `rod.model = auto` takes the chain on its modes where the FFR rod's nonlinear share of the
+/// error estimate at the predicted peak exceeds this (module docs, "Rod model"): about 0.4 to
+/// 0.9 % measured (the estimate is 1.1 to 2.8 times the measured error). On the benchmark rod
+/// the switch lies near 180 rad/s.
+pub const LARGE_DEFLECTION_SHARE: f64 = 0.01;
+
+/// The segment counts of the chain on its modes that `rod.model = auto` takes: the least `N`
+/// whose discretization share [`CHAIN_DISCRETIZATION_COEFFICIENT`] `/ N^2` with the integration's
+/// share [`INTEGRATION_SHARE`] stays within `solver.tolerance` (40 at 1e-3), at least
+/// `AUTO_SEGMENTS.0` (16: 0.5 % measured at 300 rad/s) and `rod.elements`, at most
+/// `AUTO_SEGMENTS.1` (64: below a tolerance of 4e-4 the estimate says the rest).
+pub const AUTO_SEGMENTS: (usize, usize) = (16, 64);
+
+/// The segment count `rod.model = auto` gives the chain on its modes for `tolerance` and
+/// `rod.elements = elements` ([`AUTO_SEGMENTS`]).
+pub fn auto_segments(tolerance: f64, elements: usize) -> usize {
+    let share = (1.0 - INTEGRATION_SHARE) * tolerance;
+    let needed = (CHAIN_DISCRETIZATION_COEFFICIENT / share).sqrt().ceil();
+    let (low, high) = AUTO_SEGMENTS;
+    let needed = if needed.is_finite() {
+        (needed as usize).clamp(low, high)
+    } else {
+        high
+    };
+    needed.max(elements.min(high))
+}
+
+/// The operating point `rod.model = auto` chooses the rod model for.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OperatingPoint {
+    /// Crank length r, m.
+    pub crank_length: f64,
+    /// The highest crank speed `|omega|` of the run, rad/s.
+    pub crank_speed: f64,
+}
+
+/// The predicted peak `|v_mid / L|` of `spec` at `op` with `mass_at_c` kg at C (module docs,
+/// "Rod model"); infinite at or past the first harmonic's resonance or Euler's load.
+pub fn predicted_peak(spec: &RodSpec, mass_at_c: f64, op: &OperatingPoint) -> f64 {
+    let p = spec.properties();
+    let length = p.length;
+    let rod_mass = spec
+        .definition()
+        .map(|d| d.rod_mass())
+        .unwrap_or_else(|_| p.mass());
+    let line_density = rod_mass / length;
+    let bending = p.youngs_modulus * p.area_moment;
+    let centripetal = op.crank_length * op.crank_speed * op.crank_speed;
+    let q0 = line_density * centripetal;
+    let static_deflection = 5.0 * q0 * length.powi(4) / (768.0 * bending);
+    let w1 = (PI / length).powi(2) * (bending / line_density).sqrt();
+    let resonance = 1.0 - (op.crank_speed / w1).powi(2);
+    let compression = (0.5 * rod_mass + mass_at_c.max(0.0)) * centripetal;
+    let buckling = 1.0 - compression / (PI * PI * bending / (length * length));
+    let peak = 2.0 * static_deflection / length / (resonance * buckling);
+    if resonance > 0.0 && buckling > 0.0 && peak.is_finite() {
+        peak
+    } else {
+        f64::INFINITY
+    }
+}
+
 /// What `auto` chose, and the numbers it chose on.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PhysicsChoice {
+    /// The rod model built, and the setting it came from.
+    pub model: RodModelKind,
+    pub model_setting: RodModelKind,
+    /// The operating point of `rod.model = auto` and its predicted peak `|v_mid / L|`
+    /// ([`predicted_peak`]), with the FFR rod's nonlinear share there.
+    pub operating_point: OperatingPoint,
+    pub predicted_peak: f64,
+    pub predicted_nonlinear_share: f64,
     /// Shear deformation and rotary inertia in the model.
     pub shear: bool,
     /// The setting it came from.
@@ -199,8 +291,24 @@ impl PhysicsChoice {
         } else {
             axial_reason
         };
+        let model_reason = match self.model_setting {
+            RodModelKind::Auto => format!(
+                "auto: predicted peak |v_mid/L| {:.2e} at crank.design_speed {} rad/s, the FFR rod's nonlinear share there {:.1e} {} {LARGE_DEFLECTION_SHARE:e}{}",
+                self.predicted_peak,
+                self.operating_point.crank_speed,
+                self.predicted_nonlinear_share,
+                if self.model == RodModelKind::Ffr { "<=" } else { ">" },
+                if self.model == RodModelKind::Ffr {
+                    ""
+                } else {
+                    ": geometrically exact"
+                }
+            ),
+            s => format!("set {}", s.name()),
+        };
         format!(
-            "shear deformation and rotary inertia {} ({}); axial dynamics {} ({})",
+            "rod model {} ({model_reason}); shear deformation and rotary inertia {} ({}); axial dynamics {} ({})",
+            self.model.name(),
             on_off(self.shear),
             why(self.shear_setting, shear_reason),
             on_off(self.axial),
@@ -274,14 +382,50 @@ fn first_bending_hz(spec: &RodSpec) -> f64 {
         / (2.0 * PI)
 }
 
-/// Resolve the `auto` settings of `spec` for a slider of `slider_mass` kg and the tolerance
-/// `tolerance`: the spec the model is built from (every switch `on` or `off`, the axial mode
-/// expressed in `axial_modes`, `loaded_modes` or `axial_springs`), and what was chosen.
+/// The rod model `rod.model = auto` takes for `spec` with `mass_at_c` kg at C at `op` (module
+/// docs, "Rod model"): the model (with its `rod.elements`), the predicted peak and the FFR rod's
+/// nonlinear share there. Any other setting stands.
+pub fn resolve_model(
+    spec: &RodSpec,
+    mass_at_c: f64,
+    tolerance: f64,
+    op: &OperatingPoint,
+) -> (RodModelKind, usize, f64, f64) {
+    let peak = predicted_peak(spec, mass_at_c, op);
+    let p = spec.properties();
+    let depth_ratio = (12.0 * p.area_moment / p.area).sqrt() / p.length;
+    let share = NONLINEAR_COEFFICIENT * peak * peak * depth_ratio.sqrt();
+    match spec.model {
+        RodModelKind::Auto if share > LARGE_DEFLECTION_SHARE || !share.is_finite() => (
+            RodModelKind::ModalSegments,
+            auto_segments(tolerance, spec.elements),
+            peak,
+            share,
+        ),
+        RodModelKind::Auto => (RodModelKind::Ffr, spec.elements, peak, share),
+        model => (model, spec.elements, peak, share),
+    }
+}
+
+/// Resolve the `auto` settings of `spec` for a slider of `slider_mass` kg, the tolerance
+/// `tolerance` and the operating point `op`: the spec the model is built from (the rod model
+/// chosen, every switch `on` or `off`, the axial mode expressed in `axial_modes`,
+/// `loaded_modes` or `axial_springs`), and what was chosen.
 pub fn choose(
     spec: &RodSpec,
     slider_mass: f64,
     tolerance: f64,
+    op: &OperatingPoint,
 ) -> Result<(RodSpec, PhysicsChoice), ModelError> {
+    spec.validate()?;
+    let model_setting = spec.model;
+    let (model, elements, predicted_peak, predicted_nonlinear_share) =
+        resolve_model(spec, slider_mass + spec.small_end.mass, tolerance, op);
+    let spec = &RodSpec {
+        model,
+        elements,
+        ..spec.clone()
+    };
     spec.validate()?;
     let shear_effect = shear_effect(spec);
     // `auto` takes shear into the FFR rod with consistent mass and into the chain on its modes
@@ -293,7 +437,7 @@ pub fn choose(
     let shear_possible = match spec.model {
         RodModelKind::Ffr => spec.mass == MassKind::Consistent,
         RodModelKind::ModalSegments => true,
-        RodModelKind::Segments => false,
+        RodModelKind::Segments | RodModelKind::Auto => false,
     };
     let shear = match spec.shear_deformation {
         PhysicsSwitch::Auto => shear_possible && shear_effect > tolerance,
@@ -345,9 +489,16 @@ pub fn choose(
             resolved.axial_modes = Some(spec.axial_modes.unwrap_or(0));
         }
         RodModelKind::Segments => resolved.axial_springs = spec.axial_springs || axial,
-        RodModelKind::ModalSegments => resolved.axial_springs = spec.axial_springs || axial,
+        RodModelKind::ModalSegments | RodModelKind::Auto => {
+            resolved.axial_springs = spec.axial_springs || axial
+        }
     }
     let choice = PhysicsChoice {
+        model,
+        model_setting,
+        operating_point: *op,
+        predicted_peak,
+        predicted_nonlinear_share,
         shear,
         shear_setting: spec.shear_deformation,
         shear_possible,
@@ -375,6 +526,62 @@ pub fn choose(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The benchmark scene's crank at 150 rad/s.
+    const BENCHMARK_150: OperatingPoint = OperatingPoint {
+        crank_length: 0.1524,
+        crank_speed: 150.0,
+    };
+
+    #[test]
+    fn auto_takes_the_chain_where_the_load_is_large() {
+        let mut spec = benchmark_rod();
+        spec.model = RodModelKind::Auto;
+        let at = |w: f64| OperatingPoint {
+            crank_speed: w,
+            ..BENCHMARK_150
+        };
+        // The numbers of the module docs: 0.021 at 150 rad/s, 0.12 at 300 rad/s.
+        let resolve = |spec: &RodSpec, m: f64, w: f64| resolve_model(spec, m, 1e-3, &at(w));
+        let (model, elements, peak, share) = resolve(&spec, 0.0, 150.0);
+        assert_eq!((model, elements), (RodModelKind::Ffr, 8));
+        assert!(
+            (peak - 0.0212).abs() < 5e-4 && share < LARGE_DEFLECTION_SHARE,
+            "{peak} {share}"
+        );
+        let (model, elements, peak, _) = resolve(&spec, 0.0, 300.0);
+        assert_eq!((model, elements), (RodModelKind::ModalSegments, 40));
+        assert!((peak - 0.123).abs() < 2e-3, "{peak}");
+        // The switch near 180 rad/s; the chain past resonance or buckling and at rest the FFR.
+        assert_eq!(resolve(&spec, 0.0, 170.0).0, RodModelKind::Ffr);
+        assert_eq!(resolve(&spec, 0.0, 190.0).0, RodModelKind::ModalSegments);
+        assert_eq!(resolve(&spec, 0.0, 0.0).0, RodModelKind::Ffr);
+        assert!(predicted_peak(&spec, 0.0, &at(900.0)).is_infinite());
+        assert!(predicted_peak(&spec, 1e3, &at(150.0)).is_infinite());
+        // A heavier slider compresses the rod more; more segments asked for are kept.
+        assert!(predicted_peak(&spec, 0.5, &at(150.0)) > predicted_peak(&spec, 0.0, &at(150.0)));
+        spec.elements = 48;
+        assert_eq!(resolve(&spec, 0.0, 300.0).1, 48);
+        // The segments follow the tolerance: the estimate's chain share and integration share
+        // within it, between 16 and 64.
+        for (tolerance, n) in [(1e-3, 40), (3e-3, 23), (0.1, 16), (1e-4, 64), (1e-10, 64)] {
+            assert_eq!(auto_segments(tolerance, 8), n, "{tolerance}");
+        }
+        let n = auto_segments(1e-3, 8) as f64;
+        assert!(CHAIN_DISCRETIZATION_COEFFICIENT / (n * n) + INTEGRATION_SHARE * 1e-3 <= 1e-3);
+        let n = n - 1.0;
+        assert!(CHAIN_DISCRETIZATION_COEFFICIENT / (n * n) + INTEGRATION_SHARE * 1e-3 > 1e-3);
+        // Any other setting stands.
+        spec.model = RodModelKind::Ffr;
+        assert_eq!(resolve(&spec, 0.0, 300.0).0, RodModelKind::Ffr);
+        spec.model = RodModelKind::Auto;
+        let (resolved, choice) = choose(&spec, 0.0, 1e-3, &at(300.0)).unwrap();
+        assert_eq!(resolved.model, RodModelKind::ModalSegments);
+        assert!(choice.geometrically_exact && choice.shear);
+        assert!(choice
+            .describe()
+            .starts_with("rod model modal_segments (auto: predicted peak"));
+    }
 
     /// The CDI benchmark rod of the default scene (J. O'Shea, table 3).
     fn benchmark_rod() -> RodSpec {
@@ -413,7 +620,7 @@ mod tests {
         let mut spec = benchmark_rod();
         spec.shear_deformation = PhysicsSwitch::Off;
         spec.shear_area = Some(1e-320);
-        let (_, c) = choose(&spec, 0.0, 1e-3).unwrap();
+        let (_, c) = choose(&spec, 0.0, 1e-3, &BENCHMARK_150).unwrap();
         assert!(shear_effect(&spec).is_infinite());
         assert_eq!(c.error_estimate(0.01), MAX_ERROR_ESTIMATE);
         assert_eq!(c.error_estimate(1e200), MAX_ERROR_ESTIMATE);
@@ -424,16 +631,16 @@ mod tests {
     #[test]
     fn auto_says_why_the_chain_keeps_shear_off() {
         let mut spec = benchmark_rod();
-        let (_, ffr) = choose(&spec, 0.0, 1e-4).unwrap();
+        let (_, ffr) = choose(&spec, 0.0, 1e-4, &BENCHMARK_150).unwrap();
         assert!(ffr.shear && ffr.describe().contains("on (auto: estimated effect"));
         spec.model = RodModelKind::Segments;
-        let (_, chain) = choose(&spec, 0.0, 1e-4).unwrap();
+        let (_, chain) = choose(&spec, 0.0, 1e-4, &BENCHMARK_150).unwrap();
         let text = chain.describe();
         assert!(!chain.shear, "{text}");
         assert!(text.contains("auto keeps it off in this model"), "{text}");
         assert!(text.contains("rod.shear_deformation = on"), "{text}");
         assert_eq!(chain.model_error(), chain.shear_effect);
-        let (_, loose) = choose(&spec, 0.0, 0.1).unwrap();
+        let (_, loose) = choose(&spec, 0.0, 0.1, &BENCHMARK_150).unwrap();
         assert!(
             loose.describe().contains("<= solver.tolerance"),
             "{}",
@@ -446,23 +653,23 @@ mod tests {
         let mut spec = benchmark_rod();
         spec.shear_deformation = PhysicsSwitch::Off;
         spec.axial_dynamics = PhysicsSwitch::On;
-        let (r, c) = choose(&spec, 0.0, 1e-12).unwrap();
+        let (r, c) = choose(&spec, 0.0, 1e-12, &BENCHMARK_150).unwrap();
         assert!(!c.shear && c.axial);
         assert_eq!(r.shear_deformation, PhysicsSwitch::Off);
         assert!(r.loaded_modes && r.axial_modes == Some(1));
         // `rod.modes` counts bending modes, the axial mode in addition; a scene's own
         // `rod.axial_modes` counts every mode.
         assert!(r.axial_in_addition);
-        let (again, _) = choose(&r, 0.0, 1e-12).unwrap();
+        let (again, _) = choose(&r, 0.0, 1e-12, &BENCHMARK_150).unwrap();
         assert_eq!(again, r, "resolving a resolved spec changes nothing");
         spec.axial_modes = Some(1);
-        let (r, _) = choose(&spec, 0.0, 1e-12).unwrap();
+        let (r, _) = choose(&spec, 0.0, 1e-12, &BENCHMARK_150).unwrap();
         assert!(!r.axial_in_addition);
         spec.axial_modes = None;
         spec.shear_deformation = PhysicsSwitch::On;
         spec.axial_dynamics = PhysicsSwitch::Off;
         spec.axial_in_addition = true;
-        let (r, c) = choose(&spec, 10.0, 0.1).unwrap();
+        let (r, c) = choose(&spec, 10.0, 0.1, &BENCHMARK_150).unwrap();
         assert!(c.shear && !c.axial);
         assert_eq!(r.axial_modes, Some(0));
         assert!(
@@ -475,15 +682,25 @@ mod tests {
     fn auto_follows_the_tolerance_and_the_band() {
         let spec = benchmark_rod();
         let effect = shear_effect(&spec);
-        assert!(choose(&spec, 0.0, effect * 0.9).unwrap().1.shear);
-        assert!(!choose(&spec, 0.0, effect * 1.1).unwrap().1.shear);
+        assert!(
+            choose(&spec, 0.0, effect * 0.9, &BENCHMARK_150)
+                .unwrap()
+                .1
+                .shear
+        );
+        assert!(
+            !choose(&spec, 0.0, effect * 1.1, &BENCHMARK_150)
+                .unwrap()
+                .1
+                .shear
+        );
         // Benchmark rod: axial 4.2 kHz, three modes up to 1.24 kHz: no axial mode; a slider
         // of 10 times the rod's mass brings it down to 0.7 kHz.
-        let (_, c) = choose(&spec, 0.0, 1e-3).unwrap();
+        let (_, c) = choose(&spec, 0.0, 1e-3, &BENCHMARK_150).unwrap();
         assert!(!c.axial, "{}", c.describe());
         assert!((c.axial_hz - 4214.0).abs() < 10.0, "{}", c.axial_hz);
         let m = spec.total_mass().unwrap();
-        let (_, c) = choose(&spec, 10.0 * m, 1e-3).unwrap();
+        let (_, c) = choose(&spec, 10.0 * m, 1e-3, &BENCHMARK_150).unwrap();
         assert!(c.axial, "{}", c.describe());
     }
 }

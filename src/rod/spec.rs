@@ -18,14 +18,18 @@ pub enum RodModelKind {
     /// ([`crate::rod::segments::ModalSegmentRod`]): exact kinematics at large deflection, few
     /// coordinates.
     ModalSegments,
+    /// The FFR rod or the chain on its modes, chosen for the load when the model is built
+    /// ([`crate::rod::physics_choice`], "Rod model").
+    Auto,
 }
 
 impl RodModelKind {
     /// Every variant, in the order of the FMU's enumeration items and Integer codes (1-based).
-    pub const ALL: [RodModelKind; 3] = [
+    pub const ALL: [RodModelKind; 4] = [
         RodModelKind::Ffr,
         RodModelKind::Segments,
         RodModelKind::ModalSegments,
+        RodModelKind::Auto,
     ];
 
     /// The name used in scenes, the FMU's enumeration items and messages.
@@ -34,14 +38,16 @@ impl RodModelKind {
             RodModelKind::Ffr => "ffr",
             RodModelKind::Segments => "segments",
             RodModelKind::ModalSegments => "modal_segments",
+            RodModelKind::Auto => "auto",
         }
     }
 
     /// The default `rod.deflection_limit` of the model: where it is verified
-    /// ([`DEFAULT_DEFLECTION_LIMIT`], [`CHAIN_DEFLECTION_LIMIT`]).
+    /// ([`DEFAULT_DEFLECTION_LIMIT`], [`CHAIN_DEFLECTION_LIMIT`]; `auto` is resolved before a
+    /// rod is built, its value here is the FFR rod's, the smaller one).
     pub fn deflection_limit(self) -> f64 {
         match self {
-            RodModelKind::Ffr => DEFAULT_DEFLECTION_LIMIT,
+            RodModelKind::Ffr | RodModelKind::Auto => DEFAULT_DEFLECTION_LIMIT,
             RodModelKind::Segments | RodModelKind::ModalSegments => CHAIN_DEFLECTION_LIMIT,
         }
     }
@@ -50,7 +56,7 @@ impl RodModelKind {
     /// messages).
     pub fn validity(self) -> &'static str {
         match self {
-            RodModelKind::Ffr => "the small-deformation range of the FFR rod, linear in its modal coordinates; rod.model = modal_segments keeps the geometry exact to 0.25",
+            RodModelKind::Ffr | RodModelKind::Auto => "the small-deformation range of the FFR rod, linear in its modal coordinates; rod.model = modal_segments keeps the geometry exact to 0.25 (rod.model = auto takes it where crank.design_speed, or the crank speed at the start, calls for it)",
             RodModelKind::Segments | RodModelKind::ModalSegments => "the range where the segment chain is verified against the exact beam",
         }
     }

@@ -23,13 +23,14 @@ pub use fragments::{
     blessing, check_generated, fragment_path, generated_dir, is_fragment_id, line_diff, repository,
 };
 
-/// The default scene with the Euler-Bernoulli rod forced (`rod.shear_deformation = "off"`): the
+/// The default scene with the Euler-Bernoulli FFR rod forced (`rod.model = "ffr"`, `rod.shear_deformation = "off"`): the
 /// scene of the tests that compare with Euler-Bernoulli references (closed-form frequency
 /// equations, the ANCF cable, the published tables), so that like is compared with like
 /// (`auto` puts shear deformation and rotary inertia into the benchmark rod, whose slenderness
 /// L / h = 55 changes v_mid by about 2e-3 with them).
 pub fn euler_bernoulli_benchmark() -> flexrod::Scene {
     let mut s = flexrod::Scene::benchmark();
+    s.rod.model = flexrod::rod::RodModelKind::Ffr;
     s.rod.shear_deformation = flexrod::rod::PhysicsSwitch::Off;
     s
 }

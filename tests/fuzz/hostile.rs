@@ -241,7 +241,7 @@ pub fn call(rng: &mut Rng, cx: &Context<'_>, own: &mut OwnStates) -> (Func, fmi2
             // Integers and enumerations out of their declared range (refused at the set call).
             8 | 9 => {
                 let (vr, v) = match rng.below(4) {
-                    0 => (vars.rod_model, rng.pick(&[0, 4, -1, i32::MAX, i32::MIN])),
+                    0 => (vars.rod_model, rng.pick(&[0, 5, -1, i32::MAX, i32::MIN])),
                     1 => (
                         vars.rod_elements,
                         rng.pick(&[0, -1, 129, 1_000_000, i32::MAX]),

@@ -150,7 +150,7 @@ fn parameter(rng: &mut Rng, vars: &Vars) -> Op {
     let p = rng.pick(&vars.parameters);
     if !p.real {
         let value = if p.vr == vars.rod_model {
-            rng.pick(&[1, 2, 2])
+            rng.pick(&[1, 2, 2, 4])
         } else if p.vr == vars.rod_elements {
             // Cheap meshes mostly; the declared limit now and then.
             if rng.one_in(200) {

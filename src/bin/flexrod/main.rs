@@ -172,21 +172,30 @@ fn load_scene(path: Option<&Path>) -> Result<Scene, String> {
 
 fn modes(args: &ModesArgs) -> Result<(), Failure> {
     let scene = load_scene(args.scene.as_deref())?;
-    if scene.rod.model != RodModelKind::Ffr {
+    let spec = scene.mechanism_spec();
+    spec.validate().map_err(|e| e.to_string())?;
+    // The rod as the model builds it: the `auto` settings resolved (the rod model for the
+    // design speed too), section table, shear deformation and end bodies included.
+    let operating_point = flexrod::rod::physics_choice::OperatingPoint {
+        crank_length: spec.crank.length,
+        crank_speed: spec.crank.design_speed,
+    };
+    let (rod, choice) = flexrod::rod::physics_choice::choose(
+        &scene.rod,
+        scene.slider.mass,
+        scene.solver.tolerance,
+        &operating_point,
+    )
+    .map_err(|e| e.to_string())?;
+    if rod.model != RodModelKind::Ffr {
         let sim = Simulation::new(&scene).map_err(|e| e.to_string())?;
+        println!("{}", choice.describe());
         println!("mode  frequency_hz");
         for (k, f) in sim.frequencies_hz().iter().enumerate() {
             println!("{:>4}  {f:.4}", k + 1);
         }
         return Ok(());
     }
-    let spec = scene.mechanism_spec();
-    spec.validate().map_err(|e| e.to_string())?;
-    // The rod as the model builds it: the `auto` settings resolved, section table, shear
-    // deformation and end bodies included.
-    let (rod, choice) =
-        flexrod::rod::physics_choice::choose(&scene.rod, scene.slider.mass, scene.solver.tolerance)
-            .map_err(|e| e.to_string())?;
     println!("{}", choice.describe());
     let definition = rod.definition().map_err(|e| e.to_string())?;
     let reference =
@@ -345,7 +354,7 @@ fn run_length(
 }
 
 fn simulate(args: &SimulateArgs) -> Result<(), Failure> {
-    let scene = load_scene(args.scene.as_deref())?;
+    let mut scene = load_scene(args.scene.as_deref())?;
     let speed = args.speed.unwrap_or(scene.experiment.crank_speed);
     let dt = args.step.unwrap_or(scene.experiment.step_size);
     let (stop, n) = run_length(args, &scene, speed, dt)?;
@@ -383,6 +392,15 @@ fn simulate(args: &SimulateArgs) -> Result<(), Failure> {
     } else {
         CrankDrive::Constant { speed }
     };
+    // `rod.model = auto` chooses for the run's highest crank speed (the scene's
+    // `[crank] design_speed` where given).
+    if scene.crank.design_speed == 0.0 {
+        scene.crank.design_speed = match &drive {
+            CrankDrive::Table(rows) => rows.iter().map(|r| r[2].abs()).fold(0.0, f64::max),
+            _ => speed.abs(),
+        }
+        .min(flexrod::mechanism::DESIGN_SPEED_MAX);
+    }
     let mut sim = Simulation::new(&scene).map_err(|e| e.to_string())?;
     let wall = Instant::now();
     let record = drive::run(&mut sim, &drive, 0.0, &communication_grid(t0, dt, n))
@@ -405,9 +423,17 @@ fn simulate(args: &SimulateArgs) -> Result<(), Failure> {
         .iter()
         .map(|o| magnitude(o.pin_c_force))
         .fold(0.0, f64::max);
+    let built = &sim.mechanism().spec.rod;
+    let chosen = match scene.rod.model {
+        RodModelKind::Auto => format!(
+            " (rod.model = auto at {} rad/s)",
+            number(scene.crank.design_speed)
+        ),
+        _ => String::new(),
+    };
     println!(
-        "scene {}: {:?} rod, {} elements, {} modes, {:?}",
-        scene.name, scene.rod.model, scene.rod.elements, scene.rod.modes, scene.rod.reference
+        "scene {}: {:?} rod{chosen}, {} elements, {} modes, {:?}",
+        scene.name, built.model, built.elements, built.modes, built.reference
     );
     let (integrator, counted) = sim.mechanism().integrator_name();
     println!("simulated {:.4} s ({:.2} revolutions) in {:.2} ms wall with {integrator}: {} steps, {} {counted}, {} halvings", stop - t0, (stop - t0) * speed / (2.0 * std::f64::consts::PI), elapsed * 1e3, stats.steps, stats.newton_iterations, stats.halvings);

@@ -166,12 +166,9 @@ impl Setting {
     /// the error-controlled setting of its model at its tolerance.
     pub fn default_scene() -> Result<Setting, ModelError> {
         let scene = Scene::benchmark();
-        Simulation::new(&scene)?;
-        let model = match (
-            scene.rod.model,
-            scene.solver.method,
-            scene.rod.axial_stiffening,
-        ) {
+        // The rod model built (`auto` at the scene's crank speed).
+        let built = Simulation::new(&scene)?.mechanism().spec.rod.model;
+        let model = match (built, scene.solver.method, scene.rod.axial_stiffening) {
             (RodModelKind::Segments, SolverMethod::Auto, _) => Model::SegmentsAuto,
             (RodModelKind::Ffr, SolverMethod::Auto, true) => Model::FfrAuto,
             _ => {

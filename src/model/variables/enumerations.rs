@@ -36,6 +36,9 @@ impl Kind for RodModelKind {
             RodModelKind::ModalSegments => {
                 "The segment chain on its lowest bending modes (exact kinematics, few coordinates)"
             }
+            RodModelKind::Auto => {
+                "The FFR rod, or the segment chain on its modes where the predicted deflection at crank.design_speed calls for exact kinematics"
+            }
         }
     }
 }
@@ -197,15 +200,16 @@ mod tests {
             from_code::<RodModelKind>(3),
             Some(RodModelKind::ModalSegments)
         );
-        assert_eq!(from_code::<RodModelKind>(4), None);
+        assert_eq!(from_code::<RodModelKind>(4), Some(RodModelKind::Auto));
+        assert_eq!(from_code::<RodModelKind>(5), None);
         assert_eq!(from_code::<RodModelKind>(-1), None);
         assert_eq!(
             ROD_MODEL.allowed_text(),
-            "1 (ffr), 2 (segments), 3 (modal_segments)"
+            "1 (ffr), 2 (segments), 3 (modal_segments), 4 (auto)"
         );
         assert_eq!(
             ROD_MODEL.codes_text(),
-            "1 = ffr, 2 = segments, 3 = modal_segments"
+            "1 = ffr, 2 = segments, 3 = modal_segments, 4 = auto"
         );
         assert_eq!(ROD_REFERENCE.max_code(), 4);
     }

@@ -16,6 +16,8 @@ use crate::scene::Scene;
 /// left out of the description's dependencies): the rod, the model class the `auto` settings
 /// choose (from the slider's mass and the tolerance too), the mass-loaded modes.
 const FREQUENCY_KNOWNS: &[&str] = &[
+    "crank.length",
+    "crank.design_speed",
     "rod.length",
     "rod.youngs_modulus",
     "rod.density",
@@ -221,6 +223,18 @@ impl VariableTable {
         );
         b.positive();
         b.real_parameter(
+            "crank.design_speed",
+            109,
+            RAD_PER_S,
+            |s| s.crank.design_speed,
+            |s, v| s.crank.design_speed = v,
+            "Highest crank speed |omega| of the run, rad/s, for which rod.model = auto chooses the rod model; 0 = crank.speed at initialization (where that is 0, its start value)",
+        );
+        b.bounds(
+            Some(Value::Real(0.0)),
+            Some(Value::Real(crate::mechanism::DESIGN_SPEED_MAX)),
+        );
+        b.real_parameter(
             "rod.length",
             101,
             real("m"),
@@ -293,7 +307,7 @@ impl VariableTable {
             ValueType::Enumeration(&ROD_MODEL),
             |s| enumerations::code(s.rod.model),
             set_model,
-            "Rod model: ffr, segments or modal_segments",
+            "Rod model: ffr, segments, modal_segments, or auto (ffr, or modal_segments where the load at crank.design_speed calls for exact kinematics)",
         );
         b.integer_parameter(
             "rod.elements",
@@ -614,7 +628,11 @@ impl VariableTable {
 /// built (it may differ: 7 segments against 2 elements for six frequencies).
 fn least_count(scene: &Scene, frequencies: usize) -> i32 {
     let least = match scene.rod.model {
-        crate::scene::RodModelKind::Ffr => crate::beam::mesh::least_elements(frequencies),
+        // `auto` builds the FFR rod with `rod.elements`, or a chain of at least
+        // `physics_choice::AUTO_SEGMENTS` segments (more than enough frequencies).
+        crate::scene::RodModelKind::Ffr | crate::scene::RodModelKind::Auto => {
+            crate::beam::mesh::least_elements(frequencies)
+        }
         crate::scene::RodModelKind::Segments | crate::scene::RodModelKind::ModalSegments => {
             crate::rod::segments::least_segments(frequencies, scene.rod.axial_springs)
         }

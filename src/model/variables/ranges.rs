@@ -111,9 +111,11 @@ mod tests {
         assert_eq!(scene.rod.model, RodModelKind::Segments);
         assert!(set_model(&mut scene, 3).is_ok());
         assert_eq!(scene.rod.model, RodModelKind::ModalSegments);
+        assert!(set_model(&mut scene, 4).is_ok());
+        assert_eq!(scene.rod.model, RodModelKind::Auto);
         assert_eq!(
-            set_model(&mut scene, 4).unwrap_err(),
-            "1 (ffr), 2 (segments), 3 (modal_segments)"
+            set_model(&mut scene, 5).unwrap_err(),
+            "1 (ffr), 2 (segments), 3 (modal_segments), 4 (auto)"
         );
         assert!(set_reference(&mut scene, 0).is_err());
         assert!(set_reference(&mut scene, 4).is_ok());
