@@ -1,8 +1,9 @@
 """Large deflection through fmpy: the benchmark rod at 300 rad/s (peak |v_mid/L| 0.07, abrupt
 start) against Exudyn's geometrically exact shear beam (tests/data/exudyn_shear_beam_300rad_s.csv,
-512 elements, converged). The default FFR rod refuses the step past its limit 0.05 with
-fmi2Discard and names the model that goes further; `rod.model_index = 3` (the segment chain on
-its modes) follows the exact beam, in fmi2OK steps and in one fmi2DoStep alike."""
+512 elements, converged). With the FMU's defaults (`rod.model = auto`) the crank speed at
+initialization calls for the segment chain on its modes, which follows the exact beam, in fmi2OK
+steps and in one fmi2DoStep alike; the FFR rod, set, refuses the step past its limit 0.05 with
+fmi2Discard and names the model that goes further."""
 
 import math
 
@@ -20,7 +21,7 @@ DISCARD = 2
 
 @pytest.fixture(scope="module")
 def default_dir(default_fmu, tmp_path_factory):
-    """The default FMU (scenes/benchmark.toml: the FFR rod), unzipped."""
+    """The default FMU (scenes/benchmark.toml: `rod.model = auto`), unzipped."""
     return extract(str(default_fmu), str(tmp_path_factory.mktemp("high_load")))
 
 
@@ -42,7 +43,7 @@ def started(unzipdir, params=None, integers=None):
 
 
 def test_ffr_refuses_the_step_past_its_limit_and_names_the_model_that_goes_on(default_dir):
-    s = started(default_dir)
+    s = started(default_dir, integers={"rod.model_index": 1})
     exact = exact_beam()
     peak = np.abs(exact[:, 1]).max()
     with pytest.raises(FMICallException) as refused:
@@ -59,30 +60,43 @@ def test_ffr_refuses_the_step_past_its_limit_and_names_the_model_that_goes_on(de
     s.free()
 
 
-def test_modal_segments_follow_the_exact_beam(default_dir):
+def test_the_defaults_take_the_chain_and_follow_the_exact_beam(default_dir):
     exact = exact_beam()
     peak = np.abs(exact[:, 1]).max()
-    s = started(default_dir, integers={"rod.model_index": 3, "rod.elements": 32})
-    assert s.fmu.getInteger([s.vr["rod.model_index"]]) == [3]
-    (limit,) = s.get("rod.deflection_limit")
-    assert limit == 0.25
+    s = started(default_dir)
+    # `auto` stays the setting; the speed it chose for is written into crank.design_speed.
+    assert s.fmu.getInteger([s.vr["rod.model_index"]]) == [4]
+    assert s.get("crank.design_speed") == [W]
+    assert "rod model modal_segments (auto: predicted peak" in s.log.text(), s.log.text()
     worst = 0.0
     for k in range(len(exact) - 1):
         t = k * DT
         s.set(crank__angle=W * t, crank__speed=W)
-        s.fmu.doStep(t, DT)
+        assert s.fmu.doStep(t, DT) is None
         (v,) = s.get("rod.deflection_rel")
         worst = max(worst, abs(v - exact[k + 1, 1]) / peak)
     assert worst < 5e-3, worst
-    # Its error estimate says what it is (the chain's discretization at 32 segments).
+    # Its error estimate says what it is (the chain's discretization and the integration),
+    # within the tolerance: no warning.
     (estimate,) = s.get("rod.error_estimate")
     assert worst / 3 < estimate < 3 * worst, (estimate, worst)
+    assert estimate <= 1e-3 and "exceeds solver.tolerance" not in s.log.text()
     s.free()
     # Two revolutions in one fmi2DoStep: the same motion at its end.
-    one = started(default_dir, integers={"rod.model_index": 3, "rod.elements": 32})
+    one = started(default_dir)
     stop = 4 * math.pi / W
     one.fmu.doStep(0.0, stop)
     (v,) = one.get("rod.deflection_rel")
     k = round(stop / DT)
     assert abs(v - np.interp(stop, exact[:, 0], exact[:, 1])) < 5e-3 * peak, (v, exact[k, 1])
     one.free()
+
+
+def test_the_design_speed_chooses_for_a_start_from_rest(default_dir):
+    """From rest the crank speed says nothing of the load to come: `auto` takes the FFR rod,
+    and with crank.design_speed = 300 the chain on its modes."""
+    for params, model in [(None, "ffr"), ({"crank.design_speed": W}, "modal_segments")]:
+        s = Slave(default_dir, logging_on=True)
+        s.init(speed=0.0, params=params)
+        assert f"rod model {model} (auto: predicted peak" in s.log.text(), (model, s.log.text())
+        s.free()
