@@ -55,7 +55,11 @@ pi^2 E I / L^2 = 1.75 kN: 0.26 kN at 150 rad/s, 1.04 kN at 300, 4.1 kN at 600; 0
   chaotic: two 64-element runs that differ only in the Newton tolerance (absolute 1e-5 -> 1e-6,
   relative 1e-8 -> 1e-10) part by 1e-4 of the peak at 49 ms and by more than the peak later.
   The runs (h = 5e-7 s) agree to 1e-2 of the peak until 29 ms (128 against 256 elements) and
-  32 ms (256 against 512), to 1e-1 until 33 and 41 ms.
+  32 ms (256 against 512), to 1e-1 until 33 and 41 ms. Over the early part, 0 .. 16 ms, it
+  converges: tests/data/exudyn_shear_beam_e100_150rad_s.csv (--stop 0.016), 512 elements,
+  h = 5e-7 s: |v_mid/L| first passes 0.25 at 10.3 ms (between the 10.3 and 10.4 ms samples) and
+  reaches its window peak 0.345 at 15.1 ms; 256 elements 8.2e-5 of the peak v_mid off, the
+  extrapolation in N 2.7e-5, h 1e-6 s 7.3e-7.
 
 Columns (every --sample s, 0 .. --stop, by default two revolutions, 4 pi / W rounded up to the
 sample grid: 0.0838 s at 150 rad/s), the columns and signs of
@@ -79,7 +83,10 @@ the two check runs):
       --newton-abs 1e-4 --check --out tests/data/exudyn_shear_beam_300rad_s.csv
   python tests/data/benchmark_shear_reference.py --speed 600 --elements 1024 --step 2.5e-7 \\
       --newton-abs 1e-4 --check --out tests/data/exudyn_shear_beam_600rad_s.csv
-(3 and 7 minutes of CPU).
+  python tests/data/benchmark_shear_reference.py --youngs-scale 0.01 --speed 150 --stop 0.016 \\
+      --elements 512 --step 5e-7 --newton-abs 1e-4 --check \\
+      --out tests/data/exudyn_shear_beam_e100_150rad_s.csv
+(3, 7 and about 1 minute of CPU).
 """
 
 import argparse
