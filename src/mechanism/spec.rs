@@ -13,8 +13,8 @@ pub struct CrankSpec {
     pub length: f64,
     /// The highest crank speed `|omega|` the run reaches, rad/s, for which `rod.model = auto`
     /// chooses the rod model ([`crate::rod::physics_choice`], "Rod model"); 0: the crank speed
-    /// at the start (a scene: `[experiment] crank_speed`; the FMU: `crank.speed` when the model
-    /// is built, written here then).
+    /// at the start (a scene: `[experiment] crank_speed`; the FMU: `|crank.speed|` when the
+    /// model is built, written here then).
     #[serde(default, skip_serializing_if = "is_zero")]
     pub design_speed: f64,
 }

@@ -158,14 +158,18 @@ impl Model {
     pub fn ensure_started(&mut self, t0: f64, table: &VariableTable) -> Result<(), ModelError> {
         if self.simulation.is_none() {
             check_geometry(&self.scene)?;
-            // `crank.design_speed = 0`: the crank speed at initialization (its start value
-            // where that is 0), written into the parameter so that saved states, the model's
-            // fingerprint and a reader see the speed the rod model was chosen for.
-            if self.scene.crank.design_speed == 0.0 && self.inputs.speed != 0.0 {
+            // `crank.design_speed = 0`: the crank speed at initialization, written into the
+            // parameter (and, for a start from rest, into the experiment's speed the scene
+            // falls back on) so that saved states, the model's fingerprint and a reader see the
+            // speed the rod model was chosen for.
+            if self.scene.crank.design_speed == 0.0 {
                 let speed = self.inputs.speed.abs();
                 if speed <= crate::mechanism::DESIGN_SPEED_MAX {
-                    self.scene.crank.design_speed = speed;
-                    self.design_speed_filled = Some(speed);
+                    self.scene.experiment.crank_speed = speed;
+                    if speed > 0.0 {
+                        self.scene.crank.design_speed = speed;
+                        self.design_speed_filled = Some(speed);
+                    }
                 }
             }
             let simulation = Simulation::new(&self.scene)?;

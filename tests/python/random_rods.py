@@ -99,6 +99,8 @@ def simulate(unzipdir, rod, extra=None):
             s.setReal([vr[name]], [value])
     th, om, _ = drive(rod, 0.0)
     s.setReal([vr["crank.angle"], vr["crank.speed"]], [th, om])
+    # The operating speed, for the rod model `auto` chooses (a smooth start begins at rest).
+    s.setReal([vr["crank.design_speed"]], [rod["W"]])
     s.exitInitializationMode()
     dt = rod["dt_comm"]
     n = int(round(rod["t_stop"] / dt))

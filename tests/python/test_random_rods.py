@@ -1,4 +1,4 @@
-"""The default FMU on 44 random rods with only physical parameters set, against Exudyn's
+"""The default FMU on 44 random rods with only physical parameters and the operating speed set, against Exudyn's
 geometrically exact shear beam (tests/data/random_rods/, written by
 tests/data/random_rods_reference.py; what is compared: random_rods.py).
 
@@ -52,7 +52,7 @@ def table(results):
         f"{max(r['slider_mass'] / r['rod_mass'] for r, _, _ in results):.2f} times the rod's mass, "
         f"end bodies on {sum(r['big_end_mass'] > 0 for r, _, _ in results)}, peak v_mid/L "
         f"{min(r['peak_v_rel'] for r, _, _ in results):.4f} to {max(r['peak_v_rel'] for r, _, _ in results):.4f}), "
-        "the default FMU with only physical parameters set:",
+        "the default FMU with only physical parameters and the operating speed (`crank.design_speed`) set:",
         "",
         f"- {len(smooth)} smooth starts: v_mid/L within 0.5 % of its peak pointwise on {within}; largest "
         f"{pct(max(m['v'] for _, _, m in smooth))}. Pin forces within "

@@ -228,7 +228,7 @@ impl VariableTable {
             RAD_PER_S,
             |s| s.crank.design_speed,
             |s, v| s.crank.design_speed = v,
-            "Highest crank speed |omega| of the run, rad/s, for which rod.model = auto chooses the rod model; 0 = crank.speed at initialization (where that is 0, its start value)",
+            "Highest crank speed |omega| of the run, rad/s, for which rod.model = auto chooses the rod model; 0 = |crank.speed| at initialization",
         );
         b.bounds(
             Some(Value::Real(0.0)),
