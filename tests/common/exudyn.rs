@@ -62,7 +62,7 @@ pub fn samples_of(name: &str) -> Vec<Sample> {
             pin_c_force: [v[4], v[5]],
         })
         .collect();
-    assert!(rows.len() > 200, "{path}: {} rows", rows.len());
+    assert!(rows.len() > 100, "{path}: {} rows", rows.len());
     for (k, r) in rows.iter().enumerate() {
         assert!(
             (r.time - k as f64 * DT).abs() < 1e-9,
