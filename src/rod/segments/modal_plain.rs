@@ -39,6 +39,32 @@ pub const MAX_REDUCED: usize = 3 + 16;
 /// One row of reduced coordinates on the stack.
 type Row = [f64; MAX_REDUCED];
 
+/// `self.method::<N>(args)` with `N = self.n` (4 to [`MAX_REDUCED`]): the loops over the reduced
+/// coordinates get their length at compile time.
+macro_rules! dispatch {
+    ($self:ident . $method:ident ( $($arg:expr),* )) => {
+        match $self.n {
+            4 => $self.$method::<4>($($arg),*),
+            5 => $self.$method::<5>($($arg),*),
+            6 => $self.$method::<6>($($arg),*),
+            7 => $self.$method::<7>($($arg),*),
+            8 => $self.$method::<8>($($arg),*),
+            9 => $self.$method::<9>($($arg),*),
+            10 => $self.$method::<10>($($arg),*),
+            11 => $self.$method::<11>($($arg),*),
+            12 => $self.$method::<12>($($arg),*),
+            13 => $self.$method::<13>($($arg),*),
+            14 => $self.$method::<14>($($arg),*),
+            15 => $self.$method::<15>($($arg),*),
+            16 => $self.$method::<16>($($arg),*),
+            17 => $self.$method::<17>($($arg),*),
+            18 => $self.$method::<18>($($arg),*),
+            19 => $self.$method::<19>($($arg),*),
+            n => unreachable!("{n} reduced coordinates: 4 to {MAX_REDUCED}"),
+        }
+    };
+}
+
 /// A point of the chain: on segment `k` at `xi` (m) from its start, plus `w t_i n_k` across
 /// the shear slide `i`.
 #[derive(Clone, Copy, Debug)]
@@ -235,6 +261,20 @@ impl Plain {
         &self.sigma[i * self.n..(i + 1) * self.n]
     }
 
+    /// `Psi_k` with its length `N = n` known to the compiler.
+    #[inline(always)]
+    fn psi_n<const N: usize>(&self, k: usize) -> &[f64; N] {
+        self.psi[k * N..(k + 1) * N].try_into().expect("n columns")
+    }
+
+    /// `Sigma_i` with its length `N = n` known to the compiler.
+    #[inline(always)]
+    fn sigma_n<const N: usize>(&self, i: usize) -> &[f64; N] {
+        self.sigma[i * N..(i + 1) * N]
+            .try_into()
+            .expect("n columns")
+    }
+
     fn point_of(&self, p: RodPoint) -> ChainPoint {
         match p {
             RodPoint::B => self.points[0],
@@ -255,7 +295,7 @@ impl Plain {
             // Psi_k,alpha = 1: the elastic part is the modes' share alone; the slides are the
             // modes' alone.
             for k in 0..self.segments() {
-                let (s, c) = dot(&self.psi(k)[3..], &r[3..]).sin_cos();
+                let (s, c) = crate::trig::sin_cos(dot(&self.psi(k)[3..], &r[3..]));
                 trig.elastic_cos[k] = c;
                 trig.elastic_sin[k] = s;
             }
@@ -265,7 +305,7 @@ impl Plain {
             trig.elastic_valid = true;
             trig.body_points = [None; 3];
         }
-        let (sa, ca) = r[2].sin_cos();
+        let (sa, ca) = crate::trig::sin_cos(r[2]);
         for k in 0..self.segments() {
             let (c, s) = (trig.elastic_cos[k], trig.elastic_sin[k]);
             trig.cos[k] = ca * c - sa * s;
@@ -291,7 +331,7 @@ impl Plain {
         let (xb, jxb, jyb) = match trig.body_points[i] {
             Some(b) => b,
             None => {
-                let (x, jx, jy, _) = self.point_parts(p, trig, None, Frame::Body);
+                let (x, jx, jy, _) = dispatch!(self.point_parts(p, trig, None, Frame::Body));
                 trig.body_points[i] = Some((x, jx, jy));
                 (x, jx, jy)
             }
@@ -314,7 +354,7 @@ impl Plain {
     /// of the centroid (angle and slide columns; the columns of `x_B`, `y_B` are the unit
     /// vectors) and, with velocities `v`, its velocity-product acceleration. Stops before
     /// segment `stop` and returns the prefix sums `P` (x, y), `sum d_j` and `gamma` there.
-    fn walk(
+    fn walk<const N: usize>(
         &self,
         trig: &Trig,
         v: Option<&[f64]>,
@@ -322,7 +362,7 @@ impl Plain {
         frame: Frame,
         mut visit: impl FnMut(usize, &Row, &Row, Vector2<f64>),
     ) -> (Row, Row, Vector2<f64>, Vector2<f64>) {
-        let n = self.n;
+        let n = N;
         let (mut px, mut py) = match frame {
             Frame::Global => (self.base_x, self.base_y),
             Frame::Body => ([0.0; MAX_REDUCED], [0.0; MAX_REDUCED]),
@@ -332,7 +372,7 @@ impl Plain {
         let mut gamma = Vector2::zeros();
         for k in 0..stop {
             let (e, nn) = trig.axes_in(frame, k);
-            let psi = self.psi(k);
+            let psi = self.psi_n::<N>(k);
             let ck = self.centroids[k];
             for c in 2..n {
                 let lever = ck * psi[c];
@@ -342,14 +382,14 @@ impl Plain {
             let (w, slide_rate) = match v {
                 Some(v) => (
                     dot(&psi[2..], &v[2..n]),
-                    dot(&self.sigma(k + 1)[2..], &v[2..n]),
+                    dot(&self.sigma_n::<N>(k + 1)[2..], &v[2..n]),
                 ),
                 None => (0.0, 0.0),
             };
             visit(k, &gx, &gy, gamma - e * (ck * w * w));
             let t = trig.slides[k + 1];
             let perp = nn * self.l - e * t;
-            let sigma = self.sigma(k + 1);
+            let sigma = self.sigma_n::<N>(k + 1);
             for c in 2..n {
                 px[c] += perp.x * psi[c] + nn.x * sigma[c];
                 py[c] += perp.y * psi[c] + nn.y * sigma[c];
@@ -363,18 +403,19 @@ impl Plain {
 
     /// Position, Jacobian (angle and slide columns, x and y) and, with `v`, the velocity
     /// products of point `p`.
-    fn point_parts(
+    fn point_parts<const N: usize>(
         &self,
         p: RodPoint,
         trig: &Trig,
         v: Option<&[f64]>,
         frame: Frame,
     ) -> (Vector2<f64>, Row, Row, Vector2<f64>) {
-        let n = self.n;
+        let n = N;
         let cp = self.point_of(p);
-        let (mut jx, mut jy, offset, mut gamma) = self.walk(trig, v, cp.k, frame, |_, _, _, _| {});
+        let (mut jx, mut jy, offset, mut gamma) =
+            self.walk::<N>(trig, v, cp.k, frame, |_, _, _, _| {});
         let (e, nn) = trig.axes_in(frame, cp.k);
-        let psi = self.psi(cp.k);
+        let psi = self.psi_n::<N>(cp.k);
         let w = v.map_or(0.0, |v| dot(&psi[2..], &v[2..n]));
         let mut x = offset + e * cp.xi;
         gamma -= e * (cp.xi * w * w);
@@ -384,7 +425,7 @@ impl Plain {
         }
         if let Some((i, weight)) = cp.slide {
             let t = trig.slides[i];
-            let sigma = self.sigma(i);
+            let sigma = self.sigma_n::<N>(i);
             x += nn * (weight * t);
             for c in 2..n {
                 jx[c] += weight * (nn.x * sigma[c] - e.x * t * psi[c]);
@@ -422,31 +463,41 @@ impl Plain {
 
     /// `J_P' r'`, the velocity products of `p`'s acceleration.
     pub(super) fn point_bias(&self, p: RodPoint, v: &[f64], trig: &Trig) -> Vector2<f64> {
+        dispatch!(self.point_bias_n(p, v, trig))
+    }
+
+    fn point_bias_n<const N: usize>(&self, p: RodPoint, v: &[f64], trig: &Trig) -> Vector2<f64> {
         // The velocity products of `point_parts` alone (no Jacobian columns): the segments'
         // `-2 w_j t_{j+1}' e_j - w_j^2 d_j` up to the point, then its own segment's share.
-        let n = self.n;
+        let n = N;
         let cp = self.point_of(p);
         let mut gamma = Vector2::zeros();
         for k in 0..cp.k {
             let (e, nn) = trig.axes(k);
-            let w = dot(&self.psi(k)[2..], &v[2..n]);
-            let rate = dot(&self.sigma(k + 1)[2..], &v[2..n]);
+            let w = dot(&self.psi_n::<N>(k)[2..], &v[2..n]);
+            let rate = dot(&self.sigma_n::<N>(k + 1)[2..], &v[2..n]);
             let d = e * self.l + nn * trig.slides[k + 1];
             gamma -= e * (2.0 * w * rate) + d * (w * w);
         }
         let (e, nn) = trig.axes(cp.k);
-        let w = dot(&self.psi(cp.k)[2..], &v[2..n]);
+        let w = dot(&self.psi_n::<N>(cp.k)[2..], &v[2..n]);
         gamma -= e * (cp.xi * w * w);
         if let Some((i, weight)) = cp.slide {
-            let rate = dot(&self.sigma(i)[2..], &v[2..n]);
+            let rate = dot(&self.sigma_n::<N>(i)[2..], &v[2..n]);
             gamma -= (e * (2.0 * w * rate) + nn * (w * w * trig.slides[i])) * weight;
         }
         gamma
     }
 
     /// `m J^T J` of a point mass into the upper triangle of `m`.
-    fn add_point_mass(&self, mass: f64, gx: &Row, gy: &Row, m: &mut [Row; MAX_REDUCED]) {
-        let n = self.n;
+    fn add_point_mass<const N: usize>(
+        &self,
+        mass: f64,
+        gx: &Row,
+        gy: &Row,
+        m: &mut [Row; MAX_REDUCED],
+    ) {
+        let n = N;
         for c in 2..n {
             let (ax, ay) = (mass * gx[c], mass * gy[c]);
             m[0][c] += ax;
@@ -459,17 +510,21 @@ impl Plain {
     }
 
     /// The mass matrix (n x n) into `out` (overwritten).
-    pub(super) fn mass(&self, trig: &Trig, mut out: MatMut<'_, f64>) {
-        let n = self.n;
+    pub(super) fn mass(&self, trig: &Trig, out: MatMut<'_, f64>) {
+        dispatch!(self.mass_n(trig, out))
+    }
+
+    fn mass_n<const N: usize>(&self, trig: &Trig, mut out: MatMut<'_, f64>) {
+        let n = N;
         let mut m = [[0.0; MAX_REDUCED]; MAX_REDUCED];
-        let (jcx, jcy, _, _) = self.walk(
+        let (jcx, jcy, _, _) = self.walk::<N>(
             trig,
             None,
             self.segments(),
             Frame::Global,
             |k, gx, gy, _| {
-                self.add_point_mass(self.masses[k], gx, gy, &mut m);
-                let psi = self.psi(k);
+                self.add_point_mass::<N>(self.masses[k], gx, gy, &mut m);
+                let psi = self.psi_n::<N>(k);
                 let inertia = self.inertias[k];
                 for c in 2..n {
                     let a = inertia * psi[c];
@@ -481,12 +536,12 @@ impl Plain {
             },
         );
         if self.end_mass[0] > 0.0 {
-            let (_, jx, jy, _) = self.point_parts(RodPoint::B, trig, None, Frame::Global);
-            self.add_point_mass(self.end_mass[0], &jx, &jy, &mut m);
+            let (_, jx, jy, _) = self.point_parts::<N>(RodPoint::B, trig, None, Frame::Global);
+            self.add_point_mass::<N>(self.end_mass[0], &jx, &jy, &mut m);
         }
         if self.end_mass[1] > 0.0 {
             // C ends the last offset: J_C = P_N.
-            self.add_point_mass(self.end_mass[1], &jcx, &jcy, &mut m);
+            self.add_point_mass::<N>(self.end_mass[1], &jcx, &jcy, &mut m);
         }
         let total = self.masses.iter().sum::<f64>() + self.end_mass[0] + self.end_mass[1];
         m[0][0] = total;
@@ -500,31 +555,43 @@ impl Plain {
     }
 
     /// `q -= m J^T gamma` of a point mass.
-    fn add_point_inertia(&self, mass: f64, gx: &Row, gy: &Row, gamma: Vector2<f64>, q: &mut Row) {
+    fn add_point_inertia<const N: usize>(
+        &self,
+        mass: f64,
+        gx: &Row,
+        gy: &Row,
+        gamma: Vector2<f64>,
+        q: &mut Row,
+    ) {
         q[0] -= mass * gamma.x;
         q[1] -= mass * gamma.y;
-        for c in 2..self.n {
+        for c in 2..N {
             q[c] -= mass * (gx[c] * gamma.x + gy[c] * gamma.y);
         }
     }
 
     /// Velocity products, springs and dampers (n entries, overwritten).
     pub(super) fn forces(&self, r: &[f64], v: &[f64], trig: &Trig, f: &mut [f64]) {
-        let n = self.n;
+        dispatch!(self.forces_n(r, v, trig, f))
+    }
+
+    fn forces_n<const N: usize>(&self, r: &[f64], v: &[f64], trig: &Trig, f: &mut [f64]) {
+        let n = N;
         let mut q = [0.0; MAX_REDUCED];
-        let (jcx, jcy, _, gamma_c) = self.walk(
+        let (jcx, jcy, _, gamma_c) = self.walk::<N>(
             trig,
             Some(v),
             self.segments(),
             Frame::Global,
-            |k, gx, gy, g| self.add_point_inertia(self.masses[k], gx, gy, g, &mut q),
+            |k, gx, gy, g| self.add_point_inertia::<N>(self.masses[k], gx, gy, g, &mut q),
         );
         if self.end_mass[0] > 0.0 {
-            let (_, jx, jy, gamma) = self.point_parts(RodPoint::B, trig, Some(v), Frame::Global);
-            self.add_point_inertia(self.end_mass[0], &jx, &jy, gamma, &mut q);
+            let (_, jx, jy, gamma) =
+                self.point_parts::<N>(RodPoint::B, trig, Some(v), Frame::Global);
+            self.add_point_inertia::<N>(self.end_mass[0], &jx, &jy, gamma, &mut q);
         }
         if self.end_mass[1] > 0.0 {
-            self.add_point_inertia(self.end_mass[1], &jcx, &jcy, gamma_c, &mut q);
+            self.add_point_inertia::<N>(self.end_mass[1], &jcx, &jcy, gamma_c, &mut q);
         }
         for (c, fc) in f[..n].iter_mut().enumerate() {
             let row = c * n;
@@ -538,22 +605,26 @@ impl Plain {
 
     /// Add the gravity forces `sum m_k G_k^T g` (rod and end bodies) into `f`.
     pub(super) fn add_gravity(&self, trig: &Trig, g: Vector2<f64>, f: &mut [f64]) {
-        let n = self.n;
+        dispatch!(self.add_gravity_n(trig, g, f))
+    }
+
+    fn add_gravity_n<const N: usize>(&self, trig: &Trig, g: Vector2<f64>, f: &mut [f64]) {
+        let n = N;
         let mut q = [0.0; MAX_REDUCED];
         // Gravity is the point-inertia term with gamma = -g.
-        let (jcx, jcy, _, _) = self.walk(
+        let (jcx, jcy, _, _) = self.walk::<N>(
             trig,
             None,
             self.segments(),
             Frame::Global,
-            |k, gx, gy, _| self.add_point_inertia(self.masses[k], gx, gy, -g, &mut q),
+            |k, gx, gy, _| self.add_point_inertia::<N>(self.masses[k], gx, gy, -g, &mut q),
         );
         if self.end_mass[0] > 0.0 {
-            let (_, jx, jy, _) = self.point_parts(RodPoint::B, trig, None, Frame::Global);
-            self.add_point_inertia(self.end_mass[0], &jx, &jy, -g, &mut q);
+            let (_, jx, jy, _) = self.point_parts::<N>(RodPoint::B, trig, None, Frame::Global);
+            self.add_point_inertia::<N>(self.end_mass[0], &jx, &jy, -g, &mut q);
         }
         if self.end_mass[1] > 0.0 {
-            self.add_point_inertia(self.end_mass[1], &jcx, &jcy, -g, &mut q);
+            self.add_point_inertia::<N>(self.end_mass[1], &jcx, &jcy, -g, &mut q);
         }
         for c in 0..n {
             f[c] += q[c];
