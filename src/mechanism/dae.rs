@@ -200,8 +200,9 @@ impl DaeSystem for SliderCrankDae<'_> {
         out[3] = c.y;
     }
 
-    /// Closed form for a rod with one body frame (FFR): with the frame at the origin the points
-    /// give the body-frame chord `d = u_C - u_B`; pin B gives `R = r_pin - A(phi) u_B`, pin C's
+    /// Closed form for a rod with one body frame (FFR, the chain on its modes): with the frame
+    /// at the origin the points give the body-frame chord `d = u_C - u_B`; pin B gives `R = r_pin
+    /// - B(q)` with `B(q)` the pin at the frame's angle and origin, pin C's
     /// line constraint `y_pin + (A(phi) d)_y = y_line`, i.e. `sin(phi + beta) = (y_line -
     /// y_pin) / |d|` with `beta = atan2(d_y, d_x)` (the root nearest the current angle: the
     /// assembly mode does not change), and the slider `x_s = x_pin + (A(phi) d)_x`. The pin
@@ -244,13 +245,16 @@ impl DaeSystem for SliderCrankDae<'_> {
         } else {
             p2
         };
-        let (s, c) = phi.sin_cos();
-        let rotate = |v: Vector2<f64>| Vector2::new(c * v.x - s * v.y, s * v.x + c * v.y);
-        let r = pin - rotate(u_b);
+        // The pins at the frame's angle with the frame at the origin: B's share of the elastic
+        // coordinates need not turn with the frame (a shear chain's modes move its first
+        // segment's start across B's slide in the global axes), only the chord does.
+        q[iphi] = phi;
+        let b0 = self.rod.point(RodPoint::B, q);
+        let c0 = self.rod.point(RodPoint::C, q);
+        let r = pin - b0;
         q[ix] = r.x;
         q[iy] = r.y;
-        q[iphi] = phi;
-        q[nr] = pin.x + rotate(d).x;
+        q[nr] = r.x + c0.x;
         true
     }
 

@@ -58,8 +58,9 @@ pub trait RodBody: Send {
         Vec::new()
     }
     /// Indices of the body frame's origin `R` (x, y) and angle `phi` among the coordinates,
-    /// where the model has one frame carrying all points (the FFR rod): a point is then
-    /// `R + A(phi) u(q_elastic)`.
+    /// where the model has one frame carrying the chord: a point is then `R + s(q_elastic) +
+    /// A(phi) u(q_elastic)`, with a share `s` common to every point (the FFR rod: none; the chain
+    /// on its modes: its shear modes' move of the first segment's start).
     fn frame_coordinates(&self) -> Option<[usize; 3]> {
         None
     }

@@ -315,6 +315,11 @@ impl RodBody for ModalSegmentRod {
         self.basis.ncols()
     }
 
+    /// `x_B`, `y_B` translate every point, `alpha` turns every segment (module documentation).
+    fn frame_coordinates(&self) -> Option<[usize; 3]> {
+        Some([0, 1, 2])
+    }
+
     fn coordinate_scale(&self, i: usize) -> f64 {
         match i {
             0 | 1 => self.chain.length(),
