@@ -57,9 +57,50 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     }
 }
 
+/// `sin` and `cos` of every entry of `x` into `sin` and `cos` (the same lengths), each as
+/// [`sin_cos`] gives it. Where every `|x| <= pi/4` (the small angles of a rod's elastic shape)
+/// the kernel polynomials alone, in one loop the compiler can vectorize; else entry by entry.
+pub fn sin_cos_all(x: &[f64], sin: &mut [f64], cos: &mut [f64]) {
+    assert!(x.len() == sin.len() && x.len() == cos.len());
+    let mut largest: f64 = 0.0;
+    for ((&r, si), ci) in x.iter().zip(sin.iter_mut()).zip(cos.iter_mut()) {
+        largest = largest.max(r.abs());
+        let z = r * r;
+        *si = r + r * z * (S1 + z * (S2 + z * (S3 + z * (S4 + z * (S5 + z * S6)))));
+        *ci = 1.0 - 0.5 * z + z * z * (C1 + z * (C2 + z * (C3 + z * (C4 + z * (C5 + z * C6)))));
+    }
+    if !(largest <= std::f64::consts::FRAC_PI_4) {
+        for ((&r, si), ci) in x.iter().zip(sin.iter_mut()).zip(cos.iter_mut()) {
+            (*si, *ci) = sin_cos(r);
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The slice form is the scalar one, bit for bit, small angles or not.
+    #[test]
+    fn the_slice_form_is_the_scalar_one() {
+        for scale in [1e-3, 0.5, 0.785, 3.0, 1e3] {
+            let x: Vec<f64> = (0..37).map(|i| scale * ((i as f64) * 0.37).sin()).collect();
+            let (mut s, mut c) = (vec![0.0; x.len()], vec![0.0; x.len()]);
+            sin_cos_all(&x, &mut s, &mut c);
+            for (i, &xi) in x.iter().enumerate() {
+                let (se, ce) = sin_cos(xi);
+                assert_eq!(
+                    (s[i].to_bits(), c[i].to_bits()),
+                    (se.to_bits(), ce.to_bits()),
+                    "{xi}"
+                );
+            }
+        }
+        let x = [0.1, f64::NAN];
+        let (mut s, mut c) = ([0.0; 2], [0.0; 2]);
+        sin_cos_all(&x, &mut s, &mut c);
+        assert!(s[1].is_nan() && c[1].is_nan() && s[0] == sin_cos(0.1).0);
+    }
 
     /// Against the standard library over the range the crank angle and the propagators reach
     /// (and beyond, where it hands over), to 2 ulps of 1 absolute.

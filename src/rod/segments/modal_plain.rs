@@ -109,10 +109,15 @@ pub(super) struct Plain {
 pub(super) struct Trig {
     r: Vec<f64>,
     valid: bool,
+    /// `cos`, `sin` hold the segments' angles at `r` (turned by `alpha` only when a walk in
+    /// the global axes asks: the pins' positions turn the body points instead).
+    global_valid: bool,
     cos: Vec<f64>,
     sin: Vec<f64>,
     slides: Vec<f64>,
     elastic_valid: bool,
+    /// The elastic angles `phi_k`, their cosines and sines.
+    elastic: Vec<f64>,
     elastic_cos: Vec<f64>,
     elastic_sin: Vec<f64>,
     /// B's, C's and the midpoint's position (from `S_0`) and Jacobian columns at `r`, once
@@ -139,10 +144,12 @@ impl Trig {
         Trig {
             r: vec![0.0; n],
             valid: false,
+            global_valid: false,
             cos: vec![0.0; segments],
             sin: vec![0.0; segments],
             slides: vec![0.0; segments + 1],
             elastic_valid: false,
+            elastic: vec![0.0; segments],
             elastic_cos: vec![0.0; segments],
             elastic_sin: vec![0.0; segments],
             points: [None; 3],
@@ -162,6 +169,7 @@ impl Trig {
     }
 
     fn axes(&self, k: usize) -> (Vector2<f64>, Vector2<f64>) {
+        debug_assert!(self.global_valid, "Plain::global_axes first");
         let (c, s) = (self.cos[k], self.sin[k]);
         (Vector2::new(c, s), Vector2::new(-s, c))
     }
@@ -253,14 +261,6 @@ impl Plain {
         self.masses.len()
     }
 
-    fn psi(&self, k: usize) -> &[f64] {
-        &self.psi[k * self.n..(k + 1) * self.n]
-    }
-
-    fn sigma(&self, i: usize) -> &[f64] {
-        &self.sigma[i * self.n..(i + 1) * self.n]
-    }
-
     /// `Psi_k` with its length `N = n` known to the compiler.
     #[inline(always)]
     fn psi_n<const N: usize>(&self, k: usize) -> &[f64; N] {
@@ -286,7 +286,11 @@ impl Plain {
     /// Cosines and sines of the angles and the slides at `r` into `trig` (kept while `r` is
     /// the same).
     pub(super) fn angles(&self, r: &[f64], trig: &mut Trig) {
-        let r = &r[..self.n];
+        dispatch!(self.angles_n(r, trig))
+    }
+
+    fn angles_n<const N: usize>(&self, r: &[f64], trig: &mut Trig) {
+        let r: &[f64; N] = r[..N].try_into().expect("n coordinates");
         let same = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits());
         if trig.valid && same(&trig.r, r) {
             return;
@@ -295,26 +299,36 @@ impl Plain {
             // Psi_k,alpha = 1: the elastic part is the modes' share alone; the slides are the
             // modes' alone.
             for k in 0..self.segments() {
-                let (s, c) = crate::trig::sin_cos(dot(&self.psi(k)[3..], &r[3..]));
-                trig.elastic_cos[k] = c;
-                trig.elastic_sin[k] = s;
+                trig.elastic[k] = dot(&self.psi_n::<N>(k)[3..], &r[3..]);
             }
+            crate::trig::sin_cos_all(&trig.elastic, &mut trig.elastic_sin, &mut trig.elastic_cos);
             for i in 0..=self.segments() {
-                trig.slides[i] = dot(&self.sigma(i)[3..], &r[3..]);
+                trig.slides[i] = dot(&self.sigma_n::<N>(i)[3..], &r[3..]);
             }
             trig.elastic_valid = true;
             trig.body_points = [None; 3];
         }
         let (sa, ca) = crate::trig::sin_cos(r[2]);
+        trig.r.copy_from_slice(r);
+        trig.valid = true;
+        trig.global_valid = false;
+        trig.points = [None; 3];
+        trig.alpha = (ca, sa);
+    }
+
+    /// The segments' angles in the global axes at the coordinates of `trig` (after
+    /// [`Self::angles`]): the elastic ones turned by `alpha`.
+    fn global_axes(&self, trig: &mut Trig) {
+        if trig.global_valid {
+            return;
+        }
+        let (ca, sa) = trig.alpha;
         for k in 0..self.segments() {
             let (c, s) = (trig.elastic_cos[k], trig.elastic_sin[k]);
             trig.cos[k] = ca * c - sa * s;
             trig.sin[k] = sa * c + ca * s;
         }
-        trig.r.copy_from_slice(r);
-        trig.valid = true;
-        trig.points = [None; 3];
-        trig.alpha = (ca, sa);
+        trig.global_valid = true;
     }
 
     /// Position (from `S_0`) and Jacobian columns of `p` at the coordinates of `trig`, kept in
@@ -462,7 +476,8 @@ impl Plain {
     }
 
     /// `J_P' r'`, the velocity products of `p`'s acceleration.
-    pub(super) fn point_bias(&self, p: RodPoint, v: &[f64], trig: &Trig) -> Vector2<f64> {
+    pub(super) fn point_bias(&self, p: RodPoint, v: &[f64], trig: &mut Trig) -> Vector2<f64> {
+        self.global_axes(trig);
         dispatch!(self.point_bias_n(p, v, trig))
     }
 
@@ -510,7 +525,8 @@ impl Plain {
     }
 
     /// The mass matrix (n x n) into `out` (overwritten).
-    pub(super) fn mass(&self, trig: &Trig, out: MatMut<'_, f64>) {
+    pub(super) fn mass(&self, trig: &mut Trig, out: MatMut<'_, f64>) {
+        self.global_axes(trig);
         dispatch!(self.mass_n(trig, out))
     }
 
@@ -571,7 +587,8 @@ impl Plain {
     }
 
     /// Velocity products, springs and dampers (n entries, overwritten).
-    pub(super) fn forces(&self, r: &[f64], v: &[f64], trig: &Trig, f: &mut [f64]) {
+    pub(super) fn forces(&self, r: &[f64], v: &[f64], trig: &mut Trig, f: &mut [f64]) {
+        self.global_axes(trig);
         dispatch!(self.forces_n(r, v, trig, f))
     }
 
@@ -604,7 +621,8 @@ impl Plain {
     }
 
     /// Add the gravity forces `sum m_k G_k^T g` (rod and end bodies) into `f`.
-    pub(super) fn add_gravity(&self, trig: &Trig, g: Vector2<f64>, f: &mut [f64]) {
+    pub(super) fn add_gravity(&self, trig: &mut Trig, g: Vector2<f64>, f: &mut [f64]) {
+        self.global_axes(trig);
         dispatch!(self.add_gravity_n(trig, g, f))
     }
 
