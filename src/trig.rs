@@ -69,7 +69,8 @@ pub fn sin_cos_all(x: &[f64], sin: &mut [f64], cos: &mut [f64]) {
         *si = r + r * z * (S1 + z * (S2 + z * (S3 + z * (S4 + z * (S5 + z * S6)))));
         *ci = 1.0 - 0.5 * z + z * z * (C1 + z * (C2 + z * (C3 + z * (C4 + z * (C5 + z * C6)))));
     }
-    if !(largest <= std::f64::consts::FRAC_PI_4) {
+    // A NaN entry gives NaN either way (`max` passes over it).
+    if largest > std::f64::consts::FRAC_PI_4 {
         for ((&r, si), ci) in x.iter().zip(sin.iter_mut()).zip(cos.iter_mut()) {
             (*si, *ci) = sin_cos(r);
         }

@@ -201,8 +201,8 @@ impl DaeSystem for SliderCrankDae<'_> {
     }
 
     /// Closed form for a rod with one body frame (FFR, the chain on its modes): with the frame
-    /// at the origin the points give the body-frame chord `d = u_C - u_B`; pin B gives `R = r_pin
-    /// - B(q)` with `B(q)` the pin at the frame's angle and origin, pin C's
+    /// at the origin the points give the body-frame chord `d = u_C - u_B`; pin B gives the
+    /// origin `R = r_pin - B_0` with `B_0` the pin at the frame's angle and the origin, pin C's
     /// line constraint `y_pin + (A(phi) d)_y = y_line`, i.e. `sin(phi + beta) = (y_line -
     /// y_pin) / |d|` with `beta = atan2(d_y, d_x)` (the root nearest the current angle: the
     /// assembly mode does not change), and the slider `x_s = x_pin + (A(phi) d)_x`. The pin
@@ -269,7 +269,9 @@ impl DaeSystem for SliderCrankDae<'_> {
         std::f64::consts::TAU / self.crank.input.speed.abs().max(ERROR_TIME_SCALE_MIN_SPEED)
     }
 
-    /// The FFR rod's closed form on minimal coordinates ([`super::minimal`]).
+    /// The FFR rod's closed form on minimal coordinates ([`super::minimal`]); for a rod that
+    /// asks for it ([`RodBody::frame_form`]: the chain on its modes) the closed form on its
+    /// frame ([`super::frame_form`]).
     fn reduced_rhs(
         &self,
         t: f64,
@@ -278,8 +280,11 @@ impl DaeSystem for SliderCrankDae<'_> {
         qdd: &mut [f64],
         lambda: Option<&mut [f64]>,
     ) -> Option<Result<(), crate::integrator::StepFailure>> {
-        let kernel = self.rod.ffr_kernel()?;
-        Some(self.minimal_rhs(kernel, t, q, v, qdd, lambda))
+        match self.rod.ffr_kernel() {
+            Some(kernel) => Some(self.minimal_rhs(kernel, t, q, v, qdd, lambda)),
+            None if self.rod.frame_form() => self.frame_form_rhs(t, q, v, qdd, lambda),
+            None => None,
+        }
     }
 
     fn add_tangent(

@@ -64,6 +64,12 @@ pub trait RodBody: Send {
     fn frame_coordinates(&self) -> Option<[usize; 3]> {
         None
     }
+    /// The mechanism evaluates its equations on the independent coordinates in closed form on
+    /// the frame (`mechanism::frame_form`: frame coordinates at 0, 1, 2, the elastic ones after
+    /// them) instead of the general partitioned evaluation.
+    fn frame_form(&self) -> bool {
+        false
+    }
     /// The FFR rod's shape integrals in fixed-size arrays, where the model is an FFR rod with
     /// 1 to [`crate::rod::ffr::MAX_MODES`] modes: the mechanism then evaluates its equations
     /// of motion on minimal coordinates in closed form (`mechanism::minimal`).

@@ -320,6 +320,10 @@ impl RodBody for ModalSegmentRod {
         Some([0, 1, 2])
     }
 
+    fn frame_form(&self) -> bool {
+        true
+    }
+
     fn coordinate_scale(&self, i: usize) -> f64 {
         match i {
             0 | 1 => self.chain.length(),

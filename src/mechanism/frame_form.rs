@@ -1,0 +1,241 @@
+//! The slider-crank on its independent coordinates in closed form for a rod whose coordinates
+//! begin with a frame (`RodBody::frame_coordinates`: `x`, `y`, `alpha` at 0, 1, 2, the elastic
+//! coordinates `p` after them; the chain on its modes): the same equations as the general
+//! partitioned evaluation (`crate::integrator::partitioned`, Wehage and Haug 1982), with the
+//! constraint Jacobian's dependent block solved by hand instead of factored.
+//!
+//! Coordinates `q = [x, y, alpha, p, x_s]`; constraints `B(q) = P(t)` (2), `C(q) = (x_s, e)`
+//! (2). The frame translates every point, so `dB/d(x, y) = dC/d(x, y) = 1`, and turns the chord,
+//! so `dC/dalpha - dB/dalpha = perp(C - B)`, whose y entry is the chord's x extent `X` (nonzero
+//! while the slider is not at the crank's side of the rod: the mechanism is assembled).
+//! With the Jacobian columns `j_B`, `j_C` of `alpha` and `J_B`, `J_C` of `p`, `D = J_C - J_B`:
+//! - velocities `q' = G p' + g`: `alpha' = -(V_y + D_y p') / X` from the y rows of the pins,
+//!   `(x', y') = V - j_B alpha' - J_B p'` from pin B, `x_s' = x' + j_C,x alpha' + J_C,x p'`;
+//! - accelerations `q'' = G p'' + b` from the same rows with the pins' velocity products
+//!   `beta_B`, `beta_C` and the pin's acceleration `a_P`: `b_alpha = (beta_B,y - beta_C,y -
+//!   a_P,y) / X`, `b_xy = a_P - beta_B - j_B b_alpha`, `b_s = b_x + j_C,x b_alpha + beta_C,x`;
+//! - the reduced equations `(G^T M G) p'' = G^T (Q - M b)` (Gaussian elimination with partial
+//!   pivoting);
+//! - the multipliers from the dependent rows of `M q'' + Phi_q^T lambda = Q`: with `r = (Q - M
+//!   q'')` on `x`, `y`, `alpha`, `x_s`: `lambda_Cx = -r_s`, `lambda_Bx = r_x - lambda_Cx`,
+//!   `lambda_Cy = (r_alpha - j_B,x lambda_Bx - j_C,x lambda_Cx - j_B,y r_y) / X`, `lambda_By =
+//!   r_y - lambda_Cy`.
+//!
+//! Everything lives on the stack, sized by [`FRAME_FORM_MAX`].
+
+use faer::MatMut;
+use nalgebra::Vector2;
+
+use super::dae::SliderCrankDae;
+use crate::integrator::{DaeSystem, StepFailure};
+use crate::rod::RodPoint;
+
+/// Largest number of coordinates (rod and slider) of the closed form; a larger system takes the
+/// general partitioned evaluation.
+pub const FRAME_FORM_MAX: usize = 24;
+
+const N2: usize = FRAME_FORM_MAX * FRAME_FORM_MAX;
+
+impl SliderCrankDae<'_> {
+    /// The closed form (module documentation) where the rod's coordinates begin with its frame
+    /// and the system is small enough; `None` elsewhere, and where the pins cannot be assembled
+    /// at the independent coordinates (the general evaluation then says why).
+    pub(super) fn frame_form_rhs(
+        &self,
+        t: f64,
+        q: &mut [f64],
+        v: &mut [f64],
+        qdd: &mut [f64],
+        lambda: Option<&mut [f64]>,
+    ) -> Option<Result<(), StepFailure>> {
+        let nr = self.rod.n_coordinates();
+        let n = nr + 1;
+        if self.rod.frame_coordinates() != Some([0, 1, 2]) || nr < 4 || n > FRAME_FORM_MAX {
+            return None;
+        }
+        if !self.solve_dependent_positions(t, q) {
+            return None;
+        }
+        Some(self.frame_form_evaluate(t, q, v, qdd, lambda))
+    }
+
+    #[allow(clippy::needless_range_loop)]
+    fn frame_form_evaluate(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &mut [f64],
+        qdd: &mut [f64],
+        lambda: Option<&mut [f64]>,
+    ) -> Result<(), StepFailure> {
+        let nr = self.rod.n_coordinates();
+        let (n, k) = (nr + 1, nr - 3);
+        let (mut jb, mut jc) = ([0.0; 2 * FRAME_FORM_MAX], [0.0; 2 * FRAME_FORM_MAX]);
+        self.rod.point_jacobian(
+            RodPoint::B,
+            q,
+            MatMut::from_column_major_slice_mut(&mut jb[..2 * nr], 2, nr),
+        );
+        self.rod.point_jacobian(
+            RodPoint::C,
+            q,
+            MatMut::from_column_major_slice_mut(&mut jc[..2 * nr], 2, nr),
+        );
+        let (jba, jca) = (Vector2::new(jb[4], jb[5]), Vector2::new(jc[4], jc[5]));
+        let chord_x = jca.y - jba.y;
+        if !(chord_x.abs() > 0.0 && chord_x.is_finite()) {
+            return Err(StepFailure::SingularMatrix);
+        }
+        // G (n x k, row-major): the dependent rows x, y, alpha, x_s; the identity on p.
+        let mut g = [0.0; FRAME_FORM_MAX * FRAME_FORM_MAX];
+        for a in 0..k {
+            let c = 3 + a;
+            let (jbx, jby, jcx, jcy) = (jb[2 * c], jb[2 * c + 1], jc[2 * c], jc[2 * c + 1]);
+            let ga = -(jcy - jby) / chord_x;
+            let gx = -jba.x * ga - jbx;
+            let gy = -jba.y * ga - jby;
+            g[a] = gx;
+            g[k + a] = gy;
+            g[2 * k + a] = ga;
+            g[c * k + a] = 1.0;
+            g[nr * k + a] = gx + jca.x * ga + jcx;
+        }
+        // Velocities.
+        let (_, pin_v, pin_a) = self.pin_at(t);
+        let mut alpha_v = -pin_v.y / chord_x;
+        for a in 0..k {
+            alpha_v += g[2 * k + a] * v[3 + a];
+        }
+        let mut xy_v = pin_v - jba * alpha_v;
+        let mut c_x = jca.x * alpha_v;
+        for a in 0..k {
+            let c = 3 + a;
+            xy_v -= Vector2::new(jb[2 * c], jb[2 * c + 1]) * v[c];
+            c_x += jc[2 * c] * v[c];
+        }
+        v[0] = xy_v.x;
+        v[1] = xy_v.y;
+        v[2] = alpha_v;
+        v[nr] = xy_v.x + c_x;
+        // Accelerations q'' = G p'' + b.
+        let beta_b = self.rod.point_bias_acceleration(RodPoint::B, q, v);
+        let beta_c = self.rod.point_bias_acceleration(RodPoint::C, q, v);
+        let b_alpha = (beta_b.y - beta_c.y - pin_a.y) / chord_x;
+        let b_xy = pin_a - beta_b - jba * b_alpha;
+        let mut b = [0.0; FRAME_FORM_MAX];
+        b[0] = b_xy.x;
+        b[1] = b_xy.y;
+        b[2] = b_alpha;
+        b[nr] = b_xy.x + jca.x * b_alpha + beta_c.x;
+        // M, Q - M b, M G, the reduced system.
+        let mut m = [0.0; N2];
+        self.mass(
+            q,
+            MatMut::from_column_major_slice_mut(&mut m[..n * n], n, n),
+        );
+        let mut r = [0.0; FRAME_FORM_MAX];
+        self.forces(t, q, v, &mut r[..n]);
+        for (j, bj) in [(0, b[0]), (1, b[1]), (2, b[2]), (nr, b[nr])] {
+            for i in 0..n {
+                r[i] -= m[j * n + i] * bj;
+            }
+        }
+        let mut mg = [0.0; N2];
+        for i in 0..n {
+            for a in 0..k {
+                // G's column a: rows 0, 1, 2, 3 + a and nr.
+                let s = m[i] * g[a]
+                    + m[n + i] * g[k + a]
+                    + m[2 * n + i] * g[2 * k + a]
+                    + m[(3 + a) * n + i]
+                    + m[nr * n + i] * g[nr * k + a];
+                mg[i * k + a] = s;
+            }
+        }
+        let mut reduced = [0.0; N2];
+        let mut pdd = [0.0; FRAME_FORM_MAX];
+        for a in 0..k {
+            for c in 0..k {
+                let mut s = mg[(3 + a) * k + c];
+                for &i in &[0, 1, 2, nr] {
+                    s += g[i * k + a] * mg[i * k + c];
+                }
+                reduced[a * k + c] = s;
+            }
+            let mut s = r[3 + a];
+            for &i in &[0, 1, 2, nr] {
+                s += g[i * k + a] * r[i];
+            }
+            pdd[a] = s;
+        }
+        solve(&mut reduced[..k * k], &mut pdd[..k], k)?;
+        for i in 0..n {
+            let mut s = b[i];
+            for a in 0..k {
+                s += g[i * k + a] * pdd[a];
+            }
+            qdd[i] = s;
+        }
+        if let Some(lambda) = lambda {
+            // (Q - M q'') on the dependent coordinates: (Q - M b) - M G p''.
+            let residual = |i: usize| {
+                let mut s = r[i];
+                for a in 0..k {
+                    s -= mg[i * k + a] * pdd[a];
+                }
+                s
+            };
+            let (rx, ry, ra, rs) = (residual(0), residual(1), residual(2), residual(nr));
+            let c_x = -rs;
+            let b_x = rx - c_x;
+            let c_y = (ra - jba.x * b_x - jca.x * c_x - jba.y * ry) / chord_x;
+            lambda[0] = b_x;
+            lambda[1] = ry - c_y;
+            lambda[2] = c_x;
+            lambda[3] = c_y;
+        }
+        if qdd[..n].iter().any(|x| !x.is_finite()) {
+            return Err(StepFailure::NonFinite);
+        }
+        Ok(())
+    }
+}
+
+/// Solve `a x = b` (`k x k`, row-major) by Gaussian elimination with partial pivoting; `b`
+/// becomes `x`.
+fn solve(a: &mut [f64], b: &mut [f64], k: usize) -> Result<(), StepFailure> {
+    for col in 0..k {
+        let mut piv = col;
+        for r in col + 1..k {
+            if a[r * k + col].abs() > a[piv * k + col].abs() {
+                piv = r;
+            }
+        }
+        let p = a[piv * k + col];
+        if p == 0.0 || !p.is_finite() {
+            return Err(StepFailure::SingularMatrix);
+        }
+        if piv != col {
+            for c in 0..k {
+                a.swap(col * k + c, piv * k + c);
+            }
+            b.swap(col, piv);
+        }
+        let inv = 1.0 / a[col * k + col];
+        for r in col + 1..k {
+            let f = a[r * k + col] * inv;
+            for c in col + 1..k {
+                a[r * k + c] -= f * a[col * k + c];
+            }
+            b[r] -= f * b[col];
+        }
+    }
+    for col in (0..k).rev() {
+        let mut s = b[col];
+        for c in col + 1..k {
+            s -= a[col * k + c] * b[c];
+        }
+        b[col] = s / a[col * k + col];
+    }
+    Ok(())
+}
