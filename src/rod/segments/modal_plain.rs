@@ -80,11 +80,10 @@ pub(super) struct Plain {
     n: usize,
     /// Segment length l, m.
     l: f64,
-    /// Per segment: mass m_k (kg), centroid offset c_k (m), inertia I_k about the centroid
-    /// (kg m^2, the sections' rotary inertia included).
+    /// Per segment: mass m_k (kg), centroid offset c_k (m) (the inertias I_k about the
+    /// centroids, the sections' rotary inertia included, are in `rotary`).
     masses: Vec<f64>,
     centroids: Vec<f64>,
-    inertias: Vec<f64>,
     /// `Psi`, segment-major: `psi[k * n + c]` (zero for c = 0, 1).
     psi: Vec<f64>,
     /// `Sigma`, slide-major (`N + 1` slides): `sigma[i * n + c]`; all zero without shear.
@@ -97,6 +96,10 @@ pub(super) struct Plain {
     end_mass: [f64; 2],
     /// B, C and the midpoint.
     points: [ChainPoint; 3],
+    /// `sum_k I_k Psi_k Psi_k^T` (n x n, row-major): the segments' rotary inertia, constant.
+    rotary: Vec<f64>,
+    /// The rod's and the end bodies' mass, kg.
+    total_mass: f64,
     /// `K_r`, `C_r` (n x n, row-major).
     stiffness: Vec<f64>,
     damping: Vec<f64>,
@@ -240,12 +243,23 @@ impl Plain {
             },
             mid,
         ];
+        let mut rotary = vec![0.0; n * n];
+        for k in 0..segments {
+            let psi = &psi[k * n..(k + 1) * n];
+            for c in 2..n {
+                for d in 2..n {
+                    rotary[c * n + d] += chain.inertias[k] * psi[c] * psi[d];
+                }
+            }
+        }
+        let total_mass = chain.masses.iter().sum::<f64>() + chain.end_mass[0] + chain.end_mass[1];
         Plain {
             n,
+            rotary,
+            total_mass,
             l: chain.seg_len,
             masses: chain.masses.clone(),
             centroids: chain.centroids.clone(),
-            inertias: chain.inertias.clone(),
             psi,
             sigma,
             base_x,
@@ -512,13 +526,13 @@ impl Plain {
         gy: &Row,
         m: &mut [Row; MAX_REDUCED],
     ) {
-        let n = N;
-        for c in 2..n {
+        // The whole square (fixed bounds: the compiler vectorizes), symmetric by construction.
+        for c in 2..N {
             let (ax, ay) = (mass * gx[c], mass * gy[c]);
             m[0][c] += ax;
             m[1][c] += ay;
             let row = &mut m[c];
-            for d in c..n {
+            for d in 2..N {
                 row[d] += ax * gx[d] + ay * gy[d];
             }
         }
@@ -538,18 +552,7 @@ impl Plain {
             None,
             self.segments(),
             Frame::Global,
-            |k, gx, gy, _| {
-                self.add_point_mass::<N>(self.masses[k], gx, gy, &mut m);
-                let psi = self.psi_n::<N>(k);
-                let inertia = self.inertias[k];
-                for c in 2..n {
-                    let a = inertia * psi[c];
-                    let row = &mut m[c];
-                    for d in c..n {
-                        row[d] += a * psi[d];
-                    }
-                }
-            },
+            |k, gx, gy, _| self.add_point_mass::<N>(self.masses[k], gx, gy, &mut m),
         );
         if self.end_mass[0] > 0.0 {
             let (_, jx, jy, _) = self.point_parts::<N>(RodPoint::B, trig, None, Frame::Global);
@@ -559,13 +562,13 @@ impl Plain {
             // C ends the last offset: J_C = P_N.
             self.add_point_mass::<N>(self.end_mass[1], &jcx, &jcy, &mut m);
         }
-        let total = self.masses.iter().sum::<f64>() + self.end_mass[0] + self.end_mass[1];
-        m[0][0] = total;
-        m[1][1] = total;
+        m[0][0] = self.total_mass;
+        m[1][1] = self.total_mass;
         for c in 0..n {
             for d in c..n {
-                out[(c, d)] = m[c][d];
-                out[(d, c)] = m[c][d];
+                let x = m[c][d] + self.rotary[c * n + d];
+                out[(c, d)] = x;
+                out[(d, c)] = x;
             }
         }
     }
