@@ -122,6 +122,28 @@ impl SliderCrankDae<'_> {
     fn nr(&self) -> usize {
         self.rod.n_coordinates()
     }
+
+    /// `M` and `Q` as [`DaeSystem::mass`] and [`DaeSystem::forces`] give them, the rod's in one
+    /// call ([`RodBody::mass_and_forces`]).
+    pub(super) fn mass_and_forces(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        mut m: MatMut<'_, f64>,
+        f: &mut [f64],
+    ) {
+        let nr = self.nr();
+        m.fill(0.0);
+        self.rod
+            .mass_and_forces(q, v, m.rb_mut().submatrix_mut(0, 0, nr, nr), &mut f[..nr]);
+        m[(nr, nr)] = self.slider_mass;
+        f[nr] = self.slider_force_at(t);
+        if self.gravity != Vector2::zeros() {
+            self.rod.add_gravity(q, self.gravity, &mut f[..nr]);
+            f[nr] += self.slider_mass * self.gravity.x;
+        }
+    }
 }
 
 /// Crank speed below which [`DaeSystem::error_time_scale`] stays at `2 pi / 10 s`, rad/s.

@@ -117,7 +117,17 @@ impl SliderCrankDae<'_> {
         v[1] = xy_v.y;
         v[2] = alpha_v;
         v[nr] = xy_v.x + c_x;
-        // Accelerations q'' = G p'' + b.
+        // M and Q (the rod's in one pass, which leaves C's velocity products for the next
+        // call), then the accelerations q'' = G p'' + b.
+        let mut m = [0.0; N2];
+        let mut r = [0.0; FRAME_FORM_MAX];
+        self.mass_and_forces(
+            t,
+            q,
+            v,
+            MatMut::from_column_major_slice_mut(&mut m[..n * n], n, n),
+            &mut r[..n],
+        );
         let beta_b = self.rod.point_bias_acceleration(RodPoint::B, q, v);
         let beta_c = self.rod.point_bias_acceleration(RodPoint::C, q, v);
         let b_alpha = (beta_b.y - beta_c.y - pin_a.y) / chord_x;
@@ -127,14 +137,7 @@ impl SliderCrankDae<'_> {
         b[1] = b_xy.y;
         b[2] = b_alpha;
         b[nr] = b_xy.x + jca.x * b_alpha + beta_c.x;
-        // M, Q - M b, M G, the reduced system.
-        let mut m = [0.0; N2];
-        self.mass(
-            q,
-            MatMut::from_column_major_slice_mut(&mut m[..n * n], n, n),
-        );
-        let mut r = [0.0; FRAME_FORM_MAX];
-        self.forces(t, q, v, &mut r[..n]);
+        // Q - M b, M G, the reduced system.
         for (j, bj) in [(0, b[0]), (1, b[1]), (2, b[2]), (nr, b[nr])] {
             for i in 0..n {
                 r[i] -= m[j * n + i] * bj;

@@ -81,6 +81,12 @@ pub trait RodBody: Send {
     /// Generalized forces: quadratic velocity terms, elastic and damping forces, and the
     /// velocity part of the axial-force (geometric) stiffening.
     fn forces(&self, q: &[f64], v: &[f64], f: &mut [f64]);
+    /// [`Self::mass`] and [`Self::forces`] at the same coordinates, in one pass where the model
+    /// can (the chain on its modes).
+    fn mass_and_forces(&self, q: &[f64], v: &[f64], m: MatMut<'_, f64>, f: &mut [f64]) {
+        self.mass(q, m);
+        self.forces(q, v, f);
+    }
     /// Add the generalized gravity forces `int dm g . dr/dq` (rod and end bodies) into `f`
     /// (n entries); `g` global, m/s^2.
     fn add_gravity(&self, q: &[f64], g: Vector2<f64>, f: &mut [f64]);

@@ -398,6 +398,14 @@ impl RodBody for ModalSegmentRod {
         }
     }
 
+    fn mass_and_forces(&self, r: &[f64], rv: &[f64], mut m: MatMut<'_, f64>, f: &mut [f64]) {
+        let direct = self.direct(r, |p, t| p.mass_and_forces(r, rv, t, m.rb_mut(), f));
+        if direct.is_none() {
+            self.mass(r, m);
+            self.forces(r, rv, f);
+        }
+    }
+
     fn add_gravity(&self, r: &[f64], g: Vector2<f64>, out: &mut [f64]) {
         if self.direct(r, |p, t| p.add_gravity(t, g, out)).is_some() {
             return;
@@ -689,6 +697,37 @@ mod tests {
                 projected.mid_deflection(&r),
                 1.0,
                 "v_mid",
+            );
+            // Mass and forces in one pass, and C's velocity products it leaves behind.
+            let (mut mc, mut fc) = (Mat::<f64>::zeros(n, n), vec![0.0; n]);
+            direct.mass_and_forces(&r, &v, mc.as_mut(), &mut fc);
+            projected.forces(&r, &v, &mut fb);
+            for i in 0..n {
+                close(fc[i], fb[i], scale.max(1.0), "forces in one pass");
+                for j in 0..n {
+                    close(mc[(i, j)], mb[(i, j)], mb[(0, 0)], "mass in one pass");
+                }
+            }
+            let (aa, ab) = (
+                direct.point_bias_acceleration(RodPoint::C, &r, &v),
+                projected.point_bias_acceleration(RodPoint::C, &r, &v),
+            );
+            close(
+                (aa - ab).norm(),
+                0.0,
+                ab.norm().max(1.0),
+                "C's bias after one pass",
+            );
+            let w: Vec<f64> = v.iter().map(|x| 0.5 * x).collect();
+            let (aa, ab) = (
+                direct.point_bias_acceleration(RodPoint::C, &r, &w),
+                projected.point_bias_acceleration(RodPoint::C, &r, &w),
+            );
+            close(
+                (aa - ab).norm(),
+                0.0,
+                ab.norm().max(1.0),
+                "C's bias at other velocities",
             );
         }
     }

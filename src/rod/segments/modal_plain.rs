@@ -132,6 +132,10 @@ pub(super) struct Trig {
     body_points: [Option<(Vector2<f64>, Row, Row)>; 3],
     /// `cos alpha`, `sin alpha` at `r`.
     alpha: (f64, f64),
+    /// C's velocity products at `r` and the velocities `bias_v`, left by
+    /// [`Plain::mass_and_forces`] (its walk ends at C).
+    bias_c: Option<Vector2<f64>>,
+    bias_v: Vec<f64>,
 }
 
 /// The axes a walk uses: the segments' own, or those of the frame turned by `-alpha` (the
@@ -158,6 +162,8 @@ impl Trig {
             points: [None; 3],
             body_points: [None; 3],
             alpha: (1.0, 0.0),
+            bias_c: None,
+            bias_v: vec![0.0; n],
         }
     }
 
@@ -327,6 +333,7 @@ impl Plain {
         trig.valid = true;
         trig.global_valid = false;
         trig.points = [None; 3];
+        trig.bias_c = None;
         trig.alpha = (ca, sa);
     }
 
@@ -491,6 +498,13 @@ impl Plain {
 
     /// `J_P' r'`, the velocity products of `p`'s acceleration.
     pub(super) fn point_bias(&self, p: RodPoint, v: &[f64], trig: &mut Trig) -> Vector2<f64> {
+        if let (RodPoint::C, Some(bias)) = (p, trig.bias_c) {
+            let same =
+                |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits());
+            if same(&trig.bias_v, &v[..self.n]) {
+                return bias;
+            }
+        }
         self.global_axes(trig);
         dispatch!(self.point_bias_n(p, v, trig))
     }
@@ -544,8 +558,7 @@ impl Plain {
         dispatch!(self.mass_n(trig, out))
     }
 
-    fn mass_n<const N: usize>(&self, trig: &Trig, mut out: MatMut<'_, f64>) {
-        let n = N;
+    fn mass_n<const N: usize>(&self, trig: &Trig, out: MatMut<'_, f64>) {
         let mut m = [[0.0; MAX_REDUCED]; MAX_REDUCED];
         let (jcx, jcy, _, _) = self.walk::<N>(
             trig,
@@ -562,15 +575,73 @@ impl Plain {
             // C ends the last offset: J_C = P_N.
             self.add_point_mass::<N>(self.end_mass[1], &jcx, &jcy, &mut m);
         }
+        self.finish_mass::<N>(&mut m, out);
+    }
+
+    /// The translations' total mass and the constant rotary inertia added to the walk's `m`
+    /// (upper triangle), written symmetric into `out`.
+    fn finish_mass<const N: usize>(&self, m: &mut [Row; MAX_REDUCED], mut out: MatMut<'_, f64>) {
         m[0][0] = self.total_mass;
         m[1][1] = self.total_mass;
-        for c in 0..n {
-            for d in c..n {
-                let x = m[c][d] + self.rotary[c * n + d];
+        for c in 0..N {
+            for d in c..N {
+                let x = m[c][d] + self.rotary[c * N + d];
                 out[(c, d)] = x;
                 out[(d, c)] = x;
             }
         }
+    }
+
+    /// The mass matrix into `out` and the forces into `f`, as [`Self::mass`] and
+    /// [`Self::forces`] give them, in one walk; C's velocity products (where the walk ends) kept
+    /// in `trig` for [`Self::point_bias`].
+    pub(super) fn mass_and_forces(
+        &self,
+        r: &[f64],
+        v: &[f64],
+        trig: &mut Trig,
+        out: MatMut<'_, f64>,
+        f: &mut [f64],
+    ) {
+        self.global_axes(trig);
+        let bias = dispatch!(self.mass_and_forces_n(r, v, trig, out, f));
+        trig.bias_c = Some(bias);
+        trig.bias_v.copy_from_slice(&v[..self.n]);
+    }
+
+    fn mass_and_forces_n<const N: usize>(
+        &self,
+        r: &[f64],
+        v: &[f64],
+        trig: &Trig,
+        out: MatMut<'_, f64>,
+        f: &mut [f64],
+    ) -> Vector2<f64> {
+        let mut m = [[0.0; MAX_REDUCED]; MAX_REDUCED];
+        let mut q = [0.0; MAX_REDUCED];
+        let (jcx, jcy, _, gamma_c) = self.walk::<N>(
+            trig,
+            Some(v),
+            self.segments(),
+            Frame::Global,
+            |k, gx, gy, g| {
+                self.add_point_mass::<N>(self.masses[k], gx, gy, &mut m);
+                self.add_point_inertia::<N>(self.masses[k], gx, gy, g, &mut q);
+            },
+        );
+        if self.end_mass[0] > 0.0 {
+            let (_, jx, jy, gamma) =
+                self.point_parts::<N>(RodPoint::B, trig, Some(v), Frame::Global);
+            self.add_point_mass::<N>(self.end_mass[0], &jx, &jy, &mut m);
+            self.add_point_inertia::<N>(self.end_mass[0], &jx, &jy, gamma, &mut q);
+        }
+        if self.end_mass[1] > 0.0 {
+            self.add_point_mass::<N>(self.end_mass[1], &jcx, &jcy, &mut m);
+            self.add_point_inertia::<N>(self.end_mass[1], &jcx, &jcy, gamma_c, &mut q);
+        }
+        self.finish_mass::<N>(&mut m, out);
+        self.finish_forces::<N>(r, v, &q, f);
+        gamma_c
     }
 
     /// `q -= m J^T gamma` of a point mass.
@@ -596,7 +667,6 @@ impl Plain {
     }
 
     fn forces_n<const N: usize>(&self, r: &[f64], v: &[f64], trig: &Trig, f: &mut [f64]) {
-        let n = N;
         let mut q = [0.0; MAX_REDUCED];
         let (jcx, jcy, _, gamma_c) = self.walk::<N>(
             trig,
@@ -613,10 +683,15 @@ impl Plain {
         if self.end_mass[1] > 0.0 {
             self.add_point_inertia::<N>(self.end_mass[1], &jcx, &jcy, gamma_c, &mut q);
         }
-        for (c, fc) in f[..n].iter_mut().enumerate() {
-            let row = c * n;
+        self.finish_forces::<N>(r, v, &q, f);
+    }
+
+    /// The springs and dampers `-K_r r - C_r r'` added to the velocity products `q` into `f`.
+    fn finish_forces<const N: usize>(&self, r: &[f64], v: &[f64], q: &Row, f: &mut [f64]) {
+        for (c, fc) in f[..N].iter_mut().enumerate() {
+            let row = c * N;
             let mut x = q[c];
-            for d in 0..n {
+            for d in 0..N {
                 x -= self.stiffness[row + d] * r[d] + self.damping[row + d] * v[d];
             }
             *fc = x;
