@@ -31,10 +31,11 @@ use crate::integrator::{DaeSystem, StepFailure};
 use crate::rod::RodPoint;
 
 /// Largest number of coordinates (rod and slider) of the closed form; a larger system takes the
-/// general partitioned evaluation.
-pub const FRAME_FORM_MAX: usize = 24;
+/// general partitioned evaluation (the chain on its modes has at most 20).
+pub const FRAME_FORM_MAX: usize = 20;
 
-const N2: usize = FRAME_FORM_MAX * FRAME_FORM_MAX;
+/// Largest number of independent (elastic) coordinates.
+const K_MAX: usize = FRAME_FORM_MAX - 4;
 
 impl SliderCrankDae<'_> {
     /// The closed form (module documentation) where the rod's coordinates begin with its frame
@@ -86,8 +87,9 @@ impl SliderCrankDae<'_> {
         if !(chord_x.abs() > 0.0 && chord_x.is_finite()) {
             return Err(StepFailure::SingularMatrix);
         }
-        // G (n x k, row-major): the dependent rows x, y, alpha, x_s; the identity on p.
-        let mut g = [0.0; FRAME_FORM_MAX * FRAME_FORM_MAX];
+        // G (n x k): its dependent rows x, y, alpha, x_s (row-major, `g[row * k + a]` with row
+        // 3 for x_s); the identity on p.
+        let mut g = [0.0; 4 * K_MAX];
         for a in 0..k {
             let c = 3 + a;
             let (jbx, jby, jcx, jcy) = (jb[2 * c], jb[2 * c + 1], jc[2 * c], jc[2 * c + 1]);
@@ -97,8 +99,7 @@ impl SliderCrankDae<'_> {
             g[a] = gx;
             g[k + a] = gy;
             g[2 * k + a] = ga;
-            g[c * k + a] = 1.0;
-            g[nr * k + a] = gx + jca.x * ga + jcx;
+            g[3 * k + a] = gx + jca.x * ga + jcx;
         }
         // Velocities.
         let (_, pin_v, pin_a) = self.pin_at(t);
@@ -119,7 +120,7 @@ impl SliderCrankDae<'_> {
         v[nr] = xy_v.x + c_x;
         // M and Q (the rod's in one pass, which leaves C's velocity products for the next
         // call), then the accelerations q'' = G p'' + b.
-        let mut m = [0.0; N2];
+        let mut m = [0.0; FRAME_FORM_MAX * FRAME_FORM_MAX];
         let mut r = [0.0; FRAME_FORM_MAX];
         self.mass_and_forces(
             t,
@@ -143,7 +144,7 @@ impl SliderCrankDae<'_> {
                 r[i] -= m[j * n + i] * bj;
             }
         }
-        let mut mg = [0.0; N2];
+        let mut mg = [0.0; FRAME_FORM_MAX * K_MAX];
         for i in 0..n {
             for a in 0..k {
                 // G's column a: rows 0, 1, 2, 3 + a and nr.
@@ -151,33 +152,43 @@ impl SliderCrankDae<'_> {
                     + m[n + i] * g[k + a]
                     + m[2 * n + i] * g[2 * k + a]
                     + m[(3 + a) * n + i]
-                    + m[nr * n + i] * g[nr * k + a];
+                    + m[nr * n + i] * g[3 * k + a];
                 mg[i * k + a] = s;
             }
         }
-        let mut reduced = [0.0; N2];
+        let mut reduced = [0.0; K_MAX * K_MAX];
         let mut pdd = [0.0; FRAME_FORM_MAX];
         for a in 0..k {
             for c in 0..k {
                 let mut s = mg[(3 + a) * k + c];
-                for &i in &[0, 1, 2, nr] {
-                    s += g[i * k + a] * mg[i * k + c];
+                for (row, i) in [0, 1, 2, nr].into_iter().enumerate() {
+                    s += g[row * k + a] * mg[i * k + c];
                 }
                 reduced[a * k + c] = s;
             }
             let mut s = r[3 + a];
-            for &i in &[0, 1, 2, nr] {
-                s += g[i * k + a] * r[i];
+            for (row, i) in [0, 1, 2, nr].into_iter().enumerate() {
+                s += g[row * k + a] * r[i];
             }
             pdd[a] = s;
         }
         solve(&mut reduced[..k * k], &mut pdd[..k], k)?;
         for i in 0..n {
-            let mut s = b[i];
-            for a in 0..k {
-                s += g[i * k + a] * pdd[a];
-            }
-            qdd[i] = s;
+            let row = match i {
+                0..=2 => Some(i),
+                _ if i == nr => Some(3),
+                _ => None,
+            };
+            qdd[i] = match row {
+                Some(row) => {
+                    let mut s = b[i];
+                    for a in 0..k {
+                        s += g[row * k + a] * pdd[a];
+                    }
+                    s
+                }
+                None => pdd[i - 3],
+            };
         }
         if let Some(lambda) = lambda {
             // (Q - M q'') on the dependent coordinates: (Q - M b) - M G p''.

@@ -533,13 +533,7 @@ impl Plain {
     }
 
     /// `m J^T J` of a point mass into the upper triangle of `m`.
-    fn add_point_mass<const N: usize>(
-        &self,
-        mass: f64,
-        gx: &Row,
-        gy: &Row,
-        m: &mut [Row; MAX_REDUCED],
-    ) {
+    fn add_point_mass<const N: usize>(&self, mass: f64, gx: &Row, gy: &Row, m: &mut [[f64; N]; N]) {
         // The whole square (fixed bounds: the compiler vectorizes), symmetric by construction.
         for c in 2..N {
             let (ax, ay) = (mass * gx[c], mass * gy[c]);
@@ -559,7 +553,7 @@ impl Plain {
     }
 
     fn mass_n<const N: usize>(&self, trig: &Trig, out: MatMut<'_, f64>) {
-        let mut m = [[0.0; MAX_REDUCED]; MAX_REDUCED];
+        let mut m = [[0.0; N]; N];
         let (jcx, jcy, _, _) = self.walk::<N>(
             trig,
             None,
@@ -580,7 +574,7 @@ impl Plain {
 
     /// The translations' total mass and the constant rotary inertia added to the walk's `m`
     /// (upper triangle), written symmetric into `out`.
-    fn finish_mass<const N: usize>(&self, m: &mut [Row; MAX_REDUCED], mut out: MatMut<'_, f64>) {
+    fn finish_mass<const N: usize>(&self, m: &mut [[f64; N]; N], mut out: MatMut<'_, f64>) {
         m[0][0] = self.total_mass;
         m[1][1] = self.total_mass;
         for c in 0..N {
@@ -617,8 +611,8 @@ impl Plain {
         out: MatMut<'_, f64>,
         f: &mut [f64],
     ) -> Vector2<f64> {
-        let mut m = [[0.0; MAX_REDUCED]; MAX_REDUCED];
-        let mut q = [0.0; MAX_REDUCED];
+        let mut m = [[0.0; N]; N];
+        let mut q = [0.0; N];
         let (jcx, jcy, _, gamma_c) = self.walk::<N>(
             trig,
             Some(v),
@@ -651,7 +645,7 @@ impl Plain {
         gx: &Row,
         gy: &Row,
         gamma: Vector2<f64>,
-        q: &mut Row,
+        q: &mut [f64; N],
     ) {
         q[0] -= mass * gamma.x;
         q[1] -= mass * gamma.y;
@@ -667,7 +661,7 @@ impl Plain {
     }
 
     fn forces_n<const N: usize>(&self, r: &[f64], v: &[f64], trig: &Trig, f: &mut [f64]) {
-        let mut q = [0.0; MAX_REDUCED];
+        let mut q = [0.0; N];
         let (jcx, jcy, _, gamma_c) = self.walk::<N>(
             trig,
             Some(v),
@@ -687,7 +681,7 @@ impl Plain {
     }
 
     /// The springs and dampers `-K_r r - C_r r'` added to the velocity products `q` into `f`.
-    fn finish_forces<const N: usize>(&self, r: &[f64], v: &[f64], q: &Row, f: &mut [f64]) {
+    fn finish_forces<const N: usize>(&self, r: &[f64], v: &[f64], q: &[f64; N], f: &mut [f64]) {
         for (c, fc) in f[..N].iter_mut().enumerate() {
             let row = c * N;
             let mut x = q[c];
@@ -706,7 +700,7 @@ impl Plain {
 
     fn add_gravity_n<const N: usize>(&self, trig: &Trig, g: Vector2<f64>, f: &mut [f64]) {
         let n = N;
-        let mut q = [0.0; MAX_REDUCED];
+        let mut q = [0.0; N];
         // Gravity is the point-inertia term with gamma = -g.
         let (jcx, jcy, _, _) = self.walk::<N>(
             trig,
