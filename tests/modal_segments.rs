@@ -353,15 +353,15 @@ fn exact_or_refused_at_600_rad_s() {
     let p = exudyn::peak(&exact);
     let w = 600.0;
     let mut rows = Vec::new();
-    for model in [RodModelKind::Ffr, RodModelKind::ModalSegments] {
+    // The FFR rod set, and the defaults (`auto` takes the chain on its modes).
+    for model in [RodModelKind::Ffr, RodModelKind::Auto] {
         let mut s = flexrod::Scene::benchmark();
         s.rod.model = model;
-        if model == RodModelKind::ModalSegments {
-            s.rod.elements = 32;
-        }
+        s.crank.design_speed = w;
+        let built = Simulation::new(&s).unwrap().mechanism().spec.rod.clone();
         let (worst, t, message) = follow(&s, w, &exact, p);
-        println!("600 rad/s, {model:?}: accepted steps within {:.3} % of the exact peak; refused at t = {t:.4} s: {message}", 100.0 * worst);
-        let limit = s.rod.deflection_limit();
+        println!("600 rad/s, {model:?} ({:?}, {} elements): accepted steps within {:.3} % of the exact peak; refused at t = {t:.4} s: {message}", built.model, built.elements, 100.0 * worst);
+        let limit = built.deflection_limit();
         assert!(worst < 1e-2, "{model:?}: {worst}");
         assert!(
             message.contains(&format!("rod.deflection_limit = {limit}")),
@@ -374,8 +374,8 @@ fn exact_or_refused_at_600_rad_s() {
         format!(
             "- 600 rad/s (the exact beam buckles and folds, peak `|v_mid/L|` {p:.2}): the FFR rod's\n  \
              steps are within {} of the exact beam's peak until the step past 0.05 (t = {:.1} ms) is\n  \
-             refused; the chain on its modes (32 segments) within {} until the step past 0.25\n  \
-             (t = {:.1} ms) is refused; neither hands out a number beyond its range.",
+             refused; with the defaults (`auto` takes the chain on its modes) within {} until the\n  \
+             step past 0.25 (t = {:.1} ms) is refused; neither hands out a number beyond its range.",
             percent(rows[0].0, 2),
             1e3 * rows[0].1,
             percent(rows[1].0, 2),
