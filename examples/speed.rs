@@ -169,7 +169,7 @@ fn automotive() -> Scene {
 /// with the crank set before every call (us); with the gas pulse as a `[slider.gas_force]`
 /// table, two revolutions in one communication step (ms) and the engine run on its row grid
 /// (ms), and that run's steps.
-/// The benchmark rod at 300 rad/s on the chain on its modes (32 segments, 3 modes; peak
+/// The benchmark rod at 300 rad/s with the defaults (`rod.model = auto` takes the chain on its modes; peak
 /// `|v_mid/L|` 0.07, where the FFR rod's linear field is 3.4 % off): two revolutions from the
 /// undeformed start in one communication step (ms, steps).
 fn high_load_speed() -> (f64, u64, usize) {
