@@ -26,6 +26,7 @@ static MEASURED: Fragment = Fragment::new(
         "limit",
         "folding",
         "collapse",
+        "axial",
     ],
 );
 
@@ -418,6 +419,61 @@ fn exact_or_refused_at_e_over_100() {
              is refused.",
             percent(worst, 2),
             1e3 * t
+        ),
+    );
+}
+
+/// The slider-rod axial mode of the chain on its modes (rod held at B, the slider's mass `M`
+/// at C) against the transcendental frequency equation of a bar with a tip mass,
+/// `beta tan(beta) = m / M`, `f = beta c / (2 pi L)` (S. S. Rao, *Vibration of Continuous
+/// Systems*, 2007, section 9.4): the end springs take the half segments at the pins, so the
+/// chain's static axial compliance is the rod's and the frequency converges at second order.
+#[test]
+fn loaded_axial_mode_converges_to_the_frequency_equation() {
+    let mut rows = Vec::new();
+    for ratio in [0.25, 1.0, 2.0] {
+        let mut errors = Vec::new();
+        for segments in [16usize, 32, 64] {
+            let mut s = flexrod::Scene::benchmark();
+            s.rod.model = RodModelKind::ModalSegments;
+            s.rod.elements = segments;
+            s.rod.axial_dynamics = flexrod::rod::PhysicsSwitch::On;
+            s.rod.shear_deformation = flexrod::rod::PhysicsSwitch::Off;
+            let rod_mass = s.rod.density * s.rod.area * s.rod.length;
+            s.slider.mass = ratio * rod_mass;
+            let sim = Simulation::new(&s).unwrap();
+            let omega = sim.mechanism().rod.elastic_circular_frequencies().unwrap();
+            let axial = *omega.last().unwrap() / (2.0 * std::f64::consts::PI);
+            // beta tan beta = m / M on (0, pi/2) by bisection.
+            let (mut lo, mut hi) = (0.0f64, std::f64::consts::FRAC_PI_2);
+            for _ in 0..80 {
+                let mid = 0.5 * (lo + hi);
+                if mid * mid.tan() < 1.0 / ratio {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            let c = (s.rod.youngs_modulus / s.rod.density).sqrt();
+            let exact = 0.5 * (lo + hi) * c / (2.0 * std::f64::consts::PI * s.rod.length);
+            errors.push((segments, axial / exact - 1.0));
+        }
+        let order = (errors[1].1 / errors[2].1).abs().log2();
+        println!("M / m = {ratio}: relative errors {errors:?}, order {order:.2}");
+        assert!(errors[2].1.abs() < 5e-4, "{errors:?}");
+        assert!(order > 1.8, "{ratio}: order {order}");
+        rows.push((ratio, errors[2].1, order));
+    }
+    MEASURED.add(
+        "axial",
+        format!(
+            "- The slider-rod axial mode (held at B, the slider at C, `M / m` = 0.25, 1, 2) against\n  \
+             `beta tan(beta) = m / M`: at 64 segments within {}, {} and {}, order {:.2} to {:.2}.",
+            percent(rows[0].1.abs(), 3),
+            percent(rows[1].1.abs(), 3),
+            percent(rows[2].1.abs(), 3),
+            rows.iter().map(|r| r.2).fold(f64::INFINITY, f64::min),
+            rows.iter().map(|r| r.2).fold(0.0, f64::max),
         ),
     );
 }

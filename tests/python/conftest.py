@@ -26,7 +26,8 @@ def scene_path(model, tmp_path_factory):
     if model == "ffr":
         return ROOT / "scenes" / "benchmark.toml"
     text = (ROOT / "scenes" / "benchmark.toml").read_text()
-    text = text.replace('model = "ffr"', 'model = "segments"')
+    assert 'model = "auto"' in text
+    text = text.replace('model = "auto"', 'model = "segments"')
     text = text.replace('name = "FlexibleSliderCrank"', 'name = "FlexibleSliderCrankSegments"')
     scene = tmp_path_factory.mktemp("segments") / "segments.toml"
     scene.write_text(text)
@@ -59,7 +60,8 @@ def default_unzipdir(default_fmu, tmp_path_factory):
 def segments_fmu(tmp_path_factory):
     """The benchmark rod as a segment chain, for tests that compare the two models."""
     text = (ROOT / "scenes" / "benchmark.toml").read_text()
-    text = text.replace('model = "ffr"', 'model = "segments"')
+    assert 'model = "auto"' in text
+    text = text.replace('model = "auto"', 'model = "segments"')
     text = text.replace('name = "FlexibleSliderCrank"', 'name = "FlexibleSliderCrankSegments"')
     directory = tmp_path_factory.mktemp("segments_fmu")
     scene = directory / "segments.toml"

@@ -114,7 +114,7 @@ def test_model_description_follows_the_contract(fmu_path, model):
     for name in ["crank.length", "rod.length", "rod.model", "rod.elements", "rod.reference", "rod.modes"]:
         assert v[name].variability == "fixed", name
     assert v["rod.model"].type == "Enumeration"
-    assert [i.name for i in v["rod.model"].declaredType.items] == ["ffr", "segments", "modal_segments"]
+    assert [i.name for i in v["rod.model"].declaredType.items] == ["ffr", "segments", "modal_segments", "auto"]
     assert [i.name for i in v["rod.reference"].declaredType.items] == [
         "simply_supported", "mean_axis", "body_fixed_mid", "cantilever"]
     assert v["rod.elements"].type == "Integer" and v["rod.elements"].start == "8"

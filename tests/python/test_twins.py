@@ -96,8 +96,8 @@ def test_the_twin_switches_the_model(slave, unzipdir):
 
 
 @pytest.mark.parametrize("name, bad, allowed", [
-    ("rod.model_index", 0, "1 (ffr), 2 (segments), 3 (modal_segments)"),
-    ("rod.model_index", 4, "1 (ffr), 2 (segments), 3 (modal_segments)"),
+    ("rod.model_index", 0, "1 (ffr), 2 (segments), 3 (modal_segments), 4 (auto)"),
+    ("rod.model_index", 5, "1 (ffr), 2 (segments), 3 (modal_segments), 4 (auto)"),
     ("rod.reference_index", 5, "4 (cantilever)"),
 ])
 def test_out_of_range_twin_rejected_nothing_set(initializing, name, bad, allowed):
