@@ -271,8 +271,7 @@ fn check_dampers(n_seg: usize, axial: bool) {
         assert!((cr / kr * 2.0 * PI * f1 / 2.0 - 0.03).abs() < 1e-12);
     }
     if axial {
-        let (_, m) = damped.segment();
-        let w1 = 2.0 * (ka / m).sqrt() * (PI / (2.0 * n_seg as f64)).sin();
+        let w1 = 2.0 * PI * axial_chain_frequencies_hz(benchmark_props(), n_seg).unwrap()[0];
         assert!((ca / ka * w1 / 2.0 - 0.03).abs() < 1e-12);
     }
 }
@@ -390,7 +389,13 @@ fn segment_count_is_validated() {
 
 /// Huston 1991, "Illustrations/convergence" and table II: free-free axial vibration of a 1 m
 /// beam, A = 0.196 cm^2, E = 1.2e9 dyn/cm^2 = 1.2e8 Pa, rho = 1 g/cm^3 = 1000 kg/m^3, with
-/// 10 and 30 segments joined by axial springs.
+/// 10 and 30 segments joined by axial springs. Huston's chain has `N - 1` equal springs
+/// `E A / l` (the closed form `f_n = sqrt(k / m) sin(n pi / 2N) / pi`); here the end springs
+/// also take the half segments at B and C, through which the pins' forces pass
+/// (`loaded_axial_mode_converges_to_the_frequency_equation` in tests/modal_segments.rs: second
+/// order with the ends held and loaded), so with free ends, which carry no force, the
+/// frequencies lie below Huston's by about `1 / N`. Checked: below the continuum and converging
+/// to it, mode by mode.
 #[test]
 fn huston_axial_free_free() {
     let area = 0.196e-4;
@@ -408,40 +413,37 @@ fn huston_axial_free_free() {
         "Huston's axial chain, continuum f_n = n/(2L) sqrt(E/rho) = {:.4} n Hz",
         c / 2.0
     );
-    println!("  N  mode  chain (Hz)   continuum (Hz)  chain/continuum  closed form rel diff");
-    for n_seg in [10usize, 30] {
+    println!("  N  mode  chain (Hz)   continuum (Hz)  chain/continuum  Huston's chain/continuum");
+    let mut errors = Vec::new();
+    for n_seg in [10usize, 30, 90] {
         let f = axial_chain_frequencies_hz(props, n_seg).unwrap();
         assert_eq!(f.len(), n_seg - 1);
-        let l = props.length / n_seg as f64;
-        let k = props.axial_rigidity() / l;
-        let m = props.mass_per_length() * l;
+        let mut row = Vec::new();
         for mode in 1..=5 {
             let fc = mode as f64 / (2.0 * props.length) * c;
-            let closed = (k / m).sqrt() / PI * (mode as f64 * PI / (2.0 * n_seg as f64)).sin();
+            let huston = (mode as f64 * PI / (2.0 * n_seg as f64)).sin()
+                / (mode as f64 * PI / (2.0 * n_seg as f64));
             let got = f[mode - 1];
-            let rel = (got - closed).abs() / closed;
             println!(
-                "{n_seg:3}  {mode:4}  {got:11.5}  {fc:13.5}  {:15.6}  {rel:.2e}",
+                "{n_seg:3}  {mode:4}  {got:11.5}  {fc:13.5}  {:15.6}  {huston:.6}",
                 got / fc
             );
+            assert!(got < fc, "N = {n_seg}, mode {mode}: {got} above {fc}");
+            row.push(1.0 - got / fc);
+        }
+        errors.push(row);
+    }
+    // Closer to the continuum with more segments, mode by mode, at least first order.
+    for mode in 0..5 {
+        for w in errors.windows(2) {
             assert!(
-                rel < 1e-9,
-                "N = {n_seg}, mode {mode}: {got} vs closed form {closed}"
+                w[1][mode] < w[0][mode] / 2.5,
+                "mode {}: {errors:?}",
+                mode + 1
             );
-            // The chain is below the continuum by 1 - sinc(n pi / 2N).
-            let expected_ratio = (mode as f64 * PI / (2.0 * n_seg as f64)).sin()
-                / (mode as f64 * PI / (2.0 * n_seg as f64));
-            assert!((got / fc - expected_ratio).abs() < 1e-9);
         }
     }
-    // More segments: closer to the continuum (the point of Huston's table).
-    let f10 = axial_chain_frequencies_hz(props, 10).unwrap();
-    let f30 = axial_chain_frequencies_hz(props, 30).unwrap();
-    for mode in 0..5 {
-        let fc = (mode + 1) as f64 / 2.0 * c;
-        assert!((f30[mode] - fc).abs() < (f10[mode] - fc).abs());
-    }
-    assert!((f30[0] / (c / 2.0) - 1.0).abs() < 5e-4);
+    assert!(errors[2][0] < 2e-3, "{errors:?}");
 }
 
 /// Pinned-pinned bending frequencies of the chain converge to `f_n = n^2 pi / (2 L^2)

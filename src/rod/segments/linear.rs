@@ -17,9 +17,10 @@
 //!   multibody dynamics", *IJNME* 32, 1991, table II): `x_B` and all
 //!   `s_j` free; the rigid translation (`omega = 0`) is dropped (N - 1 modes).
 //!
-//! The free-free axial chain is `N` masses `m = rho A l` joined by `N - 1` springs
-//! `k = E A / l`, with the closed form `f_n = (1/pi) sqrt(k/m) sin(n pi / (2N))`, `n = 1..N-1`
-//! (tests/segments.rs checks it to 1e-9).
+//! The free-free axial chain is `N` masses `m = rho A l` joined by `N - 1` springs `k = E A / l`,
+//! the end ones `E A / (1.5 l)` (they also take the half segments at the pins); with equal
+//! springs (Huston's chain) the closed form would be `f_n = (1/pi) sqrt(k/m) sin(n pi / (2N))`
+//! (tests/segments.rs checks the convergence to the continuum).
 
 use faer::Mat;
 
@@ -395,7 +396,8 @@ impl LinearizedChain {
 }
 
 /// Axial frequencies of the free-free segment chain of a rod (Huston 1991, table II), Hz,
-/// ascending: `n_segments` rigid segments with axial springs `E A / l` in prismatic joints,
+/// ascending: `n_segments` rigid segments with axial springs in prismatic joints (`E A / l`,
+/// the end ones `E A / (1.5 l)`),
 /// from the linearized [`SegmentRod`] (its own mass matrix and springs). `N - 1` values.
 pub fn axial_chain_frequencies_hz(
     props: RodProperties,

@@ -85,7 +85,9 @@
 //! checks the closed form and the order), so no other spring constant is needed. A clamped end
 //! (not used by the mechanism, whose ends are pinned) needs a root spring `2 E I / l` to the
 //! support for second order (mirror ghost segment; tests/segments.rs, rotating cantilever).
-//! `k_a = E A / l` is the exact stiffness of a bar of length `l`.
+//! `k_a = E A / l` is the exact stiffness of a bar of length `l`; the end springs also take the
+//! half segments at B and C (`E A / (1.5 l)`), so the static axial compliance between the pins
+//! is the rod's `L / (E A)` and the slider-rod axial mode converges at second order.
 //!
 //! Dampers are stiffness proportional, `c_r = beta_r k_r`, `c_a = beta_a k_a`. In the
 //! linearized chain `C = beta K`, so mode `n` has damping ratio `beta omega_n / 2`; choosing

@@ -106,14 +106,23 @@ impl SegmentRod {
         rod.weighted_first = vec![0.5 * l; n];
         rod.k_rot = vec![k_rot; n - 1];
         rod.k_ax = vec![k_ax; n - 1];
+        if axial_springs && n >= 2 {
+            // The end springs take the half segments at B and C too (the force at the pins
+            // passes through them): the chain's static axial compliance is the rod's, L / (E A).
+            for j in [0, n - 2] {
+                let span = if n == 2 { 2.0 * l } else { 1.5 * l };
+                rod.k_ax[j] = props.axial_rigidity() / span;
+            }
+        }
         rod.total_mass = props.mass();
         rod.set_cuts(&crate::beam::SectionTable::uniform(
             props.length,
             props.area,
             props.area_moment,
         ));
-        rod.finish(damping_ratio, |_| {
-            Ok(2.0 * (k_ax / m).sqrt() * (std::f64::consts::PI / (2.0 * n as f64)).sin())
+        rod.finish(damping_ratio, |rod| {
+            let f = LinearizedChain::new(rod).free_free_axial_hz()?;
+            Ok(2.0 * std::f64::consts::PI * f.first().copied().unwrap_or(1.0))
         })?;
         Ok(rod)
     }
@@ -129,7 +138,9 @@ impl SegmentRod {
     /// series): `k_r = 1 / int ds / (E I(s))` over that length, the harmonic mean of `E I / l`
     /// (exact for linear `I`: the `ln` form of
     /// [`crate::beam::SectionTable::compliance_integral`]); the same for the axial spring with
-    /// `E A(s)`. For the uniform rod these are `E I / l` and `E A / l`.
+    /// `E A(s)`, the end ones from the pins (`[0, 1.5 l]` and `[L - 1.5 l, L]`: the pins' forces
+    /// pass through the half segments there). For the uniform rod these are `E I / l` and `E A
+    /// / l` (`E A / (1.5 l)` at the ends).
     ///
     /// With shear deformation (`def.shear_modulus`), every joint also gets a shear slide with
     /// `k_s = 1 / int ds / (G A_s(s))` over the same length, and B and C get one each for the
@@ -182,8 +193,11 @@ impl SegmentRod {
             let (a, b) = ((j as f64 + 0.5) * l, (j as f64 + 1.5) * l);
             rod.k_rot
                 .push(e_mod / table.compliance_integral(a, b, |v| v.area_moment));
+            // The end springs take the half segments at B and C too.
+            let a_ax = if j == 0 { 0.0 } else { a };
+            let b_ax = if j == n - 2 { length } else { b };
             rod.k_ax.push(if axial_springs {
-                e_mod / table.compliance_integral(a, b, |v| v.area)
+                e_mod / table.compliance_integral(a_ax, b_ax, |v| v.area)
             } else {
                 0.0
             });
