@@ -135,7 +135,7 @@ impl Mechanism {
             }
             Err((t_fail, _, reason)) if reason == OVER_BUDGET => {
                 restore(self, state);
-                let n = state.dae.q.len();
+                let n = self.work_coordinates();
                 Err(ModelError::TooMuchWork {
                     time: t_start,
                     step: h,
@@ -367,7 +367,7 @@ impl Mechanism {
             if taken >= MAX_INTERNAL_STEPS {
                 return Err((state.dae.t, t_end - state.dae.t, TOO_MANY_STEPS.to_string()));
             }
-            if over_budget(state, &entry) {
+            if over_budget(state, &entry, self.work_coordinates()) {
                 return Err((state.dae.t, t_end - state.dae.t, OVER_BUDGET.to_string()));
             }
             taken += 1;
@@ -451,7 +451,7 @@ impl Mechanism {
         while len > 0 {
             len -= 1;
             let (target, depth) = pending[len];
-            if over_budget(state, entry) {
+            if over_budget(state, entry, self.work_coordinates()) {
                 return Err((state.dae.t, target - state.dae.t, OVER_BUDGET.to_string()));
             }
             let h = target - state.dae.t;
@@ -526,12 +526,21 @@ pub fn evaluations_allowed(n: usize) -> u64 {
 }
 
 /// Whether the work since `entry` (the statistics at the start of the communication step)
-/// has used up [`WORK_BUDGET`].
-fn over_budget(state: &MechanismState, entry: &StepStats) -> bool {
+/// has used up [`WORK_BUDGET`] for a model that evaluates like `n` coordinates
+/// ([`Mechanism::work_coordinates`]).
+fn over_budget(state: &MechanismState, entry: &StepStats, n: usize) -> bool {
     let evaluations = (state.stats.newton_iterations - entry.newton_iterations)
         + (state.stats.steps - entry.steps)
         + (state.stats.halvings - entry.halvings);
-    evaluations > evaluations_allowed(state.dae.q.len())
+    evaluations > evaluations_allowed(n)
+}
+
+impl Mechanism {
+    /// The coordinates an evaluation costs like, for the work budget: the rod's
+    /// ([`crate::rod::RodBody::work_coordinates`]) and the slider.
+    pub fn work_coordinates(&self) -> usize {
+        self.rod.work_coordinates() + 1
+    }
 }
 
 /// The round-off a master's crank angle carries (`omega t` has a few ulps of `|theta|`): 4 ulps

@@ -81,6 +81,12 @@ pub trait RodBody: Send {
     /// Generalized forces: quadratic velocity terms, elastic and damping forces, and the
     /// velocity part of the axial-force (geometric) stiffening.
     fn forces(&self, q: &[f64], v: &[f64], f: &mut [f64]);
+    /// The number of coordinates an evaluation of this model costs like, for the work budget of
+    /// a communication step (`mechanism::stepping::WORK_BUDGET`): its own, unless its functions
+    /// work on more (the chain on its modes through the chain's own functions).
+    fn work_coordinates(&self) -> usize {
+        self.n_coordinates()
+    }
     /// [`Self::mass`] and [`Self::forces`] at the same coordinates, in one pass where the model
     /// can (the chain on its modes).
     fn mass_and_forces(&self, q: &[f64], v: &[f64], m: MatMut<'_, f64>, f: &mut [f64]) {

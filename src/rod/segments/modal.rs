@@ -324,6 +324,16 @@ impl RodBody for ModalSegmentRod {
         true
     }
 
+    /// The direct evaluation costs like the reduced coordinates; the projection works on the
+    /// chain's own (`O(N_full^2)` a mass matrix).
+    fn work_coordinates(&self) -> usize {
+        if self.plain.is_some() {
+            self.n_coordinates()
+        } else {
+            self.chain.n_coordinates()
+        }
+    }
+
     fn coordinate_scale(&self, i: usize) -> f64 {
         match i {
             0 | 1 => self.chain.length(),
