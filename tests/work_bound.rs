@@ -172,3 +172,33 @@ fn the_work_budget_refuses_a_long_step_of_a_large_model_with_the_state_kept() {
     assert!(took < 20.0, "{took} s");
     sim.advance(1e-4).expect("a small step goes on");
 }
+
+/// The chain on its modes through the projection of the chain's own functions (axial dynamics
+/// on, 64 segments with shear slides: the chain's own coordinates, not the reduced ones, set
+/// what an evaluation costs): a long communication step is refused by the work budget, which
+/// counts the chain's coordinates (`RodBody::work_coordinates`), with the state kept.
+#[test]
+fn the_work_budget_counts_the_chain_behind_its_modes() {
+    let mut scene = Scene::benchmark();
+    scene.rod.model = RodModelKind::ModalSegments;
+    scene.rod.elements = 64;
+    scene.rod.axial_dynamics = flexrod::rod::PhysicsSwitch::On;
+    scene.slider.mass = 0.1;
+    scene.solver.tolerance = 1e-8;
+    let mut sim = Simulation::new(&scene).unwrap();
+    start(&mut sim);
+    let n = sim.mechanism().work_coordinates();
+    assert!(n > 4 * sim.state().dae.q.len(), "{n}");
+    let t0 = Instant::now();
+    let e = sim.advance(1.0).expect_err("over the budget");
+    let took = t0.elapsed().as_secs_f64();
+    println!(
+        "work coordinates {n} ({} reduced), {} evaluations allowed: refused after {took:.2} s: {e}",
+        sim.state().dae.q.len(),
+        evaluations_allowed(n)
+    );
+    assert!(matches!(e, ModelError::TooMuchWork { .. }), "{e}");
+    assert_eq!(sim.time(), 0.0);
+    assert!(took < 20.0, "{took} s");
+    sim.advance(1e-4).expect("a small step goes on");
+}
