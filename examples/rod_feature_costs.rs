@@ -126,6 +126,7 @@ pub fn cases() -> Vec<(&'static str, Scene)> {
             with(&|s| {
                 s.rod.model = RodModelKind::Segments;
                 s.rod.elements = 32;
+                s.rod.axial_dynamics = flexrod::rod::PhysicsSwitch::Off;
             }),
         ),
         (
@@ -133,6 +134,7 @@ pub fn cases() -> Vec<(&'static str, Scene)> {
             with(&|s| {
                 s.rod.model = RodModelKind::Segments;
                 s.rod.elements = 32;
+                s.rod.axial_dynamics = flexrod::rod::PhysicsSwitch::Off;
                 s.rod.shear_deformation = flexrod::rod::PhysicsSwitch::Off;
                 s.rod.shear_modulus = None;
             }),
