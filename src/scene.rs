@@ -238,6 +238,27 @@ impl Scene {
             .expect("the compiled-in default scene parses")
     }
 
+    /// Where the scene gives no `[crank] design_speed`, take `|speed|` (rad/s) as the run's
+    /// highest crank speed, the one `rod.model = auto` chooses for: it becomes the design speed,
+    /// or for a start from rest (0) the experiment's crank speed the design speed falls back on.
+    /// Returns the speed taken; `None` where the scene gives one or `|speed|` lies outside
+    /// `[0, DESIGN_SPEED_MAX]`.
+    pub fn take_design_speed(&mut self, speed: f64) -> Option<f64> {
+        let speed = speed.abs();
+        if self.crank.design_speed != 0.0
+            || speed.is_nan()
+            || speed > crate::mechanism::DESIGN_SPEED_MAX
+        {
+            return None;
+        }
+        if speed > 0.0 {
+            self.crank.design_speed = speed;
+        } else {
+            self.experiment.crank_speed = 0.0;
+        }
+        Some(speed)
+    }
+
     /// The mechanism this scene describes (what [`crate::mechanism::Mechanism::new`] takes).
     pub fn mechanism_spec(&self) -> MechanismSpec {
         let mut crank = self.crank.clone();

@@ -68,47 +68,63 @@ fn closed_form_equals_general_evaluation() {
         let state = sim.state();
         let sys = mech.system(state);
         assert!(sys.has_reduced_rhs(), "{name}: closed form available");
-        let general = GeneralPath(&sys);
-        let n = sys.n_coordinates();
-        let elastic: Vec<usize> = mech.rod.elastic_coordinates().unwrap().collect();
-        let k = elastic.len();
-        let mut fast = PartitionedRhs::new(&sys, elastic.clone());
-        let mut slow = PartitionedRhs::new(&general, elastic.clone());
-        let scale = mech.rod.coordinate_scale(elastic[0]);
-        for trial in 0..5 {
-            let t = 1e-3 * trial as f64;
-            let z: Vec<f64> = (0..k)
-                .map(|a| scale * 2e-3 * ((trial * 7 + a * 3) as f64).sin() / (1 + a) as f64)
-                .collect();
-            let zd: Vec<f64> = (0..k)
-                .map(|a| scale * 0.5 * ((trial * 5 + a * 11) as f64).cos() / (1 + a) as f64)
-                .collect();
-            fast.q.copy_from_slice(&state.dae.q);
-            slow.q.copy_from_slice(&state.dae.q);
-            let (mut a_fast, mut a_slow) = (vec![0.0; k], vec![0.0; k]);
-            fast.evaluate(&sys, t, &z, &zd, &mut a_fast).unwrap();
-            slow.evaluate(&general, t, &z, &zd, &mut a_slow).unwrap();
-            fast.multipliers();
-            slow.multipliers();
-            let e = [
-                max_rel(&slow.q, &fast.q),
-                max_rel(&slow.v, &fast.v),
-                max_rel(&slow.qdd, &fast.qdd),
-                max_rel(&slow.lambda, &fast.lambda),
-            ];
-            println!("{name}, trial {trial}: relative differences q, v, qdd, lambda {e:?}");
-            assert!(
-                e.iter().all(|x| *x < 1e-10),
-                "{name}, trial {trial}: {e:?}\nq {:?}\n  {:?}\nqdd {:?}\n    {:?}\nlambda {:?}\n       {:?}",
-                slow.q,
-                fast.q,
-                slow.qdd,
-                fast.qdd,
-                slow.lambda,
-                fast.lambda
-            );
-            assert_eq!(fast.q.len(), n);
-        }
+        compare_with_general(name, &sys, mech.rod.as_ref(), &state.dae.q, 2e-3, 0.5);
+    }
+}
+
+/// The closed form of `sys` (the system of `rod`, dependent positions starting from `q0`)
+/// against its general partitioned evaluation at five sets of independent coordinates (the
+/// elastic ones, `amplitude` and `rate` times the first one's scale, rad/s for the rates):
+/// positions, velocities, accelerations and multipliers to 1e-10 relative.
+fn compare_with_general(
+    name: &str,
+    sys: &dyn DaeSystem,
+    rod: &dyn flexrod::rod::RodBody,
+    q0: &[f64],
+    amplitude: f64,
+    rate: f64,
+) {
+    let general = GeneralPath(sys);
+    let n = sys.n_coordinates();
+    let elastic: Vec<usize> = rod.elastic_coordinates().unwrap().collect();
+    let k = elastic.len();
+    let mut fast = PartitionedRhs::new(sys, elastic.clone());
+    let mut slow = PartitionedRhs::new(&general, elastic.clone());
+    let scale = rod.coordinate_scale(elastic[0]);
+    for trial in 0..5 {
+        let t = 1e-3 * trial as f64;
+        let z: Vec<f64> = (0..k)
+            .map(|a| scale * amplitude * ((trial * 7 + a * 3) as f64).sin() / (1 + a) as f64)
+            .collect();
+        let zd: Vec<f64> = (0..k)
+            .map(|a| scale * rate * ((trial * 5 + a * 11) as f64).cos() / (1 + a) as f64)
+            .collect();
+        fast.q.copy_from_slice(q0);
+        slow.q.copy_from_slice(q0);
+        let (mut a_fast, mut a_slow) = (vec![0.0; k], vec![0.0; k]);
+        fast.evaluate(sys, t, &z, &zd, &mut a_fast).unwrap();
+        slow.evaluate(&general, t, &z, &zd, &mut a_slow).unwrap();
+        fast.multipliers();
+        slow.multipliers();
+        let e = [
+            max_rel(&slow.q, &fast.q),
+            max_rel(&slow.v, &fast.v),
+            max_rel(&slow.qdd, &fast.qdd),
+            max_rel(&slow.lambda, &fast.lambda),
+        ];
+        println!("{name}, trial {trial}: relative differences q, v, qdd, lambda {e:?}");
+        assert!(
+            e.iter().all(|x| *x < 1e-10),
+            "{name}, trial {trial}: {e:?}\nq {:?}\n  {:?}\nqdd {:?}\n    {:?}\nlambda {:?}\n       {:?}",
+            slow.q,
+            fast.q,
+            slow.qdd,
+            fast.qdd,
+            slow.lambda,
+            fast.lambda
+        );
+        assert_eq!(fast.q.len(), n);
+        assert!(fast.q.iter().all(|x| x.is_finite()));
     }
 }
 
@@ -168,46 +184,11 @@ fn frame_form_equals_general_evaluation() {
         );
         let state = sim.state();
         let sys = mech.system(state);
-        let general = GeneralPath(&sys);
-        let n = sys.n_coordinates();
-        let k = n - 4;
-        let elastic: Vec<usize> = (3..3 + k).collect();
-        let mut fast = PartitionedRhs::new(&sys, elastic.clone());
-        let mut slow = PartitionedRhs::new(&general, elastic.clone());
-        let scale = mech.rod.coordinate_scale(3);
-        for trial in 0..5 {
-            let t = 1e-3 * trial as f64;
-            let z: Vec<f64> = (0..k)
-                .map(|a| scale * 2e-2 * ((trial * 7 + a * 3) as f64).sin() / (1 + a) as f64)
-                .collect();
-            let zd: Vec<f64> = (0..k)
-                .map(|a| scale * 5.0 * ((trial * 5 + a * 11) as f64).cos() / (1 + a) as f64)
-                .collect();
-            fast.q.copy_from_slice(&state.dae.q);
-            slow.q.copy_from_slice(&state.dae.q);
-            let (mut a_fast, mut a_slow) = (vec![0.0; k], vec![0.0; k]);
-            fast.evaluate(&sys, t, &z, &zd, &mut a_fast).unwrap();
-            slow.evaluate(&general, t, &z, &zd, &mut a_slow).unwrap();
-            fast.multipliers();
-            slow.multipliers();
-            let e = [
-                max_rel(&slow.q, &fast.q),
-                max_rel(&slow.v, &fast.v),
-                max_rel(&slow.qdd, &fast.qdd),
-                max_rel(&slow.lambda, &fast.lambda),
-            ];
-            println!("{name}, trial {trial}: relative differences q, v, qdd, lambda {e:?}");
-            assert!(
-                e.iter().all(|x| *x < 1e-10),
-                "{name}, trial {trial}: {e:?}\nqdd {:?}\n    {:?}\nlambda {:?}\n       {:?}",
-                slow.qdd,
-                fast.qdd,
-                slow.lambda,
-                fast.lambda
-            );
-            // The deflection these coordinates give is a large one (the closed form's range).
-            assert!(fast.q.iter().all(|x| x.is_finite()));
-        }
+        assert_eq!(
+            mech.rod.elastic_coordinates(),
+            Some(3..sys.n_coordinates() - 1)
+        );
+        compare_with_general(name, &sys, mech.rod.as_ref(), &state.dae.q, 2e-2, 5.0);
     }
 }
 

@@ -101,9 +101,7 @@ pub fn run_constant(
 ) -> Result<(Record, Simulation), ModelError> {
     // `rod.model = auto` chooses for this speed unless the scene names its design speed.
     let mut scene = scene.clone();
-    if scene.crank.design_speed == 0.0 && speed.is_finite() {
-        scene.crank.design_speed = speed.abs().min(crate::mechanism::DESIGN_SPEED_MAX);
-    }
+    scene.take_design_speed(speed);
     let mut simulation = Simulation::new(&scene)?;
     let steps = (revolutions * 2.0 * std::f64::consts::PI / speed.abs() / dt).round() as usize;
     let record = run(

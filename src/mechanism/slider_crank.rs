@@ -102,16 +102,7 @@ impl Mechanism {
     /// ([`super::integrator_choice`]).
     pub fn new(spec: &MechanismSpec) -> Result<Mechanism, ModelError> {
         spec.validate()?;
-        let operating_point = crate::rod::physics_choice::OperatingPoint {
-            crank_length: spec.crank.length,
-            crank_speed: spec.crank.design_speed,
-        };
-        let (rod_spec, physics) = crate::rod::physics_choice::choose(
-            &spec.rod,
-            spec.slider.mass,
-            spec.solver.tolerance,
-            &operating_point,
-        )?;
+        let (rod_spec, physics) = spec.choose_physics()?;
         let spec = &MechanismSpec {
             rod: rod_spec,
             ..spec.clone()

@@ -269,6 +269,23 @@ pub struct MechanismSpec {
 }
 
 impl MechanismSpec {
+    /// The rod's `auto` settings resolved for this mechanism ([`crate::rod::physics_choice`]):
+    /// the slider's mass, the tolerance, and the crank at its design speed.
+    pub fn choose_physics(
+        &self,
+    ) -> Result<(crate::rod::RodSpec, crate::rod::PhysicsChoice), ModelError> {
+        let operating_point = crate::rod::physics_choice::OperatingPoint {
+            crank_length: self.crank.length,
+            crank_speed: self.crank.design_speed,
+        };
+        crate::rod::physics_choice::choose(
+            &self.rod,
+            self.slider.mass,
+            self.solver.tolerance,
+            &operating_point,
+        )
+    }
+
     /// Check the parameters the rod models do not check themselves (each error names the
     /// parameter and its allowed range): crank shorter than the rod, damping and slider mass
     /// not negative, solver settings in range.

@@ -162,15 +162,8 @@ impl Model {
             // parameter (and, for a start from rest, into the experiment's speed the scene
             // falls back on) so that saved states, the model's fingerprint and a reader see the
             // speed the rod model was chosen for.
-            if self.scene.crank.design_speed == 0.0 {
-                let speed = self.inputs.speed.abs();
-                if speed <= crate::mechanism::DESIGN_SPEED_MAX {
-                    self.scene.experiment.crank_speed = speed;
-                    if speed > 0.0 {
-                        self.scene.crank.design_speed = speed;
-                        self.design_speed_filled = Some(speed);
-                    }
-                }
+            if let Some(speed) = self.scene.take_design_speed(self.inputs.speed) {
+                self.design_speed_filled = (speed > 0.0).then_some(speed);
             }
             let simulation = Simulation::new(&self.scene)?;
             let available = simulation.frequencies_hz().len();

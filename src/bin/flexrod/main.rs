@@ -176,17 +176,7 @@ fn modes(args: &ModesArgs) -> Result<(), Failure> {
     spec.validate().map_err(|e| e.to_string())?;
     // The rod as the model builds it: the `auto` settings resolved (the rod model for the
     // design speed too), section table, shear deformation and end bodies included.
-    let operating_point = flexrod::rod::physics_choice::OperatingPoint {
-        crank_length: spec.crank.length,
-        crank_speed: spec.crank.design_speed,
-    };
-    let (rod, choice) = flexrod::rod::physics_choice::choose(
-        &scene.rod,
-        scene.slider.mass,
-        scene.solver.tolerance,
-        &operating_point,
-    )
-    .map_err(|e| e.to_string())?;
+    let (rod, choice) = spec.choose_physics().map_err(|e| e.to_string())?;
     if rod.model != RodModelKind::Ffr {
         let sim = Simulation::new(&scene).map_err(|e| e.to_string())?;
         println!("{}", choice.describe());
@@ -394,13 +384,10 @@ fn simulate(args: &SimulateArgs) -> Result<(), Failure> {
     };
     // `rod.model = auto` chooses for the run's highest crank speed (the scene's
     // `[crank] design_speed` where given).
-    if scene.crank.design_speed == 0.0 {
-        scene.crank.design_speed = match &drive {
-            CrankDrive::Table(rows) => rows.iter().map(|r| r[2].abs()).fold(0.0, f64::max),
-            _ => speed.abs(),
-        }
-        .min(flexrod::mechanism::DESIGN_SPEED_MAX);
-    }
+    scene.take_design_speed(match &drive {
+        CrankDrive::Table(rows) => rows.iter().map(|r| r[2].abs()).fold(0.0, f64::max),
+        _ => speed,
+    });
     let mut sim = Simulation::new(&scene).map_err(|e| e.to_string())?;
     let wall = Instant::now();
     let record = drive::run(&mut sim, &drive, 0.0, &communication_grid(t0, dt, n))

@@ -554,22 +554,34 @@ impl Plain {
 
     fn mass_n<const N: usize>(&self, trig: &Trig, out: MatMut<'_, f64>) {
         let mut m = [[0.0; N]; N];
-        let (jcx, jcy, _, _) = self.walk::<N>(
-            trig,
-            None,
-            self.segments(),
-            Frame::Global,
-            |k, gx, gy, _| self.add_point_mass::<N>(self.masses[k], gx, gy, &mut m),
-        );
+        self.walk_bodies::<N>(trig, None, |mass, gx, gy, _| {
+            self.add_point_mass::<N>(mass, gx, gy, &mut m)
+        });
+        self.finish_mass::<N>(&mut m, out);
+    }
+
+    /// Walk the point masses in the global axes: `visit(m, G x, G y, gamma)` of every segment's
+    /// centroid, then of the end bodies' masses at B and C (where present), with their
+    /// velocity products at the velocities `v` (zero without); returns C's velocity products
+    /// (where the walk ends: `J_C = P_N`).
+    fn walk_bodies<const N: usize>(
+        &self,
+        trig: &Trig,
+        v: Option<&[f64]>,
+        mut visit: impl FnMut(f64, &Row, &Row, Vector2<f64>),
+    ) -> Vector2<f64> {
+        let (jcx, jcy, _, gamma_c) =
+            self.walk::<N>(trig, v, self.segments(), Frame::Global, |k, gx, gy, g| {
+                visit(self.masses[k], gx, gy, g)
+            });
         if self.end_mass[0] > 0.0 {
-            let (_, jx, jy, _) = self.point_parts::<N>(RodPoint::B, trig, None, Frame::Global);
-            self.add_point_mass::<N>(self.end_mass[0], &jx, &jy, &mut m);
+            let (_, jx, jy, gamma) = self.point_parts::<N>(RodPoint::B, trig, v, Frame::Global);
+            visit(self.end_mass[0], &jx, &jy, gamma);
         }
         if self.end_mass[1] > 0.0 {
-            // C ends the last offset: J_C = P_N.
-            self.add_point_mass::<N>(self.end_mass[1], &jcx, &jcy, &mut m);
+            visit(self.end_mass[1], &jcx, &jcy, gamma_c);
         }
-        self.finish_mass::<N>(&mut m, out);
+        gamma_c
     }
 
     /// The translations' total mass and the constant rotary inertia added to the walk's `m`
@@ -613,26 +625,10 @@ impl Plain {
     ) -> Vector2<f64> {
         let mut m = [[0.0; N]; N];
         let mut q = [0.0; N];
-        let (jcx, jcy, _, gamma_c) = self.walk::<N>(
-            trig,
-            Some(v),
-            self.segments(),
-            Frame::Global,
-            |k, gx, gy, g| {
-                self.add_point_mass::<N>(self.masses[k], gx, gy, &mut m);
-                self.add_point_inertia::<N>(self.masses[k], gx, gy, g, &mut q);
-            },
-        );
-        if self.end_mass[0] > 0.0 {
-            let (_, jx, jy, gamma) =
-                self.point_parts::<N>(RodPoint::B, trig, Some(v), Frame::Global);
-            self.add_point_mass::<N>(self.end_mass[0], &jx, &jy, &mut m);
-            self.add_point_inertia::<N>(self.end_mass[0], &jx, &jy, gamma, &mut q);
-        }
-        if self.end_mass[1] > 0.0 {
-            self.add_point_mass::<N>(self.end_mass[1], &jcx, &jcy, &mut m);
-            self.add_point_inertia::<N>(self.end_mass[1], &jcx, &jcy, gamma_c, &mut q);
-        }
+        let gamma_c = self.walk_bodies::<N>(trig, Some(v), |mass, gx, gy, g| {
+            self.add_point_mass::<N>(mass, gx, gy, &mut m);
+            self.add_point_inertia::<N>(mass, gx, gy, g, &mut q);
+        });
         self.finish_mass::<N>(&mut m, out);
         self.finish_forces::<N>(r, v, &q, f);
         gamma_c
@@ -662,21 +658,9 @@ impl Plain {
 
     fn forces_n<const N: usize>(&self, r: &[f64], v: &[f64], trig: &Trig, f: &mut [f64]) {
         let mut q = [0.0; N];
-        let (jcx, jcy, _, gamma_c) = self.walk::<N>(
-            trig,
-            Some(v),
-            self.segments(),
-            Frame::Global,
-            |k, gx, gy, g| self.add_point_inertia::<N>(self.masses[k], gx, gy, g, &mut q),
-        );
-        if self.end_mass[0] > 0.0 {
-            let (_, jx, jy, gamma) =
-                self.point_parts::<N>(RodPoint::B, trig, Some(v), Frame::Global);
-            self.add_point_inertia::<N>(self.end_mass[0], &jx, &jy, gamma, &mut q);
-        }
-        if self.end_mass[1] > 0.0 {
-            self.add_point_inertia::<N>(self.end_mass[1], &jcx, &jcy, gamma_c, &mut q);
-        }
+        self.walk_bodies::<N>(trig, Some(v), |mass, gx, gy, g| {
+            self.add_point_inertia::<N>(mass, gx, gy, g, &mut q)
+        });
         self.finish_forces::<N>(r, v, &q, f);
     }
 
@@ -699,24 +683,12 @@ impl Plain {
     }
 
     fn add_gravity_n<const N: usize>(&self, trig: &Trig, g: Vector2<f64>, f: &mut [f64]) {
-        let n = N;
         let mut q = [0.0; N];
         // Gravity is the point-inertia term with gamma = -g.
-        let (jcx, jcy, _, _) = self.walk::<N>(
-            trig,
-            None,
-            self.segments(),
-            Frame::Global,
-            |k, gx, gy, _| self.add_point_inertia::<N>(self.masses[k], gx, gy, -g, &mut q),
-        );
-        if self.end_mass[0] > 0.0 {
-            let (_, jx, jy, _) = self.point_parts::<N>(RodPoint::B, trig, None, Frame::Global);
-            self.add_point_inertia::<N>(self.end_mass[0], &jx, &jy, -g, &mut q);
-        }
-        if self.end_mass[1] > 0.0 {
-            self.add_point_inertia::<N>(self.end_mass[1], &jcx, &jcy, -g, &mut q);
-        }
-        for c in 0..n {
+        self.walk_bodies::<N>(trig, None, |mass, gx, gy, _| {
+            self.add_point_inertia::<N>(mass, gx, gy, -g, &mut q)
+        });
+        for c in 0..N {
             f[c] += q[c];
         }
     }
