@@ -35,6 +35,12 @@ fn median(mut x: Vec<f64>) -> f64 {
 }
 
 /// Median wall time of `f` over `repeats` calls, s.
+/// Median over `repeats` runs of the wall time `f` reports itself, s (after one warm-up run).
+fn reported(repeats: usize, mut f: impl FnMut() -> std::time::Duration) -> f64 {
+    f();
+    median((0..repeats).map(|_| f().as_secs_f64()).collect())
+}
+
 fn time(repeats: usize, mut f: impl FnMut()) -> f64 {
     f();
     median(
@@ -189,7 +195,7 @@ fn high_load_speed() -> (f64, u64, usize) {
     (ms, sim.stats().steps, built.elements)
 }
 
-fn automotive_speed() -> (f64, u64, u64, f64, f64, [f64; 2], u64) {
+fn automotive_speed() -> (f64, u64, u64, f64, f64, [f64; 3], u64) {
     let scene = automotive();
     let w = scene.experiment.crank_speed;
     let grid = [0.0, 4.0 * std::f64::consts::PI / w];
@@ -199,11 +205,13 @@ fn automotive_speed() -> (f64, u64, u64, f64, f64, [f64; 2], u64) {
             drive::run(&mut sim, &CrankDrive::Constant { speed: w }, 0.0, &grid).unwrap();
         });
     let stats = sim.stats();
+    // The engine runs' own wall time (`Simulation::new` excluded: the instance is built once).
     let engine = 1e3
-        * time(11, || {
+        * reported(11, || {
             flexrod::drive::engine::EngineRun::automotive()
                 .run(&scene)
-                .unwrap();
+                .unwrap()
+                .1
         });
     // The gas pulse inside the model (`[slider.gas_force]`): two revolutions at full speed
     // with the pulse after the second top dead centre, in one communication step; the engine
@@ -224,8 +232,15 @@ fn automotive_speed() -> (f64, u64, u64, f64, f64, [f64; 2], u64) {
         });
     let gas_steps = sim_gas.stats().steps;
     let engine_table = 1e3
-        * time(11, || {
-            setup.run_with_gas_table(&scene, setup.sample).unwrap();
+        * reported(11, || {
+            setup.run_with_gas_table(&scene, setup.sample).unwrap().1
+        });
+    // As a master with input derivatives drives it: the crank set every 1e-4 s with its
+    // acceleration, a row there (tests/automotive_reference.rs checks it against the exact
+    // beam with rows every 2e-5 s).
+    let engine_sparse = 1e3
+        * reported(11, || {
+            setup.run_with_sparse_input(&scene, 1e-4, 1e-4).unwrap().1
         });
     let dir = std::env::temp_dir().join(format!("flexrod-speed-{}", std::process::id()));
     let res = dir.join("resources");
@@ -248,14 +263,21 @@ fn automotive_speed() -> (f64, u64, u64, f64, f64, [f64; 2], u64) {
         stats.newton_iterations,
         engine,
         step,
-        [gas_ms, engine_table],
+        [gas_ms, engine_table, engine_sparse],
         gas_steps,
     )
 }
 
 fn main() {
-    let (a_ms, a_steps, a_rhs, a_engine, a_step, [a_gas, a_engine_table], a_gas_steps) =
-        automotive_speed();
+    let (
+        a_ms,
+        a_steps,
+        a_rhs,
+        a_engine,
+        a_step,
+        [a_gas, a_engine_table, a_engine_sparse],
+        a_gas_steps,
+    ) = automotive_speed();
     let (ms, steps, rhs, peak) = two_revolutions(&Scene::benchmark());
     let mut dopri = Scene::benchmark();
     dopri.solver.method = SolverMethod::Dopri5;
@@ -279,14 +301,16 @@ fn main() {
 | `fmi2DoStep` at a 1e-5 s communication step | {step:.2} us a call ({:.1} x real time) |
 | `fmi2SetReal` (crank angle and speed) + `fmi2DoStep` at 1e-5 s | {step_inputs:.2} us a call |
 | automotive rod (scenes/automotive_rod.toml: mass-loaded modes to 6 kHz, residual flexibility above, `auto`: exponential RK4(3), tolerance 1e-2), two revolutions at 628.3 rad/s from the undeformed start in one `fmi2DoStep` | {a_ms:.2} ms; {a_steps} steps, {a_rhs} right-hand sides |
-| automotive rod, the engine run (ramp to 6000 rpm, gas pulse, 60 ms, 1e-5 s grid) | {a_engine:.2} ms |
+| automotive rod, the engine run (ramp to 6000 rpm, gas pulse, 60 ms, 1e-5 s grid; here and below the instance built before the clock starts) | {a_engine:.2} ms |
 | automotive rod, the engine run with the gas pulse as a `[slider.gas_force]` table (the crank on a 2e-5 s grid, a row at every point) | {a_engine_table:.2} ms |
+| automotive rod, the engine run with the gas pulse as a table and the crank set every 1e-4 s (angle, speed and acceleration: `fmi2SetRealInputDerivatives`), a row there | {a_engine_sparse:.2} ms ({:.0} x real time) |
 | automotive rod, two revolutions at 628.3 rad/s with the gas pulse as a `[slider.gas_force]` table, in one `fmi2DoStep` | {a_gas:.2} ms; {a_gas_steps} steps |
 | automotive rod, `fmi2SetReal` (crank angle and speed) + `fmi2DoStep` at 1e-5 s, 628.3 rad/s | {a_step:.2} us a call |
 | benchmark rod at 300 rad/s (peak v_mid/L 0.07), the defaults (`rod.model = auto` takes the chain on its modes: {high_segments} segments for tolerance 1e-3, the band keeps 4 modes, shear by `auto`; exponential RK4(3)), two revolutions from the undeformed start in one `fmi2DoStep` | {high_ms:.2} ms; {high_steps} steps |
 ",
         simulated / (ms * 1e-3),
         1e-5 / (step * 1e-6),
+        0.06 / (a_engine_sparse * 1e-3),
     );
     print!("{text}");
     if std::env::var_os("FLEXROD_BLESS").is_some() {

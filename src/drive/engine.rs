@@ -100,7 +100,7 @@ impl EngineRun {
     /// the gas force held over each communication step at its mid-step value. Returns the rows,
     /// the wall time of the run (`Simulation::new` excluded) and the integrator's name.
     pub fn run(&self, scene: &Scene) -> Result<(Vec<EngineRow>, Duration, String), ModelError> {
-        self.run_on_grid(scene, self.step, self.sample, true)
+        self.run_on_grid(scene, self.step, self.step, self.sample, true)
     }
 
     /// The same run with the gas force inside the model, as the table [`EngineRun::gas_table`]
@@ -114,15 +114,34 @@ impl EngineRun {
     ) -> Result<(Vec<EngineRow>, Duration, String), ModelError> {
         let mut scene = scene.clone();
         scene.slider.gas_force = Some(self.gas_table());
-        self.run_on_grid(&scene, step, step, false)
+        self.run_on_grid(&scene, step, step, step, false)
     }
 
-    /// The run on the communication step `step` with a row every `sample` s; `held_gas`: the
-    /// pulse through `slider.force`, held over each step at its mid-step value.
+    /// The run as a co-simulation master with input derivatives drives it: the gas force inside
+    /// the model as [`EngineRun::run_with_gas_table`], the crank input set every `input_step` s
+    /// only (angle, speed and the acceleration that reaches the drive's speed at the next input
+    /// point: [`continued`]), and a row every `sample` s (a communication point that sets no
+    /// input, so the integrator holds its steps across it). `input_step` a multiple of
+    /// `sample`, both divisors of the run's length.
+    pub fn run_with_sparse_input(
+        &self,
+        scene: &Scene,
+        input_step: f64,
+        sample: f64,
+    ) -> Result<(Vec<EngineRow>, Duration, String), ModelError> {
+        let mut scene = scene.clone();
+        scene.slider.gas_force = Some(self.gas_table());
+        self.run_on_grid(&scene, sample, input_step, sample, false)
+    }
+
+    /// The run on the communication step `step`, the crank input set every `input_step` s (a
+    /// multiple of `step`), a row every `sample` s (a multiple of `step`); `held_gas`: the pulse
+    /// through `slider.force`, held over each communication step at its mid-step value.
     fn run_on_grid(
         &self,
         scene: &Scene,
         step: f64,
+        input_step: f64,
         sample: f64,
         held_gas: bool,
     ) -> Result<(Vec<EngineRow>, Duration, String), ModelError> {
@@ -149,12 +168,16 @@ impl EngineRun {
         let mut rows = vec![row(&sim, 0.0)];
         let n = (self.stop / step).round() as usize;
         let every = ((sample / step).round() as usize).max(1);
+        let input_every = ((input_step / step).round() as usize).max(1);
         let (mut input, mut input_time) = (law.at(0.0), 0.0);
         for k in 0..n {
             let t = k as f64 * step;
-            input = continued(input, sim.time() - input_time, law.at(t + step).speed, step);
-            input_time = sim.time();
-            sim.set_input(input)?;
+            if k % input_every == 0 {
+                let h = (input_every as f64 * step).min(self.stop - t);
+                input = continued(input, sim.time() - input_time, law.at(t + h).speed, h);
+                input_time = sim.time();
+                sim.set_input(input)?;
+            }
             if held_gas {
                 sim.set_slider_force(self.gas(law.at(t + 0.5 * step).angle))?;
             }
