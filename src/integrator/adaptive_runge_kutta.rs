@@ -189,7 +189,7 @@ struct ExponentialForm {
     /// Stage remainders `n = z'' + w^2 z + c z'`: start, a, b, c, end.
     remainders: [Vec<f64>; 5],
     /// [`damped_max_phase`] over the lowest oscillator's circular frequency, s, and
-    /// [`AXIAL_MAX_PHASE`] over the axial oscillators' ([`AdaptiveRungeKutta::cap_phase_on`]).
+    /// [`axial_max_phase`] over the axial oscillators' ([`AdaptiveRungeKutta::cap_phase_on`]).
     max_step: f64,
 }
 
@@ -203,18 +203,32 @@ struct ExponentialForm {
 /// default scene's).
 pub const EXPONENTIAL_MAX_PHASE: f64 = 1.0;
 
-/// Largest phase `w_ax h` of an axial mode over one step of the exponential form
-/// ([`AdaptiveRungeKutta::cap_phase_on`]). An axial mode's oscillation enters the bending
-/// modes' remainder through the axial force; over longer steps the stages sample that
-/// coupling too coarsely and the embedded estimate misses its error. Measured over the 30
-/// random parameter sets of `tests/error_control.rs` (abrupt starts, one revolution, the
-/// error against the same model at a thousandth of the tolerance): the largest error of the
-/// sets with an axial mode is 0.02 of their tolerance with the cap at 1, 0.39 at 2, 0.60 at 3,
-/// and 2.5 without a cap (an undamped set, tolerance 3e-3). At 2 the steps follow the error
-/// control again: the sets with an axial mode take 0.5 to 0.95 times the steps of the cap at
-/// 1, and the automotive rod's two revolutions 277 instead of 426, its outputs within 0.4 % of
-/// the converged run (`tests/automotive_default_experiment.rs`).
+/// Largest phase `w_ax h` of an axial mode over one step of the exponential form, at the
+/// local tolerance [`AXIAL_PHASE_TOLERANCE`] and above ([`axial_max_phase`]). An axial mode's
+/// oscillation enters the bending modes' remainder through the axial force; over longer steps
+/// the stages sample that coupling too coarsely and the embedded estimate misses its error.
+/// Measured over the 30 random parameter sets of `tests/error_control.rs` (abrupt starts, one
+/// revolution, the error against the same model at a thousandth of the tolerance) with one cap
+/// at every tolerance: the largest error of the sets with an axial mode is 0.02 of their
+/// tolerance with the cap at 1, 0.39 at 2, 0.60 at 3, and 2.5 without a cap (an undamped set,
+/// tolerance 3e-3). The error the estimate misses does not shrink with the tolerance: the
+/// automotive rod at tolerance 1e-3 (`cargo run --release --example exponential_choice`) is
+/// 2.0e-4 off at the cap 1 and 1.0e-3 at 2, so the cap tightens with the tolerance.
 pub const AXIAL_MAX_PHASE: f64 = 2.0;
+
+/// The local tolerance (that of `solver.tolerance = 1e-2` in the RK4(3) pair) at and above
+/// which the axial modes' cap is [`AXIAL_MAX_PHASE`] ([`axial_max_phase`]).
+pub const AXIAL_PHASE_TOLERANCE: f64 = 3e-4;
+
+/// The axial modes' phase cap at the local tolerance `tolerance`: [`AXIAL_MAX_PHASE`] times
+/// `(tolerance / AXIAL_PHASE_TOLERANCE)^(1/4)`, between [`EXPONENTIAL_MAX_PHASE`] and
+/// [`AXIAL_MAX_PHASE`]. The missed error grows with about the fourth power of the phase
+/// (error-control sets: 0.02 to 0.39 of the tolerance from 1 to 2), so the cap keeps it in
+/// proportion to the tolerance; at `solver.tolerance = 1e-3` it is 1.12, at 1e-4 and below 1.
+pub fn axial_max_phase(tolerance: f64) -> f64 {
+    let ratio = (tolerance / AXIAL_PHASE_TOLERANCE).min(1.0);
+    (AXIAL_MAX_PHASE * ratio.powf(0.25)).max(EXPONENTIAL_MAX_PHASE)
+}
 
 /// The local tolerance (relative to the amplitude scale) at which the exponential form's
 /// phase cap is [`EXPONENTIAL_MAX_PHASE`]; below it the cap is
@@ -346,14 +360,15 @@ impl AdaptiveRungeKutta {
     }
 
     /// The exponential form with the phase `w h` of oscillator `index` (an axial mode) capped
-    /// at [`AXIAL_MAX_PHASE`] too: its oscillation enters the bending modes' remainder through
+    /// at [`axial_max_phase`] too: its oscillation enters the bending modes' remainder through
     /// the axial force, and above the cap the embedded estimate loses sight of that coupling's
-    /// error (the measurements at the constant).
+    /// error (the measurements at [`AXIAL_MAX_PHASE`]).
     pub fn cap_phase_on(mut self, index: usize) -> AdaptiveRungeKutta {
+        let cap = axial_max_phase(self.control.tolerance);
         if let Some(form) = self.exponential.as_mut() {
             let omega = form.oscillators[index].omega2.sqrt();
             if omega > 0.0 {
-                form.max_step = form.max_step.min(AXIAL_MAX_PHASE / omega);
+                form.max_step = form.max_step.min(cap / omega);
             }
         }
         self
