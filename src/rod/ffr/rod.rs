@@ -106,7 +106,7 @@ impl FfrRod {
         let mut rod = FfrRod {
             axial_coupling,
             axial_scale_ratio,
-            sampling: super::sections::Sampling::new(&modes),
+            sampling: super::sections::Sampling::new(&modes, integrals.x_b),
             acceleration_stiffness,
             coupling_scale,
             n: modes.n_modes(),
