@@ -300,7 +300,7 @@ fn main() {
 | one right-hand side by the general partitioned evaluation (no closed form) | {rhs_general:.0} ns |
 | `fmi2DoStep` at a 1e-5 s communication step | {step:.2} us a call ({:.1} x real time) |
 | `fmi2SetReal` (crank angle and speed) + `fmi2DoStep` at 1e-5 s | {step_inputs:.2} us a call |
-| automotive rod (scenes/automotive_rod.toml: mass-loaded modes to 6 kHz, residual flexibility above, `auto`: exponential RK4(3), tolerance 1e-2), two revolutions at 628.3 rad/s from the undeformed start in one `fmi2DoStep` | {a_ms:.2} ms; {a_steps} steps, {a_rhs} right-hand sides |
+| automotive rod (scenes/automotive_rod.toml: mass-loaded modes to 6 kHz, residual flexibility above, `auto`: exponential RK4(3), tolerance 1e-2), two revolutions at 628.3 rad/s from the undeformed start in one `fmi2DoStep` | {a_ms:.3} ms; {a_steps} steps, {a_rhs} right-hand sides |
 | automotive rod, the engine run (ramp to 6000 rpm, gas pulse, 60 ms, 1e-5 s grid; here and below the instance built before the clock starts) | {a_engine:.2} ms |
 | automotive rod, the engine run with the gas pulse as a `[slider.gas_force]` table (the crank on a 2e-5 s grid, a row at every point) | {a_engine_table:.2} ms |
 | automotive rod, the engine run with the gas pulse as a table and the crank set every 1e-4 s (angle, speed and acceleration: `fmi2SetRealInputDerivatives`), a row there | {a_engine_sparse:.2} ms ({:.0} x real time) |
