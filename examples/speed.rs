@@ -169,15 +169,9 @@ fn automotive() -> Scene {
     Scene::from_file(std::path::Path::new(path)).unwrap()
 }
 
-/// The automotive rod: two revolutions at 628.3 rad/s from the undeformed start in one
-/// communication step (ms, steps, right-hand sides); the engine run of
-/// `flexrod::drive::engine` (ramp to 6000 rpm, gas pulse, 60 ms: ms); `fmi2DoStep` at 1e-5 s
-/// with the crank set before every call (us); with the gas pulse as a `[slider.gas_force]`
-/// table, two revolutions in one communication step (ms) and the engine run on its row grid
-/// (ms), and that run's steps.
-/// The benchmark rod at 300 rad/s with the defaults (`rod.model = auto` takes the chain on its modes; peak
-/// `|v_mid/L|` 0.07, where the FFR rod's linear field is 3.4 % off): two revolutions from the
-/// undeformed start in one communication step (ms, steps).
+/// The benchmark rod at 300 rad/s with the defaults (`rod.model = auto` takes the chain on its
+/// modes; peak `|v_mid/L|` 0.07, where the FFR rod's linear field is 3.4 % off): two
+/// revolutions from the undeformed start in one communication step (ms, steps, segments).
 fn high_load_speed() -> (f64, u64, usize) {
     // The defaults with the crank at 300 rad/s from the start (in the FMU: crank.speed = 300
     // at initialization): `rod.model = auto` takes the chain on its modes.
@@ -195,6 +189,12 @@ fn high_load_speed() -> (f64, u64, usize) {
     (ms, sim.stats().steps, built.elements)
 }
 
+/// The automotive rod: two revolutions at 628.3 rad/s from the undeformed start in one
+/// communication step (ms, steps, right-hand sides); the engine run of
+/// `flexrod::drive::engine` (ramp to 6000 rpm, gas pulse, 60 ms: ms); `fmi2DoStep` at 1e-5 s
+/// with the crank set before every call (us); with the gas pulse as a `[slider.gas_force]`
+/// table, two revolutions in one communication step (ms), the engine run on its row grid and
+/// with the crank set every 1e-4 s (ms), and the steps of the two revolutions with the table.
 fn automotive_speed() -> (f64, u64, u64, f64, f64, [f64; 3], u64) {
     let scene = automotive();
     let w = scene.experiment.crank_speed;

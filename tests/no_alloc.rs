@@ -1,6 +1,7 @@
 //! `Simulation::advance` makes no heap allocation per call once warmed up: a counting global
 //! allocator wraps the system allocator; after a first call, 1000 advances (and reading the
-//! outputs) must not allocate. Checked for the default FFR scene and the segment rod.
+//! outputs) must not allocate. Checked for the default FFR scene, the segment rod and the
+//! automotive rod with stress outputs.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -118,8 +119,18 @@ fn advance_does_not_allocate() {
     seg.rod.model = RodModelKind::Segments;
     seg.rod.elements = 16;
     let a_seg = allocations_per_1000_advances(&seg, 1e-4);
-    println!("allocations in 1000 advances after the first: FFR {a_ffr}, FFR at 1e-5 s (dense output) {a_dense}, segments {a_seg}");
+    // The automotive rod: section table, stress outputs (the section forces at every
+    // communication point), mass-loaded modes and residual flexibility.
+    let automotive = Scene::from_file(std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/scenes/automotive_rod.toml"
+    )))
+    .unwrap();
+    assert!(automotive.outputs.stress);
+    let a_auto = allocations_per_1000_advances(&automotive, 1e-5);
+    println!("allocations in 1000 advances after the first: FFR {a_ffr}, FFR at 1e-5 s (dense output) {a_dense}, segments {a_seg}, automotive with stress outputs {a_auto}");
     assert_eq!(a_ffr, 0);
     assert_eq!(a_dense, 0);
     assert_eq!(a_seg, 0);
+    assert_eq!(a_auto, 0);
 }

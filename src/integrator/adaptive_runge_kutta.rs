@@ -207,13 +207,13 @@ pub const EXPONENTIAL_MAX_PHASE: f64 = 1.0;
 /// local tolerance [`AXIAL_PHASE_TOLERANCE`] and above ([`axial_max_phase`]). An axial mode's
 /// oscillation enters the bending modes' remainder through the axial force; over longer steps
 /// the stages sample that coupling too coarsely and the embedded estimate misses its error.
-/// Measured over the 30 random parameter sets of `tests/error_control.rs` (abrupt starts, one
-/// revolution, the error against the same model at a thousandth of the tolerance) with one cap
-/// at every tolerance: the largest error of the sets with an axial mode is 0.02 of their
-/// tolerance with the cap at 1, 0.39 at 2, 0.60 at 3, and 2.5 without a cap (an undamped set,
-/// tolerance 3e-3). The error the estimate misses does not shrink with the tolerance: the
-/// automotive rod at tolerance 1e-3 (`cargo run --release --example exponential_choice`) is
-/// 2.0e-4 off at the cap 1 and 1.0e-3 at 2, so the cap tightens with the tolerance.
+/// Measured with `axial_max_phase` returning one cap at every tolerance, over the 30 random
+/// parameter sets of `tests/error_control.rs` (abrupt starts, one revolution, the error against
+/// the same model at a thousandth of the tolerance): the largest error of the FFR sets is 0.21
+/// of their tolerance with the cap at 1, 0.33 at 2, 0.44 at 3 and 2.5 without a cap (an
+/// undamped set, tolerance 3e-3); and the automotive rod at tolerance 1e-3 (`cargo run
+/// --release --example exponential_choice`) is 2.5e-4 off at the cap 1 and 1.1e-3 at 2 (416
+/// and 317 steps). That missed error does not shrink with the tolerance, so the cap does.
 pub const AXIAL_MAX_PHASE: f64 = 2.0;
 
 /// The local tolerance (that of `solver.tolerance = 1e-2` in the RK4(3) pair) at and above
@@ -221,13 +221,14 @@ pub const AXIAL_MAX_PHASE: f64 = 2.0;
 pub const AXIAL_PHASE_TOLERANCE: f64 = 3e-4;
 
 /// The axial modes' phase cap at the local tolerance `tolerance`: [`AXIAL_MAX_PHASE`] times
-/// `(tolerance / AXIAL_PHASE_TOLERANCE)^(1/4)`, between [`EXPONENTIAL_MAX_PHASE`] and
-/// [`AXIAL_MAX_PHASE`]. The missed error grows with about the fourth power of the phase
-/// (error-control sets: 0.02 to 0.39 of the tolerance from 1 to 2), so the cap keeps it in
-/// proportion to the tolerance; at `solver.tolerance = 1e-3` it is 1.12, at 1e-4 and below 1.
+/// `(tolerance / AXIAL_PHASE_TOLERANCE)^(1/2)`, between [`EXPONENTIAL_MAX_PHASE`] and
+/// [`AXIAL_MAX_PHASE`]. The missed error grows about as the square of the phase (the
+/// automotive rod at tolerance 1e-3: 4.4 times from the cap 1 to 2), so the cap goes with the
+/// square root of the tolerance: 2 at `solver.tolerance = 1e-2`, 1.1 at 3e-3, 1 from 2.5e-3
+/// down.
 pub fn axial_max_phase(tolerance: f64) -> f64 {
     let ratio = (tolerance / AXIAL_PHASE_TOLERANCE).min(1.0);
-    (AXIAL_MAX_PHASE * ratio.powf(0.25)).max(EXPONENTIAL_MAX_PHASE)
+    (AXIAL_MAX_PHASE * ratio.sqrt()).max(EXPONENTIAL_MAX_PHASE)
 }
 
 /// The local tolerance (relative to the amplitude scale) at which the exponential form's

@@ -32,7 +32,7 @@ use crate::modal::ComponentModes;
 use crate::rod::body::RodPoint;
 use crate::rod::sections::{cross, CutSection, LoadWalk, SectionLoads};
 
-/// The mass moments of the samples beyond each cut (towards C), one row of [`Sampling::width`]
+/// The mass moments of the samples beyond each cut (towards C), one row of `Sampling::width_for(n)`
 /// numbers per cut: `m0, m_x, m_xx, J`, then `A_S` (rows x, y), `B` (rows x, y), `C` and `D`
 /// (row-major `n x n`), as in the module docs.
 #[derive(Clone, Debug, Default)]
@@ -233,7 +233,8 @@ impl FfrRod {
         let (w, al) = (v[2], qdd[2]);
         let (p, pd, pdd) = (&q[3..3 + n], &v[3..3 + n], &qdd[3..3 + n]);
         let big_g = to_body(g - Vector2::new(qdd[0], qdd[1]));
-        // The pin force and the small end at C (its point with the chord's foreshortening).
+        // The pin force and the small end at C, at the point with the chord's foreshortening
+        // (the end body's acceleration leaves out its rates, as the samples' do).
         let end = self.modes.mesh.definition.small_end;
         let u_c = self.ubar(RodPoint::C, q);
         let f_pin = to_body(force_c);
@@ -277,11 +278,13 @@ impl FfrRod {
         let mut walk = LoadWalk::new();
         let axis = Vector2::new(1.0, 0.0);
         let x_b = self.integrals.x_b;
+        // From C towards B, as the sample-by-sample walk: the first of equal stresses nearest C.
         for (i, (cut, row)) in sm
             .cuts
             .iter()
             .zip(sm.beyond.chunks_exact(width))
             .enumerate()
+            .rev()
         {
             let (m0, mx, mxx, j) = (row[0], row[1], row[2], row[3]);
             let (ax, ay) = (&row[4..4 + n], &row[4 + n..4 + 2 * n]);
@@ -430,5 +433,13 @@ mod tests {
             assert!(close(fast.stress_max, slow.stress_max), "{fast:?} {slow:?}");
             assert_eq!(fast.stress_max_position, slow.stress_max_position);
         }
+        // At rest without loads every stress is 0: the first cut from C is reported, as the
+        // sample walk and the segment chain report it.
+        let zero = vec![0.0; 3 + n];
+        let none = Vector2::zeros();
+        let fast = rod.section_loads_ffr(&zero, &zero, &zero, none, none);
+        let slow = by_samples(&rod, &zero, &zero, &zero, none, none);
+        assert_eq!(fast.stress_max_position, slow.stress_max_position);
+        assert_eq!(fast.stress_max_position, rod.length);
     }
 }
