@@ -374,24 +374,25 @@ fn evaluate<const N: usize, const PINNED: bool>(
     }
     // The axial strain's coupling with the bending (crate::modal::axial_coupling; the same sums
     // in the same order as `AxialCoupling::add_forces`, on fixed-size arrays for one axial mode).
-    if let Some(one) = &k.axial_one {
-        let (a, pa) = (one.a, p[one.a]);
-        let mut own = 0.0;
-        for i in 0..N {
-            for j in 0..N {
-                let pij = p[i] * p[j];
-                own += one.t3[i][j] * pij + one.z[i][j] * (pd[i] * pd[j] - 0.5 * w2 * pij);
-                own += one.t4[i][j] * pa * pij;
-            }
-        }
-        r_p[a] += own;
+    // With `T p`, `Z p`, `F p` and `Z p'` (the rows of `AxialCoupling::add_forces`): the axial
+    // mode's own row `p.(T p) - w^2/2 p.(Z p) + p_a p.(F p) + p'.(Z p')` and every row m
+    // `p_a (2 (T p)_m - w^2 (Z p)_m + p_a (F p)_m)`; `Z p` also gives the mass part below.
+    let axial_products = k.axial_one.as_ref().map(|one| {
+        let zp = mat_vec(&one.z, &p);
+        (
+            one.a,
+            mat_vec(&one.t3, &p),
+            zp,
+            mat_vec(&one.t4, &p),
+            mat_vec(&one.z, &pd),
+        )
+    });
+    if let Some((a, t3p, zp, t4p, zpd)) = &axial_products {
+        let pa = p[*a];
+        let own = dot_n(&p, t3p) - 0.5 * w2 * dot_n(&p, zp) + pa * dot_n(&p, t4p) + dot_n(&pd, zpd);
+        r_p[*a] += own;
         for m in 0..N {
-            let mut f = 0.0;
-            for j in 0..N {
-                let fourth = one.t4[m][j] * pa;
-                f += (2.0 * one.t3[m][j] - w2 * one.z[m][j] + fourth) * p[j];
-            }
-            r_p[m] += f * pa;
+            r_p[m] += pa * (2.0 * t3p[m] - w2 * zp[m] + pa * t4p[m]);
         }
     } else if let Some(ac) = &k.axial_coupling {
         ac.add_forces(&p, &pd, w, &mut r_p);
@@ -467,14 +468,10 @@ fn evaluate<const N: usize, const PINNED: bool>(
                 t_r[0][i] * r_r[0] + t_r[1][i] * r_r[1] + g_phi[i] * r_phi + r_p[i] + t_x[i] * r_s;
         }
     }
-    if let Some(one) = &k.axial_one {
+    if let Some((a, _, zp, _, _)) = &axial_products {
         for j in 0..N {
-            let mut x = 0.0;
-            for l in 0..N {
-                x -= one.z[j][l] * p[l];
-            }
-            reduced[one.a][j] += x;
-            reduced[j][one.a] += x;
+            reduced[*a][j] -= zp[j];
+            reduced[j][*a] -= zp[j];
         }
     } else if let Some(ac) = &k.axial_coupling {
         ac.add_mass(&p, |i, j, x| reduced[i][j] += x);
