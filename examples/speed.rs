@@ -34,13 +34,13 @@ fn median(mut x: Vec<f64>) -> f64 {
     x[x.len() / 2]
 }
 
-/// Median wall time of `f` over `repeats` calls, s.
 /// Median over `repeats` runs of the wall time `f` reports itself, s (after one warm-up run).
 fn reported(repeats: usize, mut f: impl FnMut() -> std::time::Duration) -> f64 {
     f();
     median((0..repeats).map(|_| f().as_secs_f64()).collect())
 }
 
+/// Median wall time of `f` over `repeats` calls, s (after one warm-up call).
 fn time(repeats: usize, mut f: impl FnMut()) -> f64 {
     f();
     median(
