@@ -102,6 +102,17 @@ impl FfrRod {
         c
     }
 
+    /// Body-frame `S_hat x` at a point for modal values `x` (rates `p'` or accelerations
+    /// `p''`), without the chord's foreshortening.
+    pub(super) fn shape_times(&self, p: RodPoint, x: &[f64]) -> Vector2<f64> {
+        let (_, sh) = self.point_data(p);
+        let mut u = Vector2::zeros();
+        for (j, &xj) in x.iter().enumerate().take(self.n) {
+            u += Vector2::new(sh[(0, j)], sh[(1, j)]) * xj;
+        }
+        u
+    }
+
     /// Body-frame elastic velocity `(d ubar / dp) p'` at a point.
     pub(super) fn shape_rate(&self, p: RodPoint, q: &[f64], v: &[f64]) -> Vector2<f64> {
         let mut u = Vector2::zeros();

@@ -32,8 +32,8 @@ use crate::modal::ComponentModes;
 use crate::rod::body::RodPoint;
 use crate::rod::sections::{cross, CutSection, LoadWalk, SectionLoads};
 
-/// The mass moments of the samples beyond each cut (towards C), one row of `Sampling::width_for(n)`
-/// numbers per cut: `m0, m_x, m_xx, J`, then `A_S` (rows x, y), `B` (rows x, y), `C` and `D`
+/// The mass moments of the samples beyond each cut (towards C), one row of
+/// `Sampling::width_for(n)` numbers per cut: `m0, m_x, m_xx, J`, then `A_S` (rows x, y), `B` (rows x, y), `C` and `D`
 /// (row-major `n x n`), as in the module docs.
 #[derive(Clone, Debug, Default)]
 pub struct Sampling {
@@ -241,13 +241,8 @@ impl FfrRod {
         let mut force_c_end = f_pin;
         let mut moment_c_end = cross(u_c, f_pin);
         if end.mass > 0.0 || end.inertia > 0.0 {
-            let (_, sh) = self.point_data(RodPoint::C);
-            let mut ud = Vector2::zeros();
-            let mut udd = Vector2::zeros();
-            for j in 0..n {
-                ud += Vector2::new(sh[(0, j)], sh[(1, j)]) * pd[j];
-                udd += Vector2::new(sh[(0, j)], sh[(1, j)]) * pdd[j];
-            }
+            let ud = self.shape_times(RodPoint::C, pd);
+            let udd = self.shape_times(RodPoint::C, pdd);
             let a = tilde(u_c) * al - u_c * (w * w) + udd + tilde(ud) * (2.0 * w);
             let f = (big_g - a) * end.mass;
             force_c_end += f;
@@ -370,13 +365,10 @@ mod tests {
         let u_c = rod.ubar(RodPoint::C, q);
         let r_c = origin + rotate(c, s, u_c);
         walk.add(r_c, force_c, 0.0);
-        let (_, sh) = rod.point_data(RodPoint::C);
-        let mut ud = Vector2::zeros();
-        let mut udd = Vector2::zeros();
-        for j in 0..n {
-            ud += Vector2::new(sh[(0, j)], sh[(1, j)]) * pd[j];
-            udd += Vector2::new(sh[(0, j)], sh[(1, j)]) * pdd[j];
-        }
+        let (ud, udd) = (
+            rod.shape_times(RodPoint::C, pd),
+            rod.shape_times(RodPoint::C, pdd),
+        );
         walk.add(r_c, (g - accel(u_c, ud, udd)) * end.mass, -end.inertia * al);
         let (points, intervals) = samples(&rod.modes);
         let axis = rotate(c, s, Vector2::new(1.0, 0.0));
