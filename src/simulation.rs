@@ -34,7 +34,7 @@ pub struct Simulation {
 
 /// Magic bytes and version of serialized snapshots.
 const SNAPSHOT_MAGIC: &[u8; 8] = b"FLEXROD\0";
-const SNAPSHOT_VERSION: u32 = 5;
+const SNAPSHOT_VERSION: u32 = 4;
 
 /// The inputs of a simulation at one moment ([`Simulation::inputs_snapshot`]).
 #[derive(Clone, Copy, Debug)]
@@ -191,13 +191,13 @@ impl Simulation {
         }
     }
 
-    /// `rod.error_estimate` now: the estimated error of `v_mid / L` relative to its peak so
-    /// far, model and integration together, with the start of this run
+    /// `rod.error_estimate` now: the estimated pointwise error of `v_mid / L` relative to its
+    /// peak so far, model and integration together
     /// ([`crate::rod::PhysicsChoice::error_estimate`]).
     pub fn error_estimate(&self) -> f64 {
         self.mechanism
             .physics
-            .error_estimate(self.state.dae.amplitude, self.state.released_at_speed)
+            .error_estimate(self.state.dae.amplitude)
     }
 
     /// Cumulative integrator counters.

@@ -100,34 +100,3 @@ fn quasi_static_start_needs_the_ffr_rod() {
         "{e}"
     );
 }
-
-/// A start at speed with the rod undeformed rings a free vibration, which the error estimate
-/// knows of (`released_at_speed`: half the peak in its nonlinear share); a start from rest or
-/// a quasi-static start does not, and a saved state carries the flag.
-#[test]
-fn a_start_at_speed_undeformed_is_marked_released_at_speed() {
-    let at_rest = CrankInput {
-        speed: 0.0,
-        ..input(0.0)
-    };
-    for (deflection, start, released) in [
-        (StartDeflection::Undeformed, input(0.0), true),
-        (StartDeflection::Undeformed, at_rest, false),
-        (StartDeflection::QuasiStatic, input(0.0), false),
-    ] {
-        let mut scene = Scene::benchmark();
-        scene.start.deflection = deflection;
-        let mut sim = Simulation::new(&scene).unwrap();
-        sim.start(0.0, start, 0.0).unwrap();
-        assert_eq!(
-            sim.state().released_at_speed,
-            released,
-            "{deflection:?}, {start:?}"
-        );
-        let bytes = sim.snapshot_to_bytes();
-        let mut other = Simulation::new(&scene).unwrap();
-        other.start(0.0, input(0.0), 0.0).unwrap();
-        other.restore_from_bytes(&bytes).unwrap();
-        assert_eq!(other.state().released_at_speed, released);
-    }
-}

@@ -54,8 +54,6 @@ impl Mechanism {
             previous_input: input,
             previous_input_time: t0,
             slider_force,
-            released_at_speed: input.speed != 0.0
-                && self.spec.start.deflection != StartDeflection::QuasiStatic,
             ..Default::default()
         };
         // Sized as the mechanism's backup: the rod's elastic coordinates where the integrator

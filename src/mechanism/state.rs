@@ -39,10 +39,6 @@ pub struct MechanismState {
     pub warnings: Vec<String>,
     /// The large-deflection warning was already given.
     pub large_deflection_warned: bool,
-    /// The rod was released undeformed into the turning mechanism (crank speed not zero at
-    /// the start, `[start] deflection = "undeformed"`): the start rang a free vibration on top
-    /// of the forced motion ([`crate::rod::PhysicsChoice::error_estimate`]).
-    pub released_at_speed: bool,
     /// An internal step past `time` whose interpolant gave the state at `time` (dense output
     /// where stepping past the communication point is cheaper than landing on it; nothing held
     /// otherwise).
@@ -108,7 +104,6 @@ impl MechanismState {
             out.extend_from_slice(&c.to_le_bytes());
         }
         out.push(self.large_deflection_warned as u8);
-        out.push(self.released_at_speed as u8);
         let a = &self.ahead;
         out.push(a.held as u8);
         if a.held {
@@ -139,7 +134,7 @@ impl MechanismState {
     pub fn read_bytes(&mut self, bytes: &[u8]) -> Result<(), String> {
         let n = self.dae.q.len();
         let m = self.dae.lambda.len();
-        let base = 8 * (26 + 4 * n + m) + 8 * 3 + 2;
+        let base = 8 * (26 + 4 * n + m) + 8 * 3 + 1;
         let k = self.ahead.z0.len();
         let ahead_len = 8 * (4 + 4 * k + 4 * n + m);
         let held = match bytes.get(base) {
@@ -215,7 +210,7 @@ impl MechanismState {
         s.bending_moment_mid = get();
         s.stress_max = get();
         s.stress_max_position = get();
-        let mut at = base - 26;
+        let mut at = base - 25;
         let mut count = || {
             let c = u64::from_le_bytes(bytes[at..at + 8].try_into().unwrap());
             at += 8;
@@ -224,7 +219,7 @@ impl MechanismState {
         self.stats.steps = count();
         self.stats.newton_iterations = count();
         self.stats.halvings = count();
-        self.large_deflection_warned = match bytes[base - 2] {
+        self.large_deflection_warned = match bytes[base - 1] {
             0 => false,
             1 => true,
             b => {
@@ -232,11 +227,6 @@ impl MechanismState {
                     "the deflection warning flag is {b}, allowed 0 or 1"
                 ))
             }
-        };
-        self.released_at_speed = match bytes[base - 1] {
-            0 => false,
-            1 => true,
-            b => return Err(format!("the start flag is {b}, allowed 0 or 1")),
         };
         self.ahead.held = held;
         if held {

@@ -210,26 +210,16 @@ impl PhysicsChoice {
         }
     }
 
-    /// `rod.error_estimate`: the estimated error of `v_mid / L` relative to its peak, model
-    /// and integration together, for a motion whose peak `|v_mid / L|` so far is `peak`:
-    /// [`Self::model_error`] + [`INTEGRATION_SHARE`] `solver.tolerance` +
-    /// [`NONLINEAR_COEFFICIENT`] `d^2 sqrt(h / L)` (FFR rod; the segment chain is geometrically
-    /// exact) + the chains' discretization share. `d` is the deflection of the forced motion:
-    /// `peak`, or `peak / 2` where the rod was `released_at_speed` (undeformed into the turning
-    /// mechanism). Such a start loads the rod suddenly, and a suddenly applied load rings a free
-    /// vibration that adds up to the forced deflection again to the peak (dynamic load factor
-    /// 2 of a step force: Chopra, *Dynamics of Structures*, 4th ed., 2012, section 4.3); what the
-    /// FFR rod's linear field leaves out of that vibration shows in its frequency (its phase
-    /// drift is not part of the estimate), while the forced motion's error and the vibration's
-    /// amplitude error go with the forced deflection. On the abrupt starts of the random rods
-    /// within a factor 3 of the larger of the forced motion's pointwise error and the modes'
-    /// ringing amplitude errors (docs/verification.md, "Any rod"; tests/python/test_random_rods.py).
-    pub fn error_estimate(&self, peak: f64, released_at_speed: bool) -> f64 {
-        let forced = if released_at_speed { 0.5 * peak } else { peak };
+    /// `rod.error_estimate`: the estimated pointwise error of `v_mid / L` relative to its
+    /// peak, model and integration together, for a motion whose peak `|v_mid / L|` so far is
+    /// `peak`: [`Self::model_error`] + [`INTEGRATION_SHARE`] `solver.tolerance` +
+    /// [`NONLINEAR_COEFFICIENT`] `peak^2 sqrt(h / L)` (FFR rod; the segment chain is
+    /// geometrically exact) + the chains' discretization share.
+    pub fn error_estimate(&self, peak: f64) -> f64 {
         let nonlinear = if self.geometrically_exact {
             0.0
         } else {
-            NONLINEAR_COEFFICIENT * forced * forced * self.depth_ratio.sqrt()
+            NONLINEAR_COEFFICIENT * peak * peak * self.depth_ratio.sqrt()
         };
         let estimate = self.model_error()
             + INTEGRATION_SHARE * self.tolerance
@@ -629,36 +619,8 @@ mod tests {
         spec.shear_area = Some(1e-320);
         let (_, c) = choose(&spec, 0.0, 1e-3, &BENCHMARK_150).unwrap();
         assert!(shear_effect(&spec).is_infinite());
-        for released_at_speed in [false, true] {
-            assert_eq!(
-                c.error_estimate(0.01, released_at_speed),
-                MAX_ERROR_ESTIMATE
-            );
-            assert_eq!(
-                c.error_estimate(1e200, released_at_speed),
-                MAX_ERROR_ESTIMATE
-            );
-        }
-    }
-
-    /// After a start at speed the nonlinear share takes the forced deflection, half the peak:
-    /// a quarter of the share after a smooth start; the other shares are the same.
-    #[test]
-    fn a_start_at_speed_takes_half_the_peak_into_the_nonlinear_share() {
-        let (_, c) = choose(&benchmark_rod(), 0.0, 1e-3, &BENCHMARK_150).unwrap();
-        assert!(!c.geometrically_exact);
-        let fixed = c.error_estimate(0.0, false);
-        assert_eq!(fixed, c.error_estimate(0.0, true));
-        for peak in [1e-3, 0.0155, 0.03] {
-            let smooth = c.error_estimate(peak, false) - fixed;
-            let sudden = c.error_estimate(peak, true) - fixed;
-            assert!(smooth > 0.0);
-            assert!((sudden / smooth - 0.25).abs() < 1e-12, "{sudden} {smooth}");
-            assert_eq!(
-                c.error_estimate(2.0 * peak, true),
-                c.error_estimate(peak, false)
-            );
-        }
+        assert_eq!(c.error_estimate(0.01), MAX_ERROR_ESTIMATE);
+        assert_eq!(c.error_estimate(1e200), MAX_ERROR_ESTIMATE);
     }
 
     /// Where `auto` cannot take shear in (the segment chain) the log says so and names the
