@@ -111,9 +111,11 @@ fn do_step() -> [f64; 2] {
 }
 
 /// An instance of `scene`'s FMU in process, exported with its `resources/scene.toml` under
-/// `resources` (a file: URI; `None`: the compiled-in default scene), freed on drop.
+/// `resources` (a file: URI; `None`: the compiled-in default scene), with the Real values
+/// `start` (value reference, value) set in initialization mode; freed on drop.
 struct Instance {
     comp: ffi::fmi2Component,
+    start: Vec<(u32, f64)>,
     // The strings and callbacks the instance was made with outlive it.
     _strings: [CString; 2],
     _resources: Option<CString>,
@@ -122,6 +124,10 @@ struct Instance {
 
 impl Instance {
     fn new(scene: &Scene, resources: Option<&str>) -> Instance {
+        Instance::with_start(scene, resources, &[])
+    }
+
+    fn with_start(scene: &Scene, resources: Option<&str>, start: &[(u32, f64)]) -> Instance {
         let resources = resources.map(|r| CString::new(r).unwrap());
         let location = resources.as_ref().map_or(ptr::null(), |r| r.as_ptr());
         let guid = CString::new(ModelDescription::for_scene(scene).unwrap().guid).unwrap();
@@ -141,6 +147,7 @@ impl Instance {
         assert!(!comp.is_null());
         let instance = Instance {
             comp,
+            start: start.to_vec(),
             _strings: [guid, name],
             _resources: resources,
             _functions: functions,
@@ -149,12 +156,16 @@ impl Instance {
         instance
     }
 
-    /// Experiment from t = 0, initialization mode entered and left: the instance at its start.
+    /// Experiment from t = 0, initialization mode entered, the start values set, and left: the
+    /// instance at its start.
     fn initialize(&self) {
-        // SAFETY: comp is a live instance in Instantiated.
+        // SAFETY: comp is a live instance in Instantiated; one reference and value per call.
         unsafe {
             assert_eq!(ffi::fmi2SetupExperiment(self.comp, 0, 0.0, 0.0, 0, 0.0), 0);
             assert_eq!(ffi::fmi2EnterInitializationMode(self.comp), 0);
+            for (vr, value) in &self.start {
+                assert_eq!(ffi::fmi2SetReal(self.comp, vr, 1, value), 0);
+            }
             assert_eq!(ffi::fmi2ExitInitializationMode(self.comp), 0);
         }
     }
@@ -210,9 +221,10 @@ fn do_step_of(scene: &Scene, resources: Option<&str>, w: f64) -> [f64; 2] {
 }
 
 /// One `fmi2DoStep` from the start to `t_end` s of `scene` exported as [`do_step_of`] does,
-/// timed alone (median ms): before each, `fmi2Reset` and the initialization, off the clock.
-fn one_do_step_of(scene: &Scene, resources: Option<&str>, t_end: f64) -> f64 {
-    let instance = Instance::new(scene, resources);
+/// with the start values `start` ([`Instance`]), timed alone (median ms): before each,
+/// `fmi2Reset` and the initialization, off the clock.
+fn one_do_step_of(scene: &Scene, resources: Option<&str>, start: &[(u32, f64)], t_end: f64) -> f64 {
+    let instance = Instance::with_start(scene, resources, start);
     1e3 * reported(41, || {
         instance.restart();
         let t = Instant::now();
@@ -226,17 +238,27 @@ fn automotive() -> Scene {
     Scene::from_file(std::path::Path::new(path)).unwrap()
 }
 
-/// `simulation` from the start at crank speed `w` (rad/s) to `t_end` s in one
-/// `Simulation::advance`, what `fmi2DoStep` calls, timed alone (median ms; the start off the
-/// clock, as `fmi2ExitInitializationMode` makes it).
-fn advance_alone(simulation: &mut Simulation, w: f64, t_end: f64) -> f64 {
-    1e3 * reported(41, || {
-        let start = CrankDrive::Constant { speed: w }.at(0.0);
-        simulation.start(0.0, start, 0.0).unwrap();
-        let t = Instant::now();
-        simulation.advance(t_end).unwrap();
-        t.elapsed()
-    })
+/// `scene` as an FMU's resources: `scene.toml` in a new folder `resources` under the temporary
+/// directory (named `tag` and the process), removed on drop; its file: URI.
+struct Resources(std::path::PathBuf);
+
+impl Resources {
+    fn new(scene: &Scene, tag: &str) -> Resources {
+        let dir = std::env::temp_dir().join(format!("flexrod-speed-{tag}-{}", std::process::id()));
+        std::fs::create_dir_all(dir.join("resources")).unwrap();
+        std::fs::write(dir.join("resources").join("scene.toml"), scene.to_toml()).unwrap();
+        Resources(dir)
+    }
+
+    fn uri(&self) -> String {
+        format!("file://{}", self.0.join("resources").display())
+    }
+}
+
+impl Drop for Resources {
+    fn drop(&mut self) {
+        std::fs::remove_dir_all(&self.0).ok();
+    }
 }
 
 /// The benchmark rod at 300 rad/s with the defaults (`rod.model = auto` takes the chain on its
@@ -245,11 +267,21 @@ fn advance_alone(simulation: &mut Simulation, w: f64, t_end: f64) -> f64 {
 fn high_load_speed() -> (f64, u64, usize) {
     // The defaults with the crank at 300 rad/s from the start (in the FMU: crank.speed = 300
     // at initialization): `rod.model = auto` takes the chain on its modes.
-    let mut scene = Scene::benchmark();
     let w = 300.0;
+    let t_end = 4.0 * std::f64::consts::PI / w;
+    // The compiled-in default scene, crank.speed (value reference 2) set in initialization.
+    let ms = one_do_step_of(&Scene::benchmark(), None, &[(2, w)], t_end);
+    // The same run on `Simulation`: its steps and the segments `auto` took.
+    let mut scene = Scene::benchmark();
     scene.experiment.crank_speed = w;
     let mut sim = Simulation::new(&scene).unwrap();
-    let ms = advance_alone(&mut sim, w, 4.0 * std::f64::consts::PI / w);
+    drive::run(
+        &mut sim,
+        &CrankDrive::Constant { speed: w },
+        0.0,
+        &[0.0, t_end],
+    )
+    .unwrap();
     let built = &sim.mechanism().spec.rod;
     assert_eq!(built.model, flexrod::rod::RodModelKind::ModalSegments);
     (ms, sim.stats().steps, built.elements)
@@ -266,22 +298,11 @@ fn automotive_speed() -> (f64, u64, u64, f64, f64, [f64; 3], u64) {
     let w = scene.experiment.crank_speed;
     let grid = [0.0, 4.0 * std::f64::consts::PI / w];
     // The scene's FMU: the instance reads `resources/scene.toml`.
-    let dir = std::env::temp_dir().join(format!("flexrod-speed-{}", std::process::id()));
-    let res = dir.join("resources");
-    std::fs::create_dir_all(&res).unwrap();
-    std::fs::write(
-        res.join("scene.toml"),
-        std::fs::read_to_string(concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/scenes/automotive_rod.toml"
-        ))
-        .unwrap(),
-    )
-    .unwrap();
-    let uri = format!("file://{}", res.display());
+    let resources = Resources::new(&scene, "automotive");
+    let uri = resources.uri();
     // Two revolutions in one `fmi2DoStep` (the start, `fmi2ExitInitializationMode`, off the
     // clock); the same run on `Simulation` counts its steps.
-    let ms = one_do_step_of(&scene, Some(&uri), grid[1]);
+    let ms = one_do_step_of(&scene, Some(&uri), &[], grid[1]);
     let mut sim = Simulation::new(&scene).unwrap();
     drive::run(&mut sim, &CrankDrive::Constant { speed: w }, 0.0, &grid).unwrap();
     let stats = sim.stats();
@@ -305,8 +326,10 @@ fn automotive_speed() -> (f64, u64, u64, f64, f64, [f64; 3], u64) {
     };
     let mut with_gas = scene.clone();
     with_gas.slider.gas_force = Some(constant.gas_table());
+    let gas_resources = Resources::new(&with_gas, "gas");
+    let gas_ms = one_do_step_of(&with_gas, Some(&gas_resources.uri()), &[], grid[1]);
     let mut sim_gas = Simulation::new(&with_gas).unwrap();
-    let gas_ms = advance_alone(&mut sim_gas, w, grid[1]);
+    drive::run(&mut sim_gas, &CrankDrive::Constant { speed: w }, 0.0, &grid).unwrap();
     let gas_steps = sim_gas.stats().steps;
     let engine_table = 1e3
         * reported(11, || {
@@ -320,7 +343,6 @@ fn automotive_speed() -> (f64, u64, u64, f64, f64, [f64; 3], u64) {
             setup.run_with_sparse_input(&scene, 1e-4, 1e-4).unwrap().1
         });
     let [_, step] = do_step_of(&scene, Some(&uri), w);
-    std::fs::remove_dir_all(&dir).ok();
     (
         ms,
         stats.steps,
