@@ -34,7 +34,7 @@ pub struct Simulation {
 
 /// Magic bytes and version of serialized snapshots.
 const SNAPSHOT_MAGIC: &[u8; 8] = b"FLEXROD\0";
-const SNAPSHOT_VERSION: u32 = 4;
+const SNAPSHOT_VERSION: u32 = 5;
 
 /// The inputs of a simulation at one moment ([`Simulation::inputs_snapshot`]).
 #[derive(Clone, Copy, Debug)]
@@ -197,7 +197,7 @@ impl Simulation {
     pub fn error_estimate(&self) -> f64 {
         self.mechanism
             .physics
-            .error_estimate(self.state.dae.amplitude)
+            .error_estimate(self.state.dae.amplitude, self.state.start_vibration)
     }
 
     /// Cumulative integrator counters.

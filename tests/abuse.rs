@@ -114,7 +114,7 @@ fn crafted_state_bytes_are_rejected_field_by_field() {
     let good = sim.snapshot_to_bytes();
     let before = sim.state().clone();
     let f = |k: usize| 20 + 8 * k;
-    let cases: [(&str, usize, f64, &str); 8] = [
+    let cases: [(&str, usize, f64, &str); 9] = [
         ("time NaN", f(0), f64::NAN, "the time is NaN"),
         ("input time after time", f(1), 1.0, "input law starts"),
         ("infinite speed", f(7), f64::INFINITY, "crank.speed is inf"),
@@ -122,7 +122,13 @@ fn crafted_state_bytes_are_rejected_field_by_field() {
         ("NaN output", f(12), f64::NAN, "pinB.force_x is NaN"),
         ("integrator time differs", f(19), 0.5, "integrator time"),
         ("negative step proposal", f(20), -1e-4, "step proposal"),
-        ("NaN coordinate", f(22), f64::NAN, "a coordinate is NaN"),
+        (
+            "negative start vibration",
+            f(22),
+            -1.0,
+            "start's vibration amplitude",
+        ),
+        ("NaN coordinate", f(23), f64::NAN, "a coordinate is NaN"),
     ];
     for (label, at, x, expected) in cases {
         let mut bytes = good.clone();

@@ -100,3 +100,55 @@ fn quasi_static_start_needs_the_ffr_rod() {
         "{e}"
     );
 }
+
+/// An undeformed start at speed rings a free vibration, which the mechanism estimates at the
+/// start for the error estimate; a start from rest or a quasi-static start rings none. A saved
+/// state carries it, and bytes with a negative one are refused.
+#[test]
+fn an_undeformed_start_at_speed_carries_its_free_vibration() {
+    let at_rest = CrankInput {
+        speed: 0.0,
+        ..input(0.0)
+    };
+    let mut amplitudes = Vec::new();
+    for (deflection, start, rings) in [
+        (StartDeflection::Undeformed, input(0.0), true),
+        (StartDeflection::Undeformed, at_rest, false),
+        (StartDeflection::QuasiStatic, input(0.0), false),
+    ] {
+        let mut scene = Scene::benchmark();
+        scene.start.deflection = deflection;
+        let mut sim = Simulation::new(&scene).unwrap();
+        sim.start(0.0, start, 0.0).unwrap();
+        let amplitude = sim.state().start_vibration;
+        assert_eq!(
+            amplitude > 0.0,
+            rings,
+            "{deflection:?}, {start:?}: {amplitude}"
+        );
+        amplitudes.push(amplitude);
+        let bytes = sim.snapshot_to_bytes();
+        let mut other = Simulation::new(&scene).unwrap();
+        other.start(0.0, at_rest, 0.0).unwrap();
+        other.restore_from_bytes(&bytes).unwrap();
+        assert_eq!(other.state().start_vibration, amplitude);
+    }
+    // The benchmark rod released at a quarter revolution (THETA0): the quasi-static deflection
+    // there is most of the forced motion's, 1 to 2 % of L at 150 rad/s.
+    assert!((3e-3..3e-2).contains(&amplitudes[0]), "{}", amplitudes[0]);
+    // The amplitude's place in the bytes: after the magic, version and fingerprint (20 bytes),
+    // 22 numbers (times, inputs, slider force, outputs, t, step hint, amplitude).
+    let mut sim = Simulation::new(&Scene::benchmark()).unwrap();
+    sim.start(0.0, input(0.0), 0.0).unwrap();
+    let mut bytes = sim.snapshot_to_bytes();
+    let at = 20 + 8 * 22;
+    assert_eq!(
+        f64::from_le_bytes(bytes[at..at + 8].try_into().unwrap()),
+        sim.state().start_vibration
+    );
+    bytes[at..at + 8].copy_from_slice(&(-1.0f64).to_le_bytes());
+    let before = sim.state().clone();
+    let error = sim.restore_from_bytes(&bytes).unwrap_err().to_string();
+    assert!(error.contains("start's vibration amplitude"), "{error}");
+    assert_eq!(sim.state(), &before);
+}

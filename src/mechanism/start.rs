@@ -11,6 +11,15 @@ use super::state::MechanismState;
 use crate::error::ModelError;
 use crate::integrator::{DaeState, DaeSystem, StepAhead};
 
+/// The quasi-static start's convergence: the last correction of the elastic coordinates, over
+/// their scales.
+const QUASI_STATIC_TOLERANCE: f64 = 1e-13;
+
+/// The same for the start's free vibration ([`Mechanism::start_vibration`]), an amplitude
+/// estimate: a heavy slider slows the fixed point, whose correction then stays above
+/// [`QUASI_STATIC_TOLERANCE`] for longer than its 60 passes.
+const START_VIBRATION_TOLERANCE: f64 = 1e-6;
+
 impl Mechanism {
     /// Consistent start: undeformed rod on the crank at angle `input.angle`, rigid velocities
     /// from the crank speed, accelerations and multipliers from the index-1 solve; with
@@ -62,6 +71,8 @@ impl Mechanism {
         let mut work = OutputSolve::new(n);
         if self.spec.start.deflection == StartDeflection::QuasiStatic {
             self.quasi_static_start(&mut state, &mut work)?;
+        } else if input.speed != 0.0 {
+            state.start_vibration = self.start_vibration(&state, &mut work);
         }
         self.consistent_accelerations(&mut work, &state, false)?;
         state.dae.qdd.copy_from_slice(&work.solve.qdd);
@@ -85,6 +96,43 @@ impl Mechanism {
         Ok(state)
     }
 
+    /// The free vibration an undeformed start at speed rings, as an amplitude of `v_mid / L`
+    /// (FFR rod; 0 for the segment chains and where the quasi-static deflection cannot be
+    /// found). The rod starts at `p = 0, p' = 0` where the motion's quasi-static deflection is
+    /// `p_qs(t0)` with the rate `p_qs'(t0)`: the difference rings, in the first mode with the
+    /// amplitude `sqrt(v0^2 + (v0' / w_1)^2)` of an oscillator released from the offset `v0` at
+    /// the rate `v0'` (`v0`, `v0'`: the midpoint deflection of the quasi-static state and its
+    /// rate, central differences over 1e-6 s). A start at dead centre, where the rod's
+    /// transverse load is zero, rings by the rate; one at a quarter revolution by the offset.
+    fn start_vibration(&self, state: &MechanismState, work: &mut OutputSolve) -> f64 {
+        if self.rod.elastic_coordinates().is_none_or(|e| e.is_empty()) {
+            return 0.0;
+        }
+        let w1 = 2.0 * std::f64::consts::PI * self.frequencies_hz().first().copied().unwrap_or(0.0);
+        let t0 = state.time;
+        let delta = 1e-6;
+        let mut v = [0.0; 3];
+        for (k, t) in [t0 - delta, t0, t0 + delta].into_iter().enumerate() {
+            let mut probe = state.clone();
+            probe.time = t;
+            probe.dae.t = t;
+            if self
+                .quasi_static_deflection(&mut probe, work, &[], START_VIBRATION_TOLERANCE)
+                .is_err()
+            {
+                return 0.0;
+            }
+            v[k] = self.rod.mid_deflection(&probe.dae.q);
+        }
+        let rate = (v[2] - v[0]) / (2.0 * delta);
+        let amplitude = (v[1] * v[1] + (rate / w1).powi(2)).sqrt() / self.rod.length();
+        if amplitude.is_finite() && w1 > 0.0 {
+            amplitude
+        } else {
+            0.0
+        }
+    }
+
     /// Quasi-static start: the elastic coordinates follow the quasi-static deflection `p_qs(t)`
     /// of the start motion, `p = p_qs(t0)`, `p' = (p_qs(t0 + d) - p_qs(t0 - d)) / 2d`; the rigid
     /// coordinates and velocities satisfy the constraints.
@@ -105,24 +153,26 @@ impl Mechanism {
             let mut probe = state.clone();
             probe.time = t;
             probe.dae.t = t;
-            self.quasi_static_deflection(&mut probe, work, &[])?;
+            self.quasi_static_deflection(&mut probe, work, &[], QUASI_STATIC_TOLERANCE)?;
             for (i, r) in rate.iter_mut().enumerate() {
                 *r += sign * probe.dae.q[elastic.start + i] / (2.0 * delta);
             }
         }
-        self.quasi_static_deflection(state, work, &rate)
+        self.quasi_static_deflection(state, work, &rate, QUASI_STATIC_TOLERANCE)
     }
 
     /// Deflect the rod quasi-statically at `state.time`: elastic velocities `elastic_rate` (zero
     /// if empty), elastic accelerations driven to zero by `K_e dp = M_ee p''` (fixed point; `K_e`
     /// the elastic tangent stiffness including the centrifugal softening), with the rigid
     /// coordinates re-solved on the constraints `Phi(q, t) = 0` and their velocities on
-    /// `Phi_q q' = -Phi_t` at each pass.
+    /// `Phi_q q' = -Phi_t` at each pass, until the last correction is below `tolerance` of the
+    /// coordinates' scales (60 passes at most).
     fn quasi_static_deflection(
         &self,
         state: &mut MechanismState,
         work: &mut OutputSolve,
         elastic_rate: &[f64],
+        tolerance: f64,
     ) -> Result<(), ModelError> {
         let sys = self.system(state);
         let n = sys.n_coordinates();
@@ -213,7 +263,7 @@ impl Mechanism {
                 state.dae.q[elastic.start + i] += dp[i];
                 change = change.max((dp[i] / self.rod.coordinate_scale(elastic.start + i)).abs());
             }
-            if change < 1e-13 {
+            if change < tolerance {
                 return Ok(());
             }
             if pass == 59 || !change.is_finite() {

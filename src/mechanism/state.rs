@@ -39,6 +39,9 @@ pub struct MechanismState {
     pub warnings: Vec<String>,
     /// The large-deflection warning was already given.
     pub large_deflection_warned: bool,
+    /// The amplitude of `v_mid / L` of the free vibration the start rang (an undeformed start
+    /// at speed; 0 otherwise): `Mechanism::start_vibration`, for the error estimate.
+    pub start_vibration: f64,
     /// An internal step past `time` whose interpolant gave the state at `time` (dense output
     /// where stepping past the communication point is cheaper than landing on it; nothing held
     /// otherwise).
@@ -76,6 +79,7 @@ impl MechanismState {
         put(self.dae.t);
         put(self.dae.step_hint);
         put(self.dae.amplitude);
+        put(self.start_vibration);
         for v in [
             &self.dae.q,
             &self.dae.v,
@@ -134,7 +138,7 @@ impl MechanismState {
     pub fn read_bytes(&mut self, bytes: &[u8]) -> Result<(), String> {
         let n = self.dae.q.len();
         let m = self.dae.lambda.len();
-        let base = 8 * (26 + 4 * n + m) + 8 * 3 + 1;
+        let base = 8 * (27 + 4 * n + m) + 8 * 3 + 1;
         let k = self.ahead.z0.len();
         let ahead_len = 8 * (4 + 4 * k + 4 * n + m);
         let held = match bytes.get(base) {
@@ -192,6 +196,7 @@ impl MechanismState {
         self.dae.t = get();
         self.dae.step_hint = get();
         self.dae.amplitude = get();
+        self.start_vibration = get();
         for v in [
             &mut self.dae.q,
             &mut self.dae.v,
@@ -219,6 +224,12 @@ impl MechanismState {
         self.stats.steps = count();
         self.stats.newton_iterations = count();
         self.stats.halvings = count();
+        if !(self.start_vibration.is_finite() && self.start_vibration >= 0.0) {
+            return Err(format!(
+                "the start's vibration amplitude is {}, allowed a finite value >= 0",
+                self.start_vibration
+            ));
+        }
         self.large_deflection_warned = match bytes[base - 1] {
             0 => false,
             1 => true,

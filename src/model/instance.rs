@@ -211,8 +211,19 @@ impl Model {
             .as_ref()
             .map(|s| s.describe())
             .unwrap_or_default();
+        let vibration = self
+            .simulation
+            .as_ref()
+            .map_or(0.0, |s| s.state().start_vibration);
+        let start = if vibration > 0.0 {
+            format!(
+                "; the start at speed rings a free vibration of about {vibration:.2e} in v_mid/L (quasi-static estimate; rod.error_estimate takes the forced deflection as the peak less it)"
+            )
+        } else {
+            String::new()
+        };
         format!(
-            "crank.angle = {} rad, crank.speed = {} rad/s; {frequency}; {model}",
+            "crank.angle = {} rad, crank.speed = {} rad/s; {frequency}; {model}{start}",
             self.inputs.angle, self.inputs.speed,
         )
     }

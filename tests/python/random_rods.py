@@ -15,7 +15,8 @@ What is compared, per start type:
   reference's spectrum or in the run's, is paired with the other's nearest one within half the
   crank frequency (over two revolutions the window resolves no closer peaks), and the pair's
   frequency (relative error) and height (error relative to v_mid's peak) are compared; a peak
-  without a partner counts with its whole height. The peaks are the modes' ringing and the
+  without a partner (a shoulder in the other spectrum) is compared with the other's height at
+  its frequency. The peaks are the modes' ringing and the
   sidebands the crank's turning puts beside them (the frame's rotation modulates the modes'
   stiffness). A crank harmonic within a third of the ringing frequency of it falls into the
   free vibration and is compared there by its height. The peak |v_mid / L| of every half
@@ -67,12 +68,12 @@ def reference(rod_id):
     return np.loadtxt(lines[1:], delimiter=",").T
 
 
-def drive(rod, t):
+def drive(rod, t, start_angle=0.0):
     """Crank angle, speed and acceleration at t: the ramp omega = W (1 - cos(pi t / T)) / 2 for
-    t < T (smooth), then W; constant W from 0 (abrupt)."""
+    t < T (smooth), then W; constant W from 0 (abrupt), the crank at `start_angle` (rad) then."""
     w = rod["W"]
     if rod["start"] == "abrupt":
-        return w * t, w, 0.0
+        return start_angle + w * t, w, 0.0
     big_t = rod["t_ramp"]
     if t < big_t:
         x = math.pi * t / big_t
@@ -90,9 +91,10 @@ class Run:
     log: list
 
 
-def simulate(unzipdir, rod, extra=None):
+def simulate(unzipdir, rod, extra=None, start_angle=0.0):
     """The FMU with only the physical parameters of `rod` set, driven at its communication
-    step with the crank acceleration as input derivative; outputs at every second point."""
+    step with the crank acceleration as input derivative (an abrupt start at `start_angle`);
+    outputs at every second point."""
     slave = Slave(unzipdir, name="rod", logging_on=True)
     vr, s = slave.vr, slave.fmu
     s.setupExperiment(startTime=0.0)
@@ -104,7 +106,7 @@ def simulate(unzipdir, rod, extra=None):
             s.setInteger([vr[name]], [value])
         else:
             s.setReal([vr[name]], [value])
-    th, om, _ = drive(rod, 0.0)
+    th, om, _ = drive(rod, 0.0, start_angle)
     s.setReal([vr["crank.angle"], vr["crank.speed"]], [th, om])
     # The operating speed, for the rod model `auto` chooses (a smooth start begins at rest).
     s.setReal([vr["crank.design_speed"]], [rod["W"]])
@@ -116,7 +118,7 @@ def simulate(unzipdir, rod, extra=None):
     rows = [(0.0, *s.getReal(outs))]
     for k in range(n):
         t = k * dt
-        th, om, al = drive(rod, t)
+        th, om, al = drive(rod, t, start_angle)
         s.setReal([vr["crank.angle"], vr["crank.speed"]], [th, om])
         s.setRealInputDerivatives([vr["crank.speed"]], [1], [al])
         s.doStep(currentCommunicationPoint=t, communicationStepSize=dt)
@@ -184,13 +186,23 @@ def free_vibration_peaks(t, v_run, v_ref, w, ringing_hz, peak):
     """The free vibrations of run and reference by their spectra: every spectral peak of
     either above 2 x the crank frequency and 5e-4 x `peak`, paired with the other's nearest
     within half the crank frequency: (frequency Hz, height / peak, relative frequency error,
-    height error / peak), the frequency and height the reference's where it has the peak; an
-    unpaired peak gives a frequency error of 1 and its whole height."""
+    height error / peak), the frequency and height the reference's where it has the peak. A
+    peak without a partner (the other spectrum has no local maximum there: two peaks closer
+    than the window resolves in one, a shoulder in the other) is compared with the other
+    spectrum's height at its frequency, and has no frequency error (0)."""
     crank_hz = w / (2 * math.pi)
     f_min = 2.0 * crank_hz
     floor = 5e-4 * peak
-    ref_peaks = spectral_peaks(t, v_ref - forced(t, v_ref, w, ringing_hz), f_min, 0.0)
-    run_peaks = spectral_peaks(t, v_run - forced(t, v_run, w, ringing_hz), f_min, 0.0)
+    free_ref = v_ref - forced(t, v_ref, w, ringing_hz)
+    free_run = v_run - forced(t, v_run, w, ringing_hz)
+    ref_peaks = spectral_peaks(t, free_ref, f_min, 0.0)
+    run_peaks = spectral_peaks(t, free_run, f_min, 0.0)
+
+    def height_at(x, f):
+        window = np.hanning(len(x))
+        pad = 16 * len(x)
+        spec = np.abs(np.fft.rfft(x * window, pad)) * 2.0 / window.sum()
+        return float(np.interp(f, np.fft.rfftfreq(pad, t[1] - t[0]), spec))
 
     def partner(f, peaks):
         near = [p for p in peaks if abs(p[0] - f) <= 0.5 * crank_hz]
@@ -202,12 +214,13 @@ def free_vibration_peaks(t, v_run, v_ref, w, ringing_hz, peak):
             continue
         other = partner(f, run_peaks)
         if other is None:
-            out.append((f, a / peak, 1.0, a / peak))
+            out.append((f, a / peak, 0.0, abs(height_at(free_run, f) - a) / peak))
         else:
             out.append((f, a / peak, abs(other[0] / f - 1.0), abs(other[1] - a) / peak))
     for f, a in run_peaks:
         if a >= floor and partner(f, ref_peaks) is None:
-            out.append((f, 0.0, 1.0, a / peak))
+            h = height_at(free_ref, f)
+            out.append((f, h / peak, 0.0, abs(a - h) / peak))
     return sorted(out)
 
 

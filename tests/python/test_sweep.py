@@ -122,9 +122,10 @@ def test_failed_runs_are_rows_and_sweep_resumes(default_fmu, tmp_path):
     assert df.attrs["ran"] == 4
     rows = read_rows(out / "results.csv")
     by = {(r["crank.speed"], r["crank.length"]): r for r in rows}
-    # The benchmark rod at 150 rad/s: done, its error estimate within the default tolerance.
+    # The benchmark rod at 150 rad/s: done, with the error estimate's warning (it passes the
+    # default tolerance at this load).
     good = by[("150.0", "0.1524")]
-    assert good["status"] == "ok" and good["message"] == "", good
+    assert good["status"] == "warning" and "rod.error_estimate" in good["message"], good
     bad = by[("150.0", "0.4")]
     assert bad["status"] == "error" and "crank.length" in bad["message"], bad
     assert bad["max_abs(rod.deflection_rel)"] == "nan"
