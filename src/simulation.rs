@@ -191,8 +191,8 @@ impl Simulation {
         }
     }
 
-    /// `rod.error_estimate` now: the estimated pointwise error of `v_mid / L` relative to its
-    /// peak so far, model and integration together
+    /// `rod.error_estimate` now: the estimated error of `v_mid / L` relative to its peak so
+    /// far, model and integration together, with the free vibration the start rang
     /// ([`crate::rod::PhysicsChoice::error_estimate`]).
     pub fn error_estimate(&self) -> f64 {
         self.mechanism

@@ -22,8 +22,8 @@ pub struct Outputs {
     /// `rod.stress_max`, `rod.stress_max_position`); zero unless the spec asks for them
     /// (`MechanismSpec::section_loads`).
     pub section: crate::rod::SectionLoads,
-    /// `rod.error_estimate`: the estimated pointwise error of `v_mid / L` relative to its peak
-    /// so far ([`crate::rod::PhysicsChoice::error_estimate`]); filled in by
+    /// `rod.error_estimate`: the estimated error of `v_mid / L` relative to its peak so far
+    /// ([`crate::rod::PhysicsChoice::error_estimate`]); filled in by
     /// [`crate::Simulation::outputs`].
     pub error_estimate: f64,
 }

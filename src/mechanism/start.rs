@@ -10,6 +10,7 @@ use super::spec::StartDeflection;
 use super::state::MechanismState;
 use crate::error::ModelError;
 use crate::integrator::{DaeState, DaeSystem, StepAhead};
+use crate::modal::ReferenceKind;
 
 /// The quasi-static start's convergence: the last correction of the elastic coordinates, over
 /// their scales.
@@ -71,8 +72,8 @@ impl Mechanism {
         let mut work = OutputSolve::new(n);
         if self.spec.start.deflection == StartDeflection::QuasiStatic {
             self.quasi_static_start(&mut state, &mut work)?;
-        } else if input.speed != 0.0 {
-            state.start_vibration = self.start_vibration(&state, &mut work);
+        } else if input.speed != 0.0 && self.start_vibration_applies() {
+            state.start_vibration = self.start_vibration(&state, input.speed, &mut work);
         }
         self.consistent_accelerations(&mut work, &state, false)?;
         state.dae.qdd.copy_from_slice(&work.solve.qdd);
@@ -96,21 +97,36 @@ impl Mechanism {
         Ok(state)
     }
 
-    /// The free vibration an undeformed start at speed rings, as an amplitude of `v_mid / L`
-    /// (FFR rod; 0 for the segment chains and where the quasi-static deflection cannot be
-    /// found). The rod starts at `p = 0, p' = 0` where the motion's quasi-static deflection is
-    /// `p_qs(t0)` with the rate `p_qs'(t0)`: the difference rings, in the first mode with the
-    /// amplitude `sqrt(v0^2 + (v0' / w_1)^2)` of an oscillator released from the offset `v0` at
-    /// the rate `v0'` (`v0`, `v0'`: the midpoint deflection of the quasi-static state and its
-    /// rate, central differences over 1e-6 s). A start at dead centre, where the rod's
-    /// transverse load is zero, rings by the rate; one at a quarter revolution by the offset.
-    fn start_vibration(&self, state: &MechanismState, work: &mut OutputSolve) -> f64 {
-        if self.rod.elastic_coordinates().is_none_or(|e| e.is_empty()) {
-            return 0.0;
-        }
-        let w1 = 2.0 * std::f64::consts::PI * self.frequencies_hz().first().copied().unwrap_or(0.0);
+    /// Whether [`Mechanism::start_vibration`] is estimated for this rod: the FFR rod (the
+    /// segment chains are geometrically exact and take no share for large deflection) on pinned
+    /// modes (`rod.reference = "simply_supported"`, the default: its elastic coordinates are the
+    /// rod's own in the mechanism, its first bending mode the mechanism's).
+    pub fn start_vibration_applies(&self) -> bool {
+        !self.physics.geometrically_exact
+            && self.spec.rod.reference == ReferenceKind::SimplySupported
+            && self.rod.first_bending_hz().is_some_and(|f| f > 0.0)
+            && self
+                .rod
+                .elastic_coordinates()
+                .is_some_and(|e| !e.is_empty())
+    }
+
+    /// The free vibration an undeformed start at crank speed `speed` (rad/s) rings, as an
+    /// amplitude of `v_mid / L` (where [`Mechanism::start_vibration_applies`]; 0 where the
+    /// quasi-static deflection cannot be found). The rod starts at `p = 0, p' = 0` where the
+    /// motion's quasi-static deflection is `p_qs(t0)` with the rate `p_qs'(t0)`: the difference
+    /// rings, in the first bending mode (`w_1`) with the amplitude `sqrt(v0^2 + (v0' / w_1)^2)`
+    /// of an undamped oscillator released from the offset `v0` at the rate `v0'` (A. K. Chopra,
+    /// *Dynamics of Structures*, 4th ed., 2012, section 2.1; `v0`, `v0'`: the midpoint
+    /// deflection of the quasi-static state and its rate, central differences over a hundredth
+    /// of a radian of the crank). A start at dead centre, where the rod's transverse load is
+    /// zero, rings by the rate; one at a quarter revolution by the offset. The quasi-static
+    /// state stands for the forced motion where the crank turns well below the first bending
+    /// mode (the random rods of docs/verification.md: up to a quarter of it).
+    fn start_vibration(&self, state: &MechanismState, speed: f64, work: &mut OutputSolve) -> f64 {
+        let w1 = 2.0 * std::f64::consts::PI * self.rod.first_bending_hz().unwrap_or(0.0);
         let t0 = state.time;
-        let delta = 1e-6;
+        let delta = 0.01 / speed.abs();
         let mut v = [0.0; 3];
         for (k, t) in [t0 - delta, t0, t0 + delta].into_iter().enumerate() {
             let mut probe = state.clone();

@@ -6,7 +6,7 @@
 use super::inputs::Inputs;
 use super::variables::{Access, Value, Variable, VariableTable};
 use crate::error::ModelError;
-use crate::scene::Scene;
+use crate::scene::{Scene, StartDeflection};
 use crate::simulation::{Simulation, Snapshot};
 
 /// Why a step did not complete.
@@ -211,16 +211,18 @@ impl Model {
             .as_ref()
             .map(|s| s.describe())
             .unwrap_or_default();
-        let vibration = self
-            .simulation
-            .as_ref()
-            .map_or(0.0, |s| s.state().start_vibration);
-        let start = if vibration > 0.0 {
-            format!(
-                "; the start at speed rings a free vibration of about {vibration:.2e} in v_mid/L (quasi-static estimate; rod.error_estimate takes the forced deflection as the peak less it)"
-            )
-        } else {
-            String::new()
+        let start = match &self.simulation {
+            Some(s) if s.state().start_vibration > 0.0 => format!(
+                "; the start at speed rings a free vibration of about {:.2e} in v_mid/L (quasi-static estimate; rod.error_estimate takes the forced deflection as the peak less it)",
+                s.state().start_vibration
+            ),
+            Some(s) if s.state().input.speed != 0.0
+                && s.mechanism().spec.start.deflection == StartDeflection::Undeformed
+                && s.mechanism().start_vibration_applies() =>
+            {
+                "; the free vibration of the start at speed was not estimated (its quasi-static deflection was not found): rod.error_estimate takes the whole peak".to_string()
+            }
+            _ => String::new(),
         };
         format!(
             "crank.angle = {} rad, crank.speed = {} rad/s; {frequency}; {model}{start}",

@@ -159,6 +159,11 @@ pub trait RodBody: Send {
     fn linear_momentum(&self, q: &[f64], v: &[f64]) -> Vector2<f64>;
     /// Natural frequencies under the rod's reference or end conditions, Hz, ascending.
     fn frequencies_hz(&self) -> &[f64];
+    /// The lowest bending frequency among [`RodBody::frequencies_hz`], Hz, where the rod tells
+    /// bending from axial modes (the FFR rod); `None` otherwise.
+    fn first_bending_hz(&self) -> Option<f64> {
+        None
+    }
     /// What the rod keeps, in words (the FFR rod: its retained modes and their kinds).
     fn describe(&self) -> String {
         format!("{} natural frequencies", self.frequencies_hz().len())

@@ -100,8 +100,8 @@ pub const CHAIN_DISCRETIZATION_COEFFICIENT: f64 = 1.4;
 /// `rod.model = auto` takes the chain on its modes where the FFR rod's nonlinear share of the
 /// error estimate at the predicted peak exceeds this (module docs, "Rod model"). On the random
 /// rods (tests/python/test_random_rods.py) it takes the two smooth starts the FFR rod follows
-/// least well, past 0.5 % of the peak (rods 22 and 34; shares 1.1e-2 and 9.0e-3), onto the chain
-/// and leaves the next ones (7.5e-3 and below, the FFR rod within 0.5 % there and its estimate
+/// least well, past 0.5 % of the peak (rods 22 and 34), onto the chain
+/// and leaves the next ones (the FFR rod within 0.5 % there and its estimate
 /// within a factor 3 of the error) to the faster FFR rod. On the benchmark rod the switch lies
 /// near 210 rad/s.
 pub const LARGE_DEFLECTION_SHARE: f64 = 8.5e-3;

@@ -15,8 +15,9 @@ What is compared, per start type:
   reference's spectrum or in the run's, is paired with the other's nearest one within half the
   crank frequency (over two revolutions the window resolves no closer peaks), and the pair's
   frequency (relative error) and height (error relative to v_mid's peak) are compared; a peak
-  without a partner (a shoulder in the other spectrum) is compared with the other's height at
-  its frequency. The peaks are the modes' ringing and the
+  without a partner is compared with the other's height at its frequency, and counts as a
+  frequency error of 1 unless that height is at least half its own (a shoulder: two peaks the
+  window does not resolve in one spectrum). The peaks are the modes' ringing and the
   sidebands the crank's turning puts beside them (the frame's rotation modulates the modes'
   stiffness). A crank harmonic within a third of the ringing frequency of it falls into the
   free vibration and is compared there by its height. The peak |v_mid / L| of every half
@@ -187,9 +188,10 @@ def free_vibration_peaks(t, v_run, v_ref, w, ringing_hz, peak):
     either above 2 x the crank frequency and 5e-4 x `peak`, paired with the other's nearest
     within half the crank frequency: (frequency Hz, height / peak, relative frequency error,
     height error / peak), the frequency and height the reference's where it has the peak. A
-    peak without a partner (the other spectrum has no local maximum there: two peaks closer
-    than the window resolves in one, a shoulder in the other) is compared with the other
-    spectrum's height at its frequency, and has no frequency error (0)."""
+    peak without a partner where the other spectrum has a shoulder (no local maximum, but at
+    least half the height at that frequency: two peaks closer than the window resolves in one)
+    is compared with the other's height there and has no frequency error; one without a partner
+    and without a shoulder counts with a frequency error of 1."""
     crank_hz = w / (2 * math.pi)
     f_min = 2.0 * crank_hz
     floor = 5e-4 * peak
@@ -214,13 +216,14 @@ def free_vibration_peaks(t, v_run, v_ref, w, ringing_hz, peak):
             continue
         other = partner(f, run_peaks)
         if other is None:
-            out.append((f, a / peak, 0.0, abs(height_at(free_run, f) - a) / peak))
+            h = height_at(free_run, f)
+            out.append((f, a / peak, 0.0 if h >= 0.5 * a else 1.0, abs(h - a) / peak))
         else:
             out.append((f, a / peak, abs(other[0] / f - 1.0), abs(other[1] - a) / peak))
     for f, a in run_peaks:
         if a >= floor and partner(f, ref_peaks) is None:
             h = height_at(free_ref, f)
-            out.append((f, h / peak, 0.0, abs(a - h) / peak))
+            out.append((f, h / peak, 0.0 if h >= 0.5 * a else 1.0, abs(a - h) / peak))
     return sorted(out)
 
 

@@ -110,7 +110,7 @@ impl VariableTable {
             DIMENSIONLESS,
             |o| o.error_estimate,
             D::All,
-            "Estimated pointwise error of v_mid / L relative to its peak so far, model and integration together (one warning when it passes solver.tolerance)",
+            "Estimated error of v_mid / L relative to its peak so far, model and integration together: pointwise, after a start at speed of the forced motion and the amplitude (not the phase) of the vibration the start rings; one warning when it passes solver.tolerance",
         );
         if out.pin_forces {
             b.output(

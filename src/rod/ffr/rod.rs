@@ -509,6 +509,13 @@ impl RodBody for FfrRod {
         &self.modes.all_frequencies_hz
     }
 
+    fn first_bending_hz(&self) -> Option<f64> {
+        let all = &self.modes.all_frequencies_hz;
+        (0..all.len())
+            .find(|&k| !self.modes.is_axial(k))
+            .map(|k| all[k])
+    }
+
     fn describe(&self) -> String {
         let kept = format!("FFR rod, modes kept: {}", self.modes.summary());
         let hz = |w2: f64| w2.sqrt() / (2.0 * std::f64::consts::PI);
