@@ -72,7 +72,7 @@ impl Mechanism {
         let mut work = OutputSolve::new(n);
         if self.spec.start.deflection == StartDeflection::QuasiStatic {
             self.quasi_static_start(&mut state, &mut work)?;
-        } else if input.speed != 0.0 && self.start_vibration_applies() {
+        } else if self.start_vibration_estimated(input) {
             state.start_vibration = self.start_vibration(&state, input.speed, &mut work);
         }
         self.consistent_accelerations(&mut work, &state, false)?;
@@ -97,12 +97,15 @@ impl Mechanism {
         Ok(state)
     }
 
-    /// Whether [`Mechanism::start_vibration`] is estimated for this rod: the FFR rod (the
-    /// segment chains are geometrically exact and take no share for large deflection) on pinned
-    /// modes (`rod.reference = "simply_supported"`, the default: its elastic coordinates are the
-    /// rod's own in the mechanism, its first bending mode the mechanism's).
-    pub fn start_vibration_applies(&self) -> bool {
-        !self.physics.geometrically_exact
+    /// Whether a start with the crank input `input` gets [`Mechanism::start_vibration`]: an
+    /// undeformed start at speed of the FFR rod (the segment chains are geometrically exact and
+    /// take no share for large deflection) on pinned modes (`rod.reference =
+    /// "simply_supported"`, the default: its elastic coordinates are the rod's own in the
+    /// mechanism, its first bending mode the mechanism's).
+    pub fn start_vibration_estimated(&self, input: CrankInput) -> bool {
+        input.speed != 0.0
+            && self.spec.start.deflection == StartDeflection::Undeformed
+            && !self.physics.geometrically_exact
             && self.spec.rod.reference == ReferenceKind::SimplySupported
             && self.rod.first_bending_hz().is_some_and(|f| f > 0.0)
             && self
@@ -112,7 +115,7 @@ impl Mechanism {
     }
 
     /// The free vibration an undeformed start at crank speed `speed` (rad/s) rings, as an
-    /// amplitude of `v_mid / L` (where [`Mechanism::start_vibration_applies`]; 0 where the
+    /// amplitude of `v_mid / L` (where [`Mechanism::start_vibration_estimated`]; 0 where the
     /// quasi-static deflection cannot be found). The rod starts at `p = 0, p' = 0` where the
     /// motion's quasi-static deflection is `p_qs(t0)` with the rate `p_qs'(t0)`: the difference
     /// rings, in the first bending mode (`w_1`) with the amplitude `sqrt(v0^2 + (v0' / w_1)^2)`
@@ -129,24 +132,34 @@ impl Mechanism {
         let delta = 0.01 / speed.abs();
         let mut v = [0.0; 3];
         for (k, t) in [t0 - delta, t0, t0 + delta].into_iter().enumerate() {
-            let mut probe = state.clone();
-            probe.time = t;
-            probe.dae.t = t;
-            if self
-                .quasi_static_deflection(&mut probe, work, &[], START_VIBRATION_TOLERANCE)
-                .is_err()
-            {
-                return 0.0;
+            match self.quasi_static_at(state, t, work, START_VIBRATION_TOLERANCE) {
+                Ok(probe) => v[k] = self.rod.mid_deflection(&probe.dae.q),
+                Err(_) => return 0.0,
             }
-            v[k] = self.rod.mid_deflection(&probe.dae.q);
         }
         let rate = (v[2] - v[0]) / (2.0 * delta);
         let amplitude = (v[1] * v[1] + (rate / w1).powi(2)).sqrt() / self.rod.length();
-        if amplitude.is_finite() && w1 > 0.0 {
+        if amplitude.is_finite() {
             amplitude
         } else {
             0.0
         }
+    }
+
+    /// `state` deflected quasi-statically at time `t` ([`Mechanism::quasi_static_deflection`],
+    /// no elastic rates), a copy.
+    fn quasi_static_at(
+        &self,
+        state: &MechanismState,
+        t: f64,
+        work: &mut OutputSolve,
+        tolerance: f64,
+    ) -> Result<MechanismState, ModelError> {
+        let mut probe = state.clone();
+        probe.time = t;
+        probe.dae.t = t;
+        self.quasi_static_deflection(&mut probe, work, &[], tolerance)?;
+        Ok(probe)
     }
 
     /// Quasi-static start: the elastic coordinates follow the quasi-static deflection `p_qs(t)`
@@ -166,10 +179,7 @@ impl Mechanism {
         let delta = 1e-6;
         let mut rate = vec![0.0; elastic.len()];
         for (sign, t) in [(-1.0, t0 - delta), (1.0, t0 + delta)] {
-            let mut probe = state.clone();
-            probe.time = t;
-            probe.dae.t = t;
-            self.quasi_static_deflection(&mut probe, work, &[], QUASI_STATIC_TOLERANCE)?;
+            let probe = self.quasi_static_at(state, t, work, QUASI_STATIC_TOLERANCE)?;
             for (i, r) in rate.iter_mut().enumerate() {
                 *r += sign * probe.dae.q[elastic.start + i] / (2.0 * delta);
             }

@@ -6,7 +6,7 @@
 use super::inputs::Inputs;
 use super::variables::{Access, Value, Variable, VariableTable};
 use crate::error::ModelError;
-use crate::scene::{Scene, StartDeflection};
+use crate::scene::Scene;
 use crate::simulation::{Simulation, Snapshot};
 
 /// Why a step did not complete.
@@ -216,10 +216,7 @@ impl Model {
                 "; the start at speed rings a free vibration of about {:.2e} in v_mid/L (quasi-static estimate; rod.error_estimate takes the forced deflection as the peak less it)",
                 s.state().start_vibration
             ),
-            Some(s) if s.state().input.speed != 0.0
-                && s.mechanism().spec.start.deflection == StartDeflection::Undeformed
-                && s.mechanism().start_vibration_applies() =>
-            {
+            Some(s) if s.mechanism().start_vibration_estimated(s.state().input) => {
                 "; the free vibration of the start at speed was not estimated (its quasi-static deflection was not found): rod.error_estimate takes the whole peak".to_string()
             }
             _ => String::new(),

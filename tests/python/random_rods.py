@@ -133,21 +133,13 @@ def simulate(unzipdir, rod, extra=None, start_angle=0.0):
 
 
 def ringing_frequency(t, v, crank_hz):
-    """The frequency of the largest spectral peak of v above 2 x the crank frequency, Hz."""
-    x = (v - v.mean()) * np.hanning(len(v))
-    pad = 16 * len(v)
-    spec = np.abs(np.fft.rfft(x, pad))
-    f = np.fft.rfftfreq(pad, t[1] - t[0])
-    # Local maxima only: at the band's lower edge the leakage of the crank harmonics below it
-    # can be larger than any peak, and is not a ringing.
-    inner = np.flatnonzero(f > 2.0 * crank_hz)[1:-1]
-    peaks = inner[(spec[inner] > spec[inner - 1]) & (spec[inner] >= spec[inner + 1])]
-    if len(peaks) == 0:
+    """The frequency of the largest spectral peak of v above 2 x the crank frequency, Hz (local
+    maxima only: at the band's lower edge the leakage of the crank harmonics below it can be
+    larger than any peak, and is not a ringing)."""
+    peaks = spectral_peaks(*spectrum(t, v - v.mean()), 2.0 * crank_hz, 1.0)
+    if not peaks:
         raise ValueError(f"no spectral peak of v above 2 x the crank frequency ({crank_hz:.1f} Hz)")
-    i = peaks[np.argmax(spec[peaks])]
-    a, b, c = np.log(spec[i - 1:i + 2])
-    shift = 0.5 * (a - c) / (a - 2 * b + c)
-    return f[i] + shift * (f[1] - f[0])
+    return peaks[0][0]
 
 
 def forced(t, v, w, ringing_hz):
@@ -162,14 +154,18 @@ def forced(t, v, w, ringing_hz):
     return basis @ coefficients
 
 
-def spectral_peaks(t, x, f_min, share):
-    """(frequency Hz, amplitude) of every local maximum of x's spectrum above f_min Hz whose
-    height is at least `share` of the largest there (Hann window, zero-padded 16 times, scaled
-    so that a sinusoid of amplitude a gives a; log-parabolic interpolation)."""
+def spectrum(t, x):
+    """x's amplitude spectrum: frequencies (Hz) and heights (Hann window, zero-padded 16 times,
+    scaled so that a sinusoid of amplitude a gives a)."""
     window = np.hanning(len(x))
     pad = 16 * len(x)
-    spec = np.abs(np.fft.rfft(x * window, pad)) * 2.0 / window.sum()
-    f = np.fft.rfftfreq(pad, t[1] - t[0])
+    return (np.fft.rfftfreq(pad, t[1] - t[0]),
+            np.abs(np.fft.rfft(x * window, pad)) * 2.0 / window.sum())
+
+
+def spectral_peaks(f, spec, f_min, share):
+    """(frequency Hz, amplitude) of every local maximum of the spectrum (f, spec) above f_min
+    Hz whose height is at least `share` of the largest there (log-parabolic interpolation)."""
     inner = np.flatnonzero(f > f_min)[1:-1]
     maxima = inner[(spec[inner] > spec[inner - 1]) & (spec[inner] >= spec[inner + 1])]
     if len(maxima) == 0:
@@ -195,16 +191,13 @@ def free_vibration_peaks(t, v_run, v_ref, w, ringing_hz, peak):
     crank_hz = w / (2 * math.pi)
     f_min = 2.0 * crank_hz
     floor = 5e-4 * peak
-    free_ref = v_ref - forced(t, v_ref, w, ringing_hz)
-    free_run = v_run - forced(t, v_run, w, ringing_hz)
-    ref_peaks = spectral_peaks(t, free_ref, f_min, 0.0)
-    run_peaks = spectral_peaks(t, free_run, f_min, 0.0)
+    ref_spectrum = spectrum(t, v_ref - forced(t, v_ref, w, ringing_hz))
+    run_spectrum = spectrum(t, v_run - forced(t, v_run, w, ringing_hz))
+    ref_peaks = spectral_peaks(*ref_spectrum, f_min, 0.0)
+    run_peaks = spectral_peaks(*run_spectrum, f_min, 0.0)
 
-    def height_at(x, f):
-        window = np.hanning(len(x))
-        pad = 16 * len(x)
-        spec = np.abs(np.fft.rfft(x * window, pad)) * 2.0 / window.sum()
-        return float(np.interp(f, np.fft.rfftfreq(pad, t[1] - t[0]), spec))
+    def height_at(spectrum_, f):
+        return float(np.interp(f, *spectrum_))
 
     def partner(f, peaks):
         near = [p for p in peaks if abs(p[0] - f) <= 0.5 * crank_hz]
@@ -216,13 +209,13 @@ def free_vibration_peaks(t, v_run, v_ref, w, ringing_hz, peak):
             continue
         other = partner(f, run_peaks)
         if other is None:
-            h = height_at(free_run, f)
+            h = height_at(run_spectrum, f)
             out.append((f, a / peak, 0.0 if h >= 0.5 * a else 1.0, abs(h - a) / peak))
         else:
             out.append((f, a / peak, abs(other[0] / f - 1.0), abs(other[1] - a) / peak))
     for f, a in run_peaks:
         if a >= floor and partner(f, ref_peaks) is None:
-            h = height_at(free_ref, f)
+            h = height_at(ref_spectrum, f)
             out.append((f, h / peak, 0.0 if h >= 0.5 * a else 1.0, abs(a - h) / peak))
     return sorted(out)
 
