@@ -121,17 +121,23 @@ impl GasForceTable {
     }
 }
 
-/// The preprocessed table: the periodic cubic spline's second derivatives at the points.
+/// The preprocessed table: the periodic cubic spline, one cubic in powers of the angle from
+/// its start per interval, and a bucketed lookup of the intervals.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GasForce {
-    /// Cycle, degrees.
+    /// Cycle, degrees, and its reciprocal.
     cycle: f64,
+    inv_cycle: f64,
     /// The points' angles (degrees) with the first repeated one cycle on, `n + 1`.
     angle: Vec<f64>,
-    /// Scaled forces, N, `n + 1` (the first repeated).
-    force: Vec<f64>,
-    /// Second derivatives of the spline, N / deg^2, `n + 1` (the first repeated).
-    curvature: Vec<f64>,
+    /// Interval `i`'s cubic `f_i + c_1 d + c_2 d^2 + c_3 d^3`, `d = x - angle_i` (degrees):
+    /// `[f_i, c_1, c_2, c_3]` (N, N/deg, N/deg^2, N/deg^3), `n`.
+    cubic: Vec<[f64; 4]>,
+    /// The lookup: the cycle cut into `n` equal buckets of `1 / inv_bucket` degrees;
+    /// `first[k]` is the interval holding the bucket's start, so the interval of an angle in
+    /// bucket `k` lies in `first[k] ..= first[k + 1]` (one interval for an evenly spaced table).
+    inv_bucket: f64,
+    first: Vec<usize>,
 }
 
 impl GasForce {
@@ -161,32 +167,75 @@ impl GasForce {
         let sup: Vec<f64> = h.clone();
         let mut curvature = cyclic_tridiagonal(&sub, &diag, &sup, &rhs);
         curvature.push(curvature[0]);
+        // The spline on interval i in the second derivatives M (de Boor, chapter IV), in powers
+        // of d = x - angle_i: f_i + ((f_i+1 - f_i) / h - h (2 M_i + M_i+1) / 6) d + M_i / 2 d^2
+        // + (M_i+1 - M_i) / (6 h) d^3.
+        let cubic = (0..n)
+            .map(|i| {
+                let (m0, m1) = (curvature[i], curvature[i + 1]);
+                [
+                    force[i],
+                    (force[i + 1] - force[i]) / h[i] - h[i] * (2.0 * m0 + m1) / 6.0,
+                    0.5 * m0,
+                    (m1 - m0) / (6.0 * h[i]),
+                ]
+            })
+            .collect();
+        let bucket = table.cycle / n as f64;
+        let first = (0..=n)
+            .map(|k| interval(&angle, angle[0] + k as f64 * bucket, 0, n - 1))
+            .collect();
         Ok(GasForce {
             cycle: table.cycle,
+            inv_cycle: 1.0 / table.cycle,
             angle,
-            force,
-            curvature,
+            cubic,
+            inv_bucket: 1.0 / bucket,
+            first,
         })
     }
 
     /// The force at crank angle `theta` (rad), N.
     pub fn at(&self, theta: f64) -> f64 {
-        let first = self.angle[0];
-        let x = (theta.to_degrees() - first).rem_euclid(self.cycle) + first;
-        // The interval [angle_i, angle_i+1] holding x (angle_n = angle_0 + cycle).
-        let i = self
-            .angle
-            .partition_point(|&a| a <= x)
-            .clamp(1, self.angle.len() - 1)
-            - 1;
-        let h = self.angle[i + 1] - self.angle[i];
-        let a = (self.angle[i + 1] - x) / h;
-        let b = 1.0 - a;
-        let (m0, m1) = (self.curvature[i], self.curvature[i + 1]);
-        a * self.force[i]
-            + b * self.force[i + 1]
-            + ((a * a * a - a) * m0 + (b * b * b - b) * m1) * h * h / 6.0
+        let x = self.within_cycle(theta);
+        let i = self.interval_of(x);
+        let [f, c1, c2, c3] = self.cubic[i];
+        let d = x - self.angle[i];
+        f + d * (c1 + d * (c2 + d * c3))
     }
+
+    /// The crank angle `theta` (rad) in degrees within the cycle from the first point,
+    /// `[angle_0, angle_0 + cycle]` (the whole turns taken off by truncation, not a remainder:
+    /// the same interval up to round-off at the cycle's end, where the spline is continuous).
+    fn within_cycle(&self, theta: f64) -> f64 {
+        let start = self.angle[0];
+        let from_start = theta.to_degrees() - start;
+        let turns = from_start * self.inv_cycle;
+        let mut whole = turns as i64 as f64;
+        if whole > turns {
+            whole -= 1.0;
+        }
+        (from_start - whole * self.cycle).clamp(0.0, self.cycle) + start
+    }
+
+    /// The interval `[angle_i, angle_i+1]` holding `x` (degrees within the cycle), searched
+    /// in `x`'s bucket only.
+    fn interval_of(&self, x: f64) -> usize {
+        let last = self.angle.len() - 2;
+        let k = (((x - self.angle[0]) * self.inv_bucket) as usize).min(self.first.len() - 2);
+        let mut lo = self.first[k];
+        if lo > 0 && self.angle[lo] > x {
+            // x just below its bucket's start by round-off in the product.
+            lo -= 1;
+        }
+        interval(&self.angle, x, lo, self.first[k + 1].min(last))
+    }
+}
+
+/// The index `i` in `lo ..= hi` of the interval `[angle_i, angle_i+1]` holding `x`: the last
+/// `i` with `angle_i <= x` (`lo` if none).
+fn interval(angle: &[f64], x: f64, lo: usize, hi: usize) -> usize {
+    lo + angle[lo + 1..=hi].partition_point(|&a| a <= x)
 }
 
 /// Solve the cyclic tridiagonal system with sub-diagonal `a` (`a[0]` in the top-right corner),
@@ -259,6 +308,48 @@ mod tests {
         }
     }
 
+    /// The bucketed lookup gives the force of a search over the whole table, on an even table,
+    /// an uneven one and one with most of its points clustered in one degree, at angles across
+    /// many turns both ways, at the points and at the buckets' edges.
+    #[test]
+    fn bucketed_lookup_matches_a_search_of_the_whole_table() {
+        let even = table(1440.0, 2880, |a| -3.8e4 * (-((a - 735.0) / 20.0).powi(2)).exp());
+        let mut clustered: Vec<f64> = (0..400).map(|i| 100.0 + i as f64 * 0.0025).collect();
+        clustered.extend([0.0, 50.0, 300.0, 500.0, 719.5]);
+        clustered.sort_by(f64::total_cmp);
+        let uneven = |angle: Vec<f64>, cycle: f64| GasForceTable {
+            cycle,
+            force: angle.iter().map(|a| (a * 0.1).sin() * 1e4 + a).collect(),
+            angle,
+            scale: 1.5,
+        };
+        for t in [
+            even,
+            uneven(vec![30.0, 31.0, 45.0, 90.0, 91.5, 200.0, 333.0, 359.0], 360.0),
+            uneven(clustered, 720.0),
+        ] {
+            let g = GasForce::new(&t).unwrap();
+            // The interval by a search of the whole table, the angle as a remainder.
+            let searched = |theta: f64| {
+                let first = g.angle[0];
+                let x = (theta.to_degrees() - first).rem_euclid(g.cycle) + first;
+                let i = g.angle.partition_point(|&a| a <= x).clamp(1, g.angle.len() - 1) - 1;
+                let [f, c1, c2, c3] = g.cubic[i];
+                let d = x - g.angle[i];
+                f + d * (c1 + d * (c2 + d * c3))
+            };
+            let scale = g.cubic.iter().fold(0.0f64, |m, c| m.max(c[0].abs()));
+            let mut angles: Vec<f64> = (0..20_000).map(|k| -5000.0 + k as f64 * 0.6173).collect();
+            angles.extend(t.angle.iter().flat_map(|a| [*a, a + t.cycle, a - 3.0 * t.cycle]));
+            angles.extend((0..=40).map(|k| t.angle[0] + k as f64 * t.cycle / t.angle.len() as f64));
+            for deg in angles {
+                let theta = deg.to_radians();
+                let (got, want) = (g.at(theta), searched(theta));
+                assert!((got - want).abs() <= 1e-9 * scale, "{deg} deg: {got} vs {want}");
+            }
+        }
+    }
+
     /// The cyclic tridiagonal solve against a dense solve of the same periodic system, on an
     /// uneven table that starts at 30 degrees, with three points and with nine; and the spline's
     /// slope and curvature from both sides of the cycle's end (between the last point and the
@@ -289,13 +380,14 @@ mod tests {
                 a[(i, prev)] += hp;
                 a[(i, i)] += 2.0 * (hp + h[i]);
                 a[(i, next)] += h[i];
-                r[i] = 6.0
-                    * ((g.force[i + 1] - g.force[i]) / h[i] - (g.force[i] - g.force[prev]) / hp);
+                let force = |i: usize| g.cubic[i % n][0];
+                r[i] = 6.0 * ((force(i + 1) - force(i)) / h[i] - (force(i) - force(prev)) / hp);
             }
             let dense = a.lu().solve(&r).unwrap();
             for i in 0..n {
                 assert!(
-                    (g.curvature[i] - dense[i]).abs() < 1e-9 * dense.amax(),
+                    // The cubic's d^2 coefficient is half the second derivative at its start.
+                    (2.0 * g.cubic[i][2] - dense[i]).abs() < 1e-9 * dense.amax(),
                     "{angle:?}: {i}"
                 );
             }
