@@ -111,6 +111,7 @@ fn right_hand_side(c: &mut Criterion) {
         angle: 0.3,
         speed: 150.0,
         acceleration: 0.0,
+        jerk: 0.0,
     };
     sim.start(0.0, input, 0.0).unwrap();
     let mech = sim.mechanism();

@@ -26,6 +26,7 @@ fn started(scene: &Scene) -> Simulation {
             angle: 0.0,
             speed: W,
             acceleration: 0.0,
+            jerk: 0.0,
         },
         0.0,
     )

@@ -27,6 +27,7 @@ pub fn run(scene: &Scene) -> (f64, u64) {
         angle: w * t,
         speed: w,
         acceleration: 0.0,
+        jerk: 0.0,
     };
     let clock = std::time::Instant::now();
     let mut sim = Simulation::new(scene).unwrap();

@@ -76,6 +76,7 @@ fn right_hand_sides() -> [f64; 3] {
         angle: 0.3,
         speed: W,
         acceleration: 0.0,
+        jerk: 0.0,
     };
     sim.start(0.0, input, 0.0).unwrap();
     let mech = sim.mechanism();
@@ -291,9 +292,10 @@ fn high_load_speed() -> (f64, u64, usize) {
 /// communication step (ms, steps, right-hand sides); the engine run of
 /// `flexrod::drive::engine` (ramp to 6000 rpm, gas pulse, 60 ms: ms); `fmi2DoStep` at 1e-5 s
 /// with the crank set before every call (us); with the gas pulse as a `[slider.gas_force]`
-/// table, two revolutions in one communication step (ms), the engine run on its row grid and
-/// with the crank set every 1e-4 s (ms), and the steps of the two revolutions with the table.
-fn automotive_speed() -> (f64, u64, u64, f64, f64, [f64; 3], u64) {
+/// table, two revolutions in one communication step (ms), the engine run on its row grid, with
+/// the crank set every 1e-3 s and rows every 1e-4 s and every 1e-3 s (ms), and the steps of
+/// the two revolutions with the table.
+fn automotive_speed() -> (f64, u64, u64, f64, f64, [f64; 4], u64) {
     let scene = automotive();
     let w = scene.experiment.crank_speed;
     let grid = [0.0, 4.0 * std::f64::consts::PI / w];
@@ -335,12 +337,16 @@ fn automotive_speed() -> (f64, u64, u64, f64, f64, [f64; 3], u64) {
         * reported(11, || {
             setup.run_with_gas_table(&scene, setup.sample).unwrap().1
         });
-    // As a master with input derivatives drives it: the crank set every 1e-4 s with its
-    // acceleration, a row there (tests/automotive_reference.rs checks it against the exact
-    // beam with rows every 2e-5 s).
+    // As a master with input derivatives drives it: the crank set every 1e-3 s with its
+    // acceleration and jerk, a row every 1e-4 s and every 1e-3 s (tests/automotive_reference.rs
+    // checks it against the exact beam with rows every 2e-5 s).
     let engine_sparse = 1e3
         * reported(11, || {
-            setup.run_with_sparse_input(&scene, 1e-4, 1e-4).unwrap().1
+            setup.run_with_sparse_input(&scene, 1e-3, 1e-4).unwrap().1
+        });
+    let engine_coarse = 1e3
+        * reported(11, || {
+            setup.run_with_sparse_input(&scene, 1e-3, 1e-3).unwrap().1
         });
     let [_, step] = do_step_of(&scene, Some(&uri), w);
     (
@@ -349,7 +355,7 @@ fn automotive_speed() -> (f64, u64, u64, f64, f64, [f64; 3], u64) {
         stats.newton_iterations,
         engine,
         step,
-        [gas_ms, engine_table, engine_sparse],
+        [gas_ms, engine_table, engine_sparse, engine_coarse],
         gas_steps,
     )
 }
@@ -361,7 +367,7 @@ fn main() {
         a_rhs,
         a_engine,
         a_step,
-        [a_gas, a_engine_table, a_engine_sparse],
+        [a_gas, a_engine_table, a_engine_sparse, a_engine_coarse],
         a_gas_steps,
     ) = automotive_speed();
     let (ms, steps, rhs, peak) = two_revolutions(&Scene::benchmark());
@@ -389,7 +395,8 @@ fn main() {
 | automotive rod (scenes/automotive_rod.toml: mass-loaded modes to 6 kHz, residual flexibility above, `auto`: exponential RK4(3), tolerance 1e-2), two revolutions at 628.3 rad/s from the undeformed start in one `fmi2DoStep` | {a_ms:.3} ms; {a_steps} steps, {a_rhs} right-hand sides |
 | automotive rod, the engine run (ramp to 6000 rpm, gas pulse, 60 ms, 1e-5 s grid; here and below the instance built before the clock starts) | {a_engine:.2} ms |
 | automotive rod, the engine run with the gas pulse as a `[slider.gas_force]` table (the crank on a 2e-5 s grid, a row at every point) | {a_engine_table:.2} ms |
-| automotive rod, the engine run with the gas pulse as a table and the crank set every 1e-4 s (angle, speed and acceleration: `fmi2SetRealInputDerivatives`), a row there | {a_engine_sparse:.2} ms ({:.0} x real time) |
+| automotive rod, the engine run with the gas pulse as a table and the crank set every 1e-3 s (angle, speed, acceleration and jerk: `fmi2SetRealInputDerivatives`), a row every 1e-4 s | {a_engine_sparse:.2} ms ({:.0} x real time) |
+| the same, a row every 1e-3 s (a 1 ms co-simulation step) | {a_engine_coarse:.2} ms ({:.0} x real time) |
 | automotive rod, two revolutions at 628.3 rad/s with the gas pulse as a `[slider.gas_force]` table, in one `fmi2DoStep` | {a_gas:.2} ms; {a_gas_steps} steps |
 | automotive rod, `fmi2SetReal` (crank angle and speed) + `fmi2DoStep` at 1e-5 s, 628.3 rad/s | {a_step:.2} us a call |
 | benchmark rod at 300 rad/s (peak v_mid/L 0.07), the defaults (`rod.model = auto` takes the chain on its modes: {high_segments} segments for tolerance 1e-3, the band keeps 4 modes, shear by `auto`; exponential RK4(3)), two revolutions from the undeformed start in one `fmi2DoStep` | {high_ms:.2} ms; {high_steps} steps |
@@ -397,6 +404,7 @@ fn main() {
         simulated / (ms * 1e-3),
         1e-5 / (step * 1e-6),
         0.06 / (a_engine_sparse * 1e-3),
+        0.06 / (a_engine_coarse * 1e-3),
     );
     print!("{text}");
     if std::env::var_os("FLEXROD_BLESS").is_some() {

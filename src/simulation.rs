@@ -5,7 +5,8 @@
 //! forces in N.
 //!
 //! Input law between communication points (docs/fmu.md, "Behaviour"):
-//! `theta(t_k + s) = theta_k + omega_k s + alpha_k s^2 / 2`, `omega(t_k + s) = omega_k + alpha_k s`.
+//! `theta(t_k + s) = theta_k + omega_k s + alpha_k s^2 / 2 + j_k s^3 / 6`,
+//! `omega(t_k + s) = omega_k + alpha_k s + j_k s^2 / 2`.
 
 use crate::error::ModelError;
 pub use crate::mechanism::{CrankInput, StepStats};
@@ -34,7 +35,7 @@ pub struct Simulation {
 
 /// Magic bytes and version of serialized snapshots.
 const SNAPSHOT_MAGIC: &[u8; 8] = b"FLEXROD\0";
-const SNAPSHOT_VERSION: u32 = 5;
+const SNAPSHOT_VERSION: u32 = 6;
 
 /// The inputs of a simulation at one moment ([`Simulation::inputs_snapshot`]).
 #[derive(Clone, Copy, Debug)]
@@ -56,6 +57,10 @@ fn trimmed(t: f64) -> String {
 /// angle 1e9 rad (the phase keeps 1e-7 rad), crank speed 1e4 rad/s (95 000 rpm), crank
 /// acceleration 1e8 rad/s^2, slider force 1e8 N.
 pub const INPUT_WINDOWS: [f64; 4] = [1e9, crate::scene::CRANK_SPEED_WINDOW, 1e8, 1e8];
+
+/// The largest crank jerk `|j_k|` of an input law, rad/s^3 (the order-2 derivative of
+/// `crank.speed`): the acceleration window's 1e8 rad/s^2 reached in 1e-4 s.
+pub const JERK_WINDOW: f64 = 1e12;
 
 impl Simulation {
     /// Build the model of `scene`: validate the parameters, preprocess the rod (modes,
@@ -288,7 +293,7 @@ impl Simulation {
 }
 
 fn check_input(input: CrankInput, slider_force: f64) -> Result<(), ModelError> {
-    let checks: [(&'static str, f64, f64, &str); 4] = [
+    let checks: [(&'static str, f64, f64, &str); 5] = [
         ("crank.angle", input.angle, INPUT_WINDOWS[0], "rad"),
         ("crank.speed", input.speed, INPUT_WINDOWS[1], "rad/s"),
         (
@@ -296,6 +301,12 @@ fn check_input(input: CrankInput, slider_force: f64) -> Result<(), ModelError> {
             input.acceleration,
             INPUT_WINDOWS[2],
             "rad/s^2",
+        ),
+        (
+            "crank.speed order-2 derivative (crank jerk)",
+            input.jerk,
+            JERK_WINDOW,
+            "rad/s^3",
         ),
         ("slider.force", slider_force, INPUT_WINDOWS[3], "N"),
     ];

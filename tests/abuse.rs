@@ -14,6 +14,7 @@ fn started(scene: &Scene, speed: f64) -> Simulation {
             angle: 0.0,
             speed,
             acceleration: 0.0,
+            jerk: 0.0,
         },
         0.0,
     )
@@ -114,21 +115,28 @@ fn crafted_state_bytes_are_rejected_field_by_field() {
     let good = sim.snapshot_to_bytes();
     let before = sim.state().clone();
     let f = |k: usize| 20 + 8 * k;
-    let cases: [(&str, usize, f64, &str); 9] = [
+    let cases: [(&str, usize, f64, &str); 11] = [
         ("time NaN", f(0), f64::NAN, "the time is NaN"),
         ("input time after time", f(1), 1.0, "input law starts"),
-        ("infinite speed", f(7), f64::INFINITY, "crank.speed is inf"),
-        ("NaN slider force", f(9), f64::NAN, "slider.force"),
-        ("NaN output", f(12), f64::NAN, "pinB.force_x is NaN"),
-        ("integrator time differs", f(19), 0.5, "integrator time"),
-        ("negative step proposal", f(20), -1e-4, "step proposal"),
+        (
+            "NaN previous jerk",
+            f(6),
+            f64::NAN,
+            "the previous crank jerk is NaN",
+        ),
+        ("infinite speed", f(8), f64::INFINITY, "crank.speed is inf"),
+        ("NaN jerk", f(10), f64::NAN, "the crank jerk is NaN"),
+        ("NaN slider force", f(11), f64::NAN, "slider.force"),
+        ("NaN output", f(14), f64::NAN, "pinB.force_x is NaN"),
+        ("integrator time differs", f(21), 0.5, "integrator time"),
+        ("negative step proposal", f(22), -1e-4, "step proposal"),
         (
             "negative start vibration",
-            f(22),
+            f(24),
             -1.0,
             "start's vibration amplitude",
         ),
-        ("NaN coordinate", f(23), f64::NAN, "a coordinate is NaN"),
+        ("NaN coordinate", f(25), f64::NAN, "a coordinate is NaN"),
     ];
     for (label, at, x, expected) in cases {
         let mut bytes = good.clone();

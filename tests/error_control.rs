@@ -358,6 +358,7 @@ fn internal_steps_do_not_follow_a_fine_communication_grid() {
         angle: 150.0 * t,
         speed: 150.0,
         acceleration: 0.0,
+        jerk: 0.0,
     };
     sim.start(0.0, input(0.0), 0.0).unwrap();
     let h = 1e-5;
@@ -406,6 +407,7 @@ fn a_held_step_is_refused_where_the_integrator_has_no_dense_output() {
             angle: 0.0,
             speed: 150.0,
             acceleration: 0.0,
+            jerk: 0.0,
         };
         sim.start(0.0, input, 0.0).unwrap();
         sim.advance(1e-5).unwrap();

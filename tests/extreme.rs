@@ -344,6 +344,7 @@ fn speed_step_and_reversal() {
                     angle: W * t1 + w2 * (t - t1),
                     speed: w2,
                     acceleration: 0.0,
+                    jerk: 0.0,
                 }
             }
         });
@@ -394,6 +395,7 @@ fn standstill() {
         angle: 0.7,
         speed: 0.0,
         acceleration: 0.0,
+        jerk: 0.0,
     };
     let run = drive(&benchmark_rk4(), dt, 1000, 0.0, |_, _| input);
     let first = run.record.outputs[0];

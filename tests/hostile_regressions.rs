@@ -246,6 +246,7 @@ fn the_largest_max_halvings_fails_a_hopeless_step_in_bounded_time() {
                 angle: 0.0,
                 speed: 150.0,
                 acceleration: 0.0,
+                jerk: 0.0,
             },
             0.0,
         )
@@ -538,6 +539,7 @@ fn large_models_inside_the_declared_ranges_take_bounded_time_per_step() {
                     angle: 0.0,
                     speed: 150.0,
                     acceleration: 0.0,
+                    jerk: 0.0,
                 },
                 0.0,
             )

@@ -60,6 +60,7 @@ fn closed_form_equals_general_evaluation() {
                 angle: 0.3,
                 speed: w,
                 acceleration: 40.0,
+                jerk: 0.0,
             },
             7.0,
         )
@@ -173,6 +174,7 @@ fn frame_form_equals_general_evaluation() {
                 angle: 0.7,
                 speed: w,
                 acceleration: 40.0,
+                jerk: 0.0,
             },
             7.0,
         )

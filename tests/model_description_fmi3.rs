@@ -158,6 +158,7 @@ fn shape_matches_the_midpoint_deflection() {
             angle: 0.0,
             speed: 150.0,
             acceleration: 0.0,
+            jerk: 0.0,
         };
         sim.start(0.0, input, 0.0).unwrap();
         for _ in 0..20 {

@@ -77,6 +77,7 @@ fn allocations_per_1000_advances(scene: &Scene, h: f64) -> usize {
             angle: 0.0,
             speed: w,
             acceleration: 0.0,
+            jerk: 0.0,
         },
         0.0,
     )
@@ -92,6 +93,7 @@ fn allocations_per_1000_advances(scene: &Scene, h: f64) -> usize {
             angle: w * t,
             speed: w,
             acceleration: 0.0,
+            jerk: 0.0,
         })
         .unwrap();
         sim.advance(h).unwrap();

@@ -16,6 +16,7 @@ fn input(t: f64) -> CrankInput {
         angle: THETA0 + W * t,
         speed: W,
         acceleration: 0.0,
+        jerk: 0.0,
     }
 }
 

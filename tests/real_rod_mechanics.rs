@@ -111,6 +111,7 @@ fn rigid_rod_with_end_masses_offset_and_gravity_matches_closed_form() {
                 angle: th,
                 speed: w,
                 acceleration: al,
+                jerk: 0.0,
             };
             let state = mech.initial_state(0.0, input, fs).unwrap();
             let o = state.outputs;
@@ -248,6 +249,7 @@ fn statics_midpoint_moment_axial_force_and_stress_match_beam_theory() {
         angle: 0.0,
         speed: 0.0,
         acceleration: 0.0,
+        jerk: 0.0,
     };
     for offset in [0.0, 0.03] {
         let g = 9.81;
@@ -351,6 +353,7 @@ fn automotive_rod_runs_two_revolutions_at_6000_rpm_with_a_gas_force_pulse() {
         angle: w * t,
         speed: w,
         acceleration: 0.0,
+        jerk: 0.0,
     };
     sim.start(0.0, input(0.0), gas(0.0)).unwrap();
     let (mut peak_stress, mut at, mut peak_n, mut peak_m, mut peak_v): (f64, f64, f64, f64, f64) =
@@ -413,6 +416,7 @@ fn segment_chain_summation_moment_equals_the_joint_spring_moment() {
         angle: 0.0,
         speed: w,
         acceleration: 0.0,
+        jerk: 0.0,
     };
     sim.start(0.0, input, 0.0).unwrap();
     let k_r = scene.rod.youngs_modulus * 4.0e-9 / (scene.rod.length / 8.0);
@@ -442,6 +446,7 @@ fn section_outputs_are_restored_with_a_serialized_state() {
             angle: 628.3 * t,
             speed: 628.3,
             acceleration: 0.0,
+            jerk: 0.0,
         };
         sim.start(0.0, input(0.0), 0.0).unwrap();
         for k in 0..20 {

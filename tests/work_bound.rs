@@ -24,6 +24,7 @@ fn start(sim: &mut Simulation) {
             angle: 0.0,
             speed: 150.0,
             acceleration: 0.0,
+            jerk: 0.0,
         },
         0.0,
     )

@@ -30,6 +30,7 @@ impl CrankDrive {
                 angle: speed * t,
                 speed: *speed,
                 acceleration: 0.0,
+                jerk: 0.0,
             },
             CrankDrive::UniformAcceleration {
                 speed,
@@ -38,6 +39,7 @@ impl CrankDrive {
                 angle: speed * t + 0.5 * acceleration * t * t,
                 speed: speed + acceleration * t,
                 acceleration: *acceleration,
+                jerk: 0.0,
             },
             CrankDrive::Ramp { speed, time } => {
                 let (w, tr) = (*speed, *time);
@@ -47,12 +49,14 @@ impl CrankDrive {
                         angle: 0.5 * w * (t - tr / std::f64::consts::PI * x.sin()),
                         speed: 0.5 * w * (1.0 - x.cos()),
                         acceleration: 0.5 * w * std::f64::consts::PI / tr * x.sin(),
+                        jerk: 0.0,
                     }
                 } else {
                     CrankInput {
                         angle: 0.5 * w * tr + w * (t - tr),
                         speed: w,
                         acceleration: 0.0,
+                        jerk: 0.0,
                     }
                 }
             }
@@ -66,6 +70,7 @@ impl CrankDrive {
                             angle: end[1] + end[2] * (t - end[0]),
                             speed: end[2],
                             acceleration: 0.0,
+                            jerk: 0.0,
                         };
                     }
                 }
@@ -76,6 +81,7 @@ impl CrankDrive {
                     angle: a[1] + u * (b[1] - a[1]),
                     speed: a[2] + u * (b[2] - a[2]),
                     acceleration: (b[2] - a[2]) / (b[0] - a[0]),
+                    jerk: 0.0,
                 }
             }
         }

@@ -9,14 +9,15 @@
 //! magic "FLXRFMI2", format version u32, GUID (u32 length + UTF-8),
 //! machine state u8, last step status u8, started u8,
 //! start time f64, stop time defined u8, stop time f64,
-//! inputs: angle, speed, slider force, acceleration f64,
+//! inputs: angle, speed, slider force, acceleration, jerk f64,
 //!         acceleration source u8 (0 none, 1 crank.speed, 2 crank.angle, 3 the FMI 3.0 input
-//!         crank.acceleration), force changed u8 (the model's `Inputs::to_bytes`),
+//!         crank.acceleration), jerk source u8 (0 none, 1 crank.speed, 2 crank.angle), force
+//!         changed u8 (the model's `Inputs::to_bytes`),
 //! scene (u32 length + TOML), simulation present u8 (+ u64 length + core bytes),
 //! checksum u64: FNV-1a 64 of all bytes before it
 //! ```
 //!
-//! The law in force (theta_k, omega_k, alpha_k, t_k) is part of the core's bytes, which carry
+//! The law in force (theta_k, omega_k, alpha_k, j_k, t_k) is part of the core's bytes, which carry
 //! their own magic, version and model fingerprint. The checksum makes any corruption of the
 //! bytes (a flipped bit in a stored double, too) a rejection rather than a silently different
 //! state.
@@ -29,7 +30,7 @@ use crate::hash::fnv1a_64;
 use crate::model::{Inputs, SavedModel};
 
 const MAGIC: &[u8; 8] = b"FLXRFMI2";
-const VERSION: u32 = 2;
+const VERSION: u32 = 3;
 
 /// A saved state of an instance.
 #[derive(Clone, Debug)]
@@ -267,6 +268,8 @@ mod tests {
             slider_force: -3.5,
             acceleration: 10.0,
             source: AccelerationSource::Angle,
+            jerk: -4.0e5,
+            jerk_source: AccelerationSource::Speed,
             force_changed: true,
         }
     }

@@ -1,5 +1,5 @@
 //! The prescribed crank (docs/fmu.md, "Behaviour"):
-//! `theta(t) = theta_k + omega_k s + alpha_k s^2 / 2`, `s = t - t_k`; pin B at
+//! `theta(t) = theta_k + omega_k s + alpha_k s^2 / 2 + j_k s^3 / 6`, `s = t - t_k`; pin B at
 //! `r (cos theta, sin theta)`.
 
 use nalgebra::Vector2;
@@ -13,6 +13,9 @@ pub struct CrankInput {
     pub speed: f64,
     /// alpha_k, rad/s^2 (the crank acceleration given with the inputs; 0 otherwise).
     pub acceleration: f64,
+    /// j_k, rad/s^3 (the crank jerk given with the inputs, the rate of the acceleration over
+    /// the step; 0 otherwise).
+    pub jerk: f64,
 }
 
 /// Crank motion from the input at the communication point `t_k`.
@@ -25,18 +28,21 @@ pub struct CrankLaw {
 }
 
 impl CrankLaw {
-    /// Angle, speed and acceleration at time t.
+    /// Angle, speed and acceleration at time t: `theta_k + omega_k s + alpha_k s^2 / 2 +
+    /// j_k s^3 / 6` and its derivatives.
     pub fn kinematics(&self, t: f64) -> (f64, f64, f64) {
         let s = t - self.t_k;
         let CrankInput {
             angle,
             speed,
             acceleration,
+            jerk,
         } = self.input;
+        // Without a jerk the same operations as the quadratic law (bit for bit).
         (
-            angle + speed * s + 0.5 * acceleration * s * s,
-            speed + acceleration * s,
-            acceleration,
+            angle + speed * s + 0.5 * acceleration * s * s + jerk * s * s * s / 6.0,
+            speed + acceleration * s + 0.5 * jerk * s * s,
+            acceleration + jerk * s,
         )
     }
 
@@ -55,22 +61,35 @@ impl CrankLaw {
 mod tests {
     use super::*;
 
+    /// The pin's velocity and acceleration are the derivatives of its position, and the
+    /// law's speed and acceleration those of its angle, with and without a jerk.
     #[test]
     fn pin_kinematics_are_derivatives() {
-        let law = CrankLaw {
-            length: 0.15,
-            t_k: 0.1,
-            input: CrankInput {
-                angle: 0.3,
-                speed: 120.0,
-                acceleration: 900.0,
-            },
-        };
-        let (t, h) = (0.1013, 1e-6);
-        let (p1, _, _) = law.pin(t - h);
-        let (p2, v, a) = law.pin(t);
-        let (p3, _, _) = law.pin(t + h);
-        assert!(((p3 - p1) / (2.0 * h) - v).norm() < 1e-5 * v.norm());
-        assert!(((p3 - 2.0 * p2 + p1) / (h * h) - a).norm() < 1e-3 * a.norm());
+        for jerk in [0.0, 4.0e6, -2.5e7] {
+            let law = CrankLaw {
+                length: 0.15,
+                t_k: 0.1,
+                input: CrankInput {
+                    angle: 0.3,
+                    speed: 120.0,
+                    acceleration: 900.0,
+                    jerk,
+                },
+            };
+            let (t, h) = (0.1013, 1e-6);
+            let (p1, _, _) = law.pin(t - h);
+            let (p2, v, a) = law.pin(t);
+            let (p3, _, _) = law.pin(t + h);
+            assert!(((p3 - p1) / (2.0 * h) - v).norm() < 1e-5 * v.norm());
+            assert!(((p3 - 2.0 * p2 + p1) / (h * h) - a).norm() < 1e-3 * a.norm());
+            let (th1, w1, a1) = law.kinematics(t - h);
+            let (_, w, a) = law.kinematics(t);
+            let (th3, w3, a3) = law.kinematics(t + h);
+            assert!(((th3 - th1) / (2.0 * h) - w).abs() < 1e-7 * w.abs());
+            assert!(((w3 - w1) / (2.0 * h) - a).abs() < 1e-6 * a.abs().max(1.0));
+            assert!(((a3 - a1) / (2.0 * h) - jerk).abs() < 1e-6 * jerk.abs().max(1.0));
+            // At the law's start: the input itself.
+            assert_eq!(law.kinematics(0.1), (0.3, 120.0, 900.0));
+        }
     }
 }

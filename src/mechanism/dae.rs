@@ -39,8 +39,9 @@ pub struct SliderCrankDae<'a> {
     pub pin_cache: &'a Cell<PinAt>,
 }
 
-/// The crank pin's position, velocity and acceleration at a time under a crank law (a cache:
-/// [`PinAt::pin`]).
+/// The crank pin's position, velocity and acceleration at a time under a crank law, and the
+/// gas force at the crank angle then (a cache: [`PinAt::pin`], [`PinAt::gas`]; the stages of
+/// a step share their times).
 #[derive(Clone, Copy, Debug)]
 pub struct PinAt {
     /// An entry is held (the default holds none).
@@ -48,6 +49,8 @@ pub struct PinAt {
     law: CrankLaw,
     t: f64,
     pin: [Vector2<f64>; 3],
+    /// The gas force at `t`, N, once asked for (NaN before).
+    gas: f64,
 }
 
 impl Default for PinAt {
@@ -62,6 +65,7 @@ impl Default for PinAt {
             },
             t: f64::NAN,
             pin: [Vector2::zeros(); 3],
+            gas: f64::NAN,
         }
     }
 }
@@ -75,6 +79,7 @@ fn same_bits(a: &CrankLaw, b: &CrankLaw) -> bool {
         && same(a.input.angle, b.input.angle)
         && same(a.input.speed, b.input.speed)
         && same(a.input.acceleration, b.input.acceleration)
+        && same(a.input.jerk, b.input.jerk)
 }
 
 impl PinAt {
@@ -96,8 +101,26 @@ impl PinAt {
             law: *law,
             t,
             pin: [p, v, a],
+            gas: f64::NAN,
         });
         (p, v, a)
+    }
+
+    /// `gas` at the crank angle of `law` at `t`, from `cache` when it holds it for the same law
+    /// and time bit for bit (the pin's entry, which [`PinAt::pin`] fills first).
+    pub fn gas(cache: &Cell<PinAt>, law: &CrankLaw, t: f64, gas: &GasForce) -> f64 {
+        let mut cached = cache.get();
+        let same =
+            cached.filled && cached.t.to_bits() == t.to_bits() && same_bits(&cached.law, law);
+        if same && !cached.gas.is_nan() {
+            return cached.gas;
+        }
+        let force = gas.at(law.kinematics(t).0);
+        if same {
+            cached.gas = force;
+            cache.set(cached);
+        }
+        force
     }
 }
 
@@ -114,7 +137,7 @@ impl SliderCrankDae<'_> {
     /// at the crank angle of `t`.
     pub fn slider_force_at(&self, t: f64) -> f64 {
         match self.gas {
-            Some(gas) => self.slider_force + gas.at(self.crank.kinematics(t).0),
+            Some(gas) => self.slider_force + PinAt::gas(self.pin_cache, &self.crank, t, gas),
             None => self.slider_force,
         }
     }

@@ -10,7 +10,7 @@
 //! of turns) is `scale F((theta in degrees) mod cycle)`.
 //!
 //! Inside a communication step the crank angle follows `theta(t) = theta_k + omega_k s +
-//! alpha_k s^2 / 2` ([`super::crank`]), so the force follows the crank through every internal
+//! alpha_k s^2 / 2 + j_k s^3 / 6` ([`super::crank`]), so the force follows the crank through every internal
 //! step: a coarse communication grid sees the same pulse as a fine one. It acts in addition to
 //! the `slider.force` input.
 
@@ -313,7 +313,9 @@ mod tests {
     /// many turns both ways, at the points and at the buckets' edges.
     #[test]
     fn bucketed_lookup_matches_a_search_of_the_whole_table() {
-        let even = table(1440.0, 2880, |a| -3.8e4 * (-((a - 735.0) / 20.0).powi(2)).exp());
+        let even = table(1440.0, 2880, |a| {
+            -3.8e4 * (-((a - 735.0) / 20.0).powi(2)).exp()
+        });
         let mut clustered: Vec<f64> = (0..400).map(|i| 100.0 + i as f64 * 0.0025).collect();
         clustered.extend([0.0, 50.0, 300.0, 500.0, 719.5]);
         clustered.sort_by(f64::total_cmp);
@@ -325,7 +327,10 @@ mod tests {
         };
         for t in [
             even,
-            uneven(vec![30.0, 31.0, 45.0, 90.0, 91.5, 200.0, 333.0, 359.0], 360.0),
+            uneven(
+                vec![30.0, 31.0, 45.0, 90.0, 91.5, 200.0, 333.0, 359.0],
+                360.0,
+            ),
             uneven(clustered, 720.0),
         ] {
             let g = GasForce::new(&t).unwrap();
@@ -333,19 +338,30 @@ mod tests {
             let searched = |theta: f64| {
                 let first = g.angle[0];
                 let x = (theta.to_degrees() - first).rem_euclid(g.cycle) + first;
-                let i = g.angle.partition_point(|&a| a <= x).clamp(1, g.angle.len() - 1) - 1;
+                let i = g
+                    .angle
+                    .partition_point(|&a| a <= x)
+                    .clamp(1, g.angle.len() - 1)
+                    - 1;
                 let [f, c1, c2, c3] = g.cubic[i];
                 let d = x - g.angle[i];
                 f + d * (c1 + d * (c2 + d * c3))
             };
             let scale = g.cubic.iter().fold(0.0f64, |m, c| m.max(c[0].abs()));
             let mut angles: Vec<f64> = (0..20_000).map(|k| -5000.0 + k as f64 * 0.6173).collect();
-            angles.extend(t.angle.iter().flat_map(|a| [*a, a + t.cycle, a - 3.0 * t.cycle]));
+            angles.extend(
+                t.angle
+                    .iter()
+                    .flat_map(|a| [*a, a + t.cycle, a - 3.0 * t.cycle]),
+            );
             angles.extend((0..=40).map(|k| t.angle[0] + k as f64 * t.cycle / t.angle.len() as f64));
             for deg in angles {
                 let theta = deg.to_radians();
                 let (got, want) = (g.at(theta), searched(theta));
-                assert!((got - want).abs() <= 1e-9 * scale, "{deg} deg: {got} vs {want}");
+                assert!(
+                    (got - want).abs() <= 1e-9 * scale,
+                    "{deg} deg: {got} vs {want}"
+                );
             }
         }
     }

@@ -58,9 +58,11 @@ impl MechanismState {
         put(self.previous_input.angle);
         put(self.previous_input.speed);
         put(self.previous_input.acceleration);
+        put(self.previous_input.jerk);
         put(self.input.angle);
         put(self.input.speed);
         put(self.input.acceleration);
+        put(self.input.jerk);
         put(self.slider_force);
         let o = &self.outputs;
         for x in [
@@ -138,7 +140,7 @@ impl MechanismState {
     pub fn read_bytes(&mut self, bytes: &[u8]) -> Result<(), String> {
         let n = self.dae.q.len();
         let m = self.dae.lambda.len();
-        let base = 8 * (27 + 4 * n + m) + 8 * 3 + 1;
+        let base = 8 * (29 + 4 * n + m) + 8 * 3 + 1;
         let k = self.ahead.z0.len();
         let ahead_len = 8 * (4 + 4 * k + 4 * n + m);
         let held = match bytes.get(base) {
@@ -181,9 +183,11 @@ impl MechanismState {
         self.previous_input.angle = get();
         self.previous_input.speed = get();
         self.previous_input.acceleration = get();
+        self.previous_input.jerk = get();
         self.input.angle = get();
         self.input.speed = get();
         self.input.acceleration = get();
+        self.input.jerk = get();
         self.slider_force = get();
         let o = &mut self.outputs;
         o.deflection = get();
@@ -291,6 +295,8 @@ impl MechanismState {
             ("crank.angle", self.input.angle),
             ("crank.speed", self.input.speed),
             ("the crank acceleration", self.input.acceleration),
+            ("the previous crank jerk", self.previous_input.jerk),
+            ("the crank jerk", self.input.jerk),
             ("slider.force", self.slider_force),
             ("the integrator time", self.dae.t),
             ("the step proposal", self.dae.step_hint),

@@ -260,7 +260,9 @@ impl Mechanism {
                 acceleration_only = !speed_off && acceleration_off;
             }
             if !velocities_off {
-                return Ok(false);
+                // The same pin motion now; a new jerk changes the law after now, so a step
+                // held past this point is stale (nothing to project).
+                return Ok(jerk_changed(state));
             }
             // A new crank acceleration that continues the law's angle and speed (a smooth
             // motion sampled as a continuation, `drive::engine`): positions and velocities
@@ -575,6 +577,15 @@ fn input_continues_law(state: &MechanismState) -> bool {
     (new.angle - angle).abs() <= angle_noise(state)
         && (new.speed - speed).abs() <= 1e-14 * (1.0 + speed.abs())
         && (new.acceleration - acceleration).abs() <= 1e-12 * (1.0 + acceleration.abs())
+        && !jerk_changed(state)
+}
+
+/// Whether the law set at the communication point has another jerk than the law before it
+/// (beyond 1e-12 relative): the two agree in angle, speed and acceleration now and part
+/// after it.
+fn jerk_changed(state: &MechanismState) -> bool {
+    let (new, old) = (state.input.jerk, state.previous_input.jerk);
+    (new - old).abs() > 1e-12 * (1.0 + old.abs())
 }
 
 /// Whether stepping past the communication point (dense output) is cheaper than landing on it,

@@ -7,7 +7,7 @@
 //!   [`Interface`] a table is declared for (arrays or scalars, input derivatives or an input
 //!   of their own, an independent variable, the interface's words in descriptions);
 //! - [`inputs`]: the crank input law between communication points,
-//!   `theta_k + omega_k s + alpha_k s^2 / 2`, its state and its byte form;
+//!   `theta_k + omega_k s + alpha_k s^2 / 2 + j_k s^3 / 6`, its state and its byte form;
 //! - [`instance`]: one model instance as an importer drives it ([`Model`]: parameters,
 //!   inputs, the simulation built from them, its validity checks with messages naming the
 //!   value and its allowed range, saved states).

@@ -34,15 +34,19 @@ pub struct SectionLoads {
 pub struct CutSection {
     /// Arc length from B, m.
     pub s: f64,
-    /// (area, area moment, fibre distance) just before and at `s`.
-    sides: [(f64, f64, Option<f64>); 2],
+    /// `(1 / A, c / I)` just before and at `s` (1/m^2, 1/m^3; `c / I` NaN without a fibre
+    /// distance).
+    sides: [(f64, f64); 2],
 }
 
 impl CutSection {
     pub fn new(table: &SectionTable, s: f64) -> CutSection {
         let side = |x: f64| {
             let v = table.at(x);
-            (v.area, v.area_moment, v.fibre_distance)
+            (
+                1.0 / v.area,
+                v.fibre_distance.map_or(f64::NAN, |c| c / v.area_moment),
+            )
         };
         let eps = 1e-9 * table.length();
         CutSection {
@@ -53,13 +57,10 @@ impl CutSection {
 
     /// Largest outer-fibre stress of the two sides, Pa (NaN without a fibre distance).
     pub fn stress(&self, n: f64, m: f64) -> f64 {
-        self.sides
-            .iter()
-            .map(|&(a, i, c)| match c {
-                Some(c) => n.abs() / a + m.abs() * c / i,
-                None => f64::NAN,
-            })
-            .fold(f64::NEG_INFINITY, f64::max)
+        let [(a0, k0), (a1, k1)] = self.sides;
+        f64::NEG_INFINITY
+            .max(n.abs() * a0 + m.abs() * k0)
+            .max(n.abs() * a1 + m.abs() * k1)
     }
 }
 

@@ -177,7 +177,9 @@ def test_description(fmu3_path, fmu_path):
     assert freq.causality == "calculatedParameter" and [int(d.start) for d in freq.dimensions] == [k]
     assert v3["rod.model"].type == "Enumeration" and v3["rod.model_index"].type == "Int32"
     assert v3["rod.elements"].type == "Int32"
-    for name in ["crank.acceleration", "rod.shape", "rod.frequency", "time"]:
+    jerk = v3["crank.jerk"]
+    assert (jerk.causality, jerk.type, jerk.unit, jerk.valueReference) == ("input", "Float64", "rad/s3", 154)
+    for name in ["crank.acceleration", "crank.jerk", "rod.shape", "rod.frequency", "time"]:
         assert 150 <= v3[name].valueReference <= 199, name
     assert md3.coSimulation.canGetAndSetFMUstate and md3.coSimulation.canSerializeFMUstate
 
@@ -219,6 +221,39 @@ def test_crank_acceleration_input_gives_the_input_derivative_results(unzipdir, u
     s3.free()
     for j, name in enumerate(OUTPUTS):
         assert peak_error(out2[:, j], out3[:, j]) <= 1e-12, name
+
+
+def test_crank_jerk_input_gives_the_input_derivative_results(unzipdir, unzipdir3):
+    """FMI 2.0 gets the crank jerk as the order-2 derivative of crank.speed at every point;
+    FMI 3.0 as the input crank.jerk, set once (it holds): the same cubic laws, the same results
+    bit for bit, and the laws' speed read back after the steps."""
+    accel, jerk, h, n = 1500.0, -2.0e6, 1e-4, 8
+    s2 = Slave(unzipdir)
+    s2.init(accel=accel)
+    rows2 = []
+    for k in range(n):
+        if k > 0:
+            s2.fmu.setRealInputDerivatives([s2.vr["crank.speed"]], [1], [accel])
+        s2.fmu.setRealInputDerivatives([s2.vr["crank.speed"]], [2], [jerk])
+        s2.fmu.doStep(k * h, h)
+        rows2.append(s2.outputs())
+    speed2 = s2.get("crank.speed")[0]
+    s2.free()
+    s3 = Slave3(unzipdir3)
+    s3.init(accel=accel)
+    s3.set(crank__jerk=jerk)
+    rows3 = []
+    for k in range(n):
+        s3.step(k * h, h)
+        rows3.append(s3.outputs())
+    assert s3.get("crank.jerk") == [jerk]
+    speed3 = s3.get("crank.speed")[0]
+    s3.free()
+    assert np.array_equal(np.array(rows2), np.array(rows3))
+    t = n * h
+    assert speed2 == speed3
+    # Every step starts at the acceleration set, its jerk adding j h^2 / 2 to the speed.
+    assert math.isclose(speed3, 150.0 + accel * t + n * 0.5 * jerk * h * h, rel_tol=1e-12)
 
 
 def test_acceleration_input_holds_between_points(unzipdir3):

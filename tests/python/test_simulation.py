@@ -109,6 +109,45 @@ def test_crank_acceleration_as_order_2_of_the_angle(unzipdir, ref):
         assert_close(runs[0][:, i], expected[name][:300], 1e-9, name)
 
 
+def test_crank_jerk_from_input_derivatives(unzipdir):
+    """Order 2 of crank.speed is the crank jerk j_k of the law that starts at t_k, order 3 of
+    crank.angle the same (bit for bit), and it holds for that step only:
+    theta = theta_k + omega_k s + alpha_k s^2 / 2 + j_k s^3 / 6, read back after the step."""
+    accel, jerk, h, n = 2000.0, -4.0e6, 1e-4, 6
+    laws, runs = [], []
+    for name, order in [("crank.speed", 2), ("crank.angle", 3)]:
+        slave = Slave(unzipdir)
+        slave.init(accel=accel)
+        law = [slave.get("crank.angle", "crank.speed")]
+        rows = [slave.outputs()]
+        for k in range(n):
+            if k < 2:
+                if k == 1:
+                    slave.fmu.setRealInputDerivatives([slave.vr["crank.speed"]], [1], [accel])
+                slave.fmu.setRealInputDerivatives([slave.vr[name]], [order], [jerk])
+            slave.fmu.doStep(k * h, h)
+            law.append(slave.get("crank.angle", "crank.speed"))
+            rows.append(slave.outputs())
+        slave.free()
+        assert not unexpected_warnings(slave), slave.log.text()
+        laws.append(np.array(law))
+        runs.append(np.array(rows))
+    assert np.array_equal(runs[0], runs[1])
+    assert np.array_equal(laws[0], laws[1])
+    # Steps 0 and 1 carry the acceleration and the jerk; then the law runs on at constant speed.
+    theta, omega = 0.0, 150.0
+    expected = [(theta, omega)]
+    for k in range(n):
+        alpha, j = (accel, jerk) if k < 2 else (0.0, 0.0)
+        theta, omega = (
+            theta + omega * h + 0.5 * alpha * h * h + j * h**3 / 6.0,
+            omega + alpha * h + 0.5 * j * h * h,
+        )
+        expected.append((theta, omega))
+    np.testing.assert_allclose(laws[0], np.array(expected), rtol=1e-13, atol=1e-13)
+    assert laws[0][1, 1] == pytest.approx(150.0 + accel * h + 0.5 * jerk * h * h, abs=1e-12)
+
+
 def test_input_law_without_inputs_continues_without_acceleration(unzipdir):
     """Nothing set at t_k: theta_k, omega_k continue the previous law, alpha_k = 0 (an
     acceleration set at t_0 holds only for the step from t_0). fmi2GetReal of the inputs after

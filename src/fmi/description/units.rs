@@ -12,7 +12,7 @@ struct UnitDef {
     display: &'static [(&'static str, &'static str)],
 }
 
-const UNITS: [UnitDef; 16] = [
+const UNITS: [UnitDef; 17] = [
     UnitDef {
         name: "m",
         base: &[("m", "1")],
@@ -41,6 +41,11 @@ const UNITS: [UnitDef; 16] = [
     UnitDef {
         name: "rad/s2",
         base: &[("s", "-2"), ("rad", "1")],
+        display: &[],
+    },
+    UnitDef {
+        name: "rad/s3",
+        base: &[("s", "-3"), ("rad", "1")],
         display: &[],
     },
     UnitDef {

@@ -5,6 +5,8 @@
 //!   acceleration `alpha_k` of the input law, which an interface with input derivatives takes
 //!   as the order-1 derivative of `crank.speed`, is an ordinary input here, with the same law
 //!   between communication points (see [`crate::model::inputs`]);
+//! - `crank.jerk` (154, input, rad/s3), without input derivatives: the crank jerk `j_k` of the
+//!   input law (the order-2 derivative of `crank.speed` with input derivatives), the same way;
 //! - `rod.shape` (152, output array of N = `[outputs] shape_points`), with arrays: the
 //!   transverse deflection from the chord B -> C, m, at `s_i = i L / (N - 1)`, i = 0..N-1 (the
 //!   same definition as `rod.deflection`, which is element `(N - 1) / 2` for odd N);
@@ -48,7 +50,7 @@ pub(super) fn add_variables(
     if !interface.input_derivatives {
         b.describe(
             "crank.speed",
-            "Crank speed omega at the communication point (the crank acceleration is the input crank.acceleration)",
+            "Crank speed omega at the communication point (the crank acceleration and jerk are the inputs crank.acceleration and crank.jerk)",
         );
         b.input(
             "crank.acceleration",
@@ -57,9 +59,17 @@ pub(super) fn add_variables(
             0.0,
             InputSlot::CrankAcceleration,
             &format!(
-                "Crank acceleration alpha of the input law from the communication point on ({} has no input derivatives): theta = theta_k + omega_k s + alpha s^2/2, omega = omega_k + alpha s",
+                "Crank acceleration alpha of the input law from the communication point on ({} has no input derivatives): theta = theta_k + omega_k s + alpha s^2/2 + j s^3/6, omega = omega_k + alpha s + j s^2/2",
                 interface.name
             ),
+        );
+        b.input(
+            "crank.jerk",
+            154,
+            real("rad/s3"),
+            0.0,
+            InputSlot::CrankJerk,
+            "Crank jerk j of the input law from the communication point on (see crank.acceleration)",
         );
     }
     if !interface.arrays {

@@ -75,7 +75,7 @@ impl VariableTable {
             "Crank angle theta at the communication point",
         );
         b.input("crank.speed", 2, RAD_PER_S, exp.crank_speed, InputSlot::CrankSpeed,
-            "Crank speed omega at the communication point (order-1 input derivative: crank acceleration)");
+            "Crank speed omega at the communication point (input derivatives: order 1 the crank acceleration, order 2 the crank jerk)");
         if out.slider_force {
             b.input(
                 "slider.force",

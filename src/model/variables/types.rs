@@ -90,6 +90,8 @@ pub enum InputSlot {
     /// The crank acceleration `alpha_k` of the input law, as an input of its own (for
     /// interfaces without input derivatives, see [`super::Interface`]).
     CrankAcceleration,
+    /// The crank jerk `j_k` of the input law, as an input of its own (the same interfaces).
+    CrankJerk,
 }
 
 /// Reads one output from the simulation's outputs.
