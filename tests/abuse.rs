@@ -115,7 +115,7 @@ fn crafted_state_bytes_are_rejected_field_by_field() {
     let good = sim.snapshot_to_bytes();
     let before = sim.state().clone();
     let f = |k: usize| 20 + 8 * k;
-    let cases: [(&str, usize, f64, &str); 11] = [
+    let cases: [(&str, usize, f64, &str); 12] = [
         ("time NaN", f(0), f64::NAN, "the time is NaN"),
         ("input time after time", f(1), 1.0, "input law starts"),
         (
@@ -126,6 +126,7 @@ fn crafted_state_bytes_are_rejected_field_by_field() {
         ),
         ("infinite speed", f(8), f64::INFINITY, "crank.speed is inf"),
         ("NaN jerk", f(10), f64::NAN, "the crank jerk is NaN"),
+        ("jerk beyond its window", f(10), 2e12, "crank jerk"),
         ("NaN slider force", f(11), f64::NAN, "slider.force"),
         ("NaN output", f(14), f64::NAN, "pinB.force_x is NaN"),
         ("integrator time differs", f(21), 0.5, "integrator time"),

@@ -206,8 +206,12 @@ impl EngineRun {
 /// 2e-7 rad on the ramp to 6000 rpm), and the state needs no projection at the new input
 /// (`Mechanism::advance`: a new acceleration on the same angle and speed).
 fn continued(input: CrankInput, s: f64, speed: f64, h: f64) -> CrankInput {
-    let angle = input.angle + input.speed * s + 0.5 * input.acceleration * s * s;
-    let omega = input.speed + input.acceleration * s;
+    let (angle, omega, _) = CrankLaw {
+        length: 0.0,
+        t_k: 0.0,
+        input,
+    }
+    .kinematics(s);
     CrankInput {
         angle,
         speed: omega,

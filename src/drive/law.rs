@@ -1,6 +1,7 @@
 //! Crank motions for driving the model: the input `(theta_k, omega_k, alpha_k)` at each
-//! communication point `t_k` (the FMU's input law then holds between the points:
-//! `theta(t_k + s) = theta_k + omega_k s + alpha_k s^2 / 2`).
+//! communication point `t_k`, the motion's own values there, with no jerk (the FMU's input
+//! law then holds between the points: `theta(t_k + s) = theta_k + omega_k s + alpha_k s^2 / 2`;
+//! a master that continues the law with a jerk: `flexrod::drive::engine`).
 
 use crate::error::ModelError;
 use crate::mechanism::CrankInput;

@@ -11,8 +11,8 @@
 //! start time f64, stop time defined u8, stop time f64,
 //! inputs: angle, speed, slider force, acceleration, jerk f64,
 //!         acceleration source u8 (0 none, 1 crank.speed, 2 crank.angle, 3 the FMI 3.0 input
-//!         crank.acceleration), jerk source u8 (0 none, 1 crank.speed, 2 crank.angle), force
-//!         changed u8 (the model's `Inputs::to_bytes`),
+//!         crank.acceleration), jerk source u8 (0 none, 1 crank.speed, 2 crank.angle, 3 the
+//!         FMI 3.0 input crank.jerk), force changed u8 (the model's `Inputs::to_bytes`),
 //! scene (u32 length + TOML), simulation present u8 (+ u64 length + core bytes),
 //! checksum u64: FNV-1a 64 of all bytes before it
 //! ```

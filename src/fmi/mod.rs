@@ -7,7 +7,7 @@
 //! FMI 3.0) and the XML writers: one instance code, one state machine and one variable table
 //! (the model's), parameterized by [`Standard`]. What differs between the standards is said
 //! here, generically: [`Standard::interface`] tells the model's table what the standard offers
-//! (FMI 3.0's `time`, arrays, the input `crank.acceleration` instead of input derivatives, and
+//! (FMI 3.0's `time`, arrays, the inputs `crank.acceleration` and `crank.jerk` instead of input derivatives, and
 //! the status names in descriptions); function names, type families, `instantiationToken`
 //! for GUID and the XML are this layer's.
 //!

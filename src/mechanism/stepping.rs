@@ -60,13 +60,17 @@ impl Mechanism {
                     && (state.input_time < state.dae.t || input_continues_law(state));
                 let stale = !unchanged_law && self.restart_consistently(state)?;
                 let new_inputs = stale || !self.slider_force_consistent(state);
-                if new_inputs {
+                // A new jerk with the same angle, speed and acceleration now: the accelerations
+                // stand (the first stage is the last one), the law after now does not.
+                let new_jerk = state.input_time == state.dae.t && jerk_changed(state);
+                if new_inputs || new_jerk {
                     // A step held ahead was taken under the old inputs.
                     state.ahead.held = false;
-                } else {
+                }
+                if !new_inputs {
                     self.integrator.reuse_first_stage();
                 }
-                return self.adaptive_steps(state, t_end, h, !new_inputs);
+                return self.adaptive_steps(state, t_end, h, !(new_inputs || new_jerk));
             }
             let n_sub = ((h / self.max_step) * (1.0 - 1e-12)).ceil().max(1.0) as usize;
             for k in 0..n_sub {
@@ -260,9 +264,7 @@ impl Mechanism {
                 acceleration_only = !speed_off && acceleration_off;
             }
             if !velocities_off {
-                // The same pin motion now; a new jerk changes the law after now, so a step
-                // held past this point is stale (nothing to project).
-                return Ok(jerk_changed(state));
+                return Ok(false);
             }
             // A new crank acceleration that continues the law's angle and speed (a smooth
             // motion sampled as a continuation, `drive::engine`): positions and velocities
@@ -577,7 +579,6 @@ fn input_continues_law(state: &MechanismState) -> bool {
     (new.angle - angle).abs() <= angle_noise(state)
         && (new.speed - speed).abs() <= 1e-14 * (1.0 + speed.abs())
         && (new.acceleration - acceleration).abs() <= 1e-12 * (1.0 + acceleration.abs())
-        && !jerk_changed(state)
 }
 
 /// Whether the law set at the communication point has another jerk than the law before it

@@ -11,8 +11,9 @@
 //!   `crank.speed`, or order 2 of `crank.angle`), and 0 if none was set at `t_k`;
 //! - `j_k`: the crank jerk set at `t_k` as an input derivative (order 2 of `crank.speed`, or
 //!   order 3 of `crank.angle`), and 0 if none was set at `t_k`. With it a master that knows
-//!   the crank's acceleration at both ends of a step (`j_k = (alpha_k+1 - alpha_k) / h`) makes
-//!   the acceleration continuous across the communication points.
+//!   the crank's motion over the step sets `j_k = 2 (omega(t_k + h) - omega_k - alpha_k h) /
+//!   h^2`: the speed reaches the motion's at `t_k + h`, and the acceleration steps at the
+//!   points by `h^2 alpha'' / 6` only (docs/fmu.md, "Input law between communication points").
 //!
 //! An interface without input derivatives has the inputs `crank.acceleration` and `crank.jerk`
 //! instead, which, like every input, hold their values until they are set again.
@@ -300,14 +301,15 @@ impl Inputs {
     }
 
     /// Set input derivatives at this communication point: `(variable, order, value)`. The
-    /// crank acceleration alpha_k of the law that starts here:
+    /// crank acceleration alpha_k and jerk j_k of the law that starts here:
     ///
-    /// - Order 1 of `crank.speed` and order 2 of `crank.angle` are alpha_k. If both are given
-    ///   at the same point and differ, `crank.speed`'s is used, with a warning.
+    /// - Order 1 of `crank.speed` and order 2 of `crank.angle` are alpha_k, order 2 of
+    ///   `crank.speed` and order 3 of `crank.angle` are j_k. If both are given at the same
+    ///   point and differ, `crank.speed`'s is used, with a warning.
     /// - Order 1 of `crank.angle` is accepted and not used (the angle follows from
     ///   `crank.speed`); a value different from `crank.speed` gives a warning.
     /// - A derivative the law already has (0 for `slider.force`, which is held over a step,
-    ///   for order >= 2 of `crank.speed` and order >= 3 of `crank.angle`) is accepted
+    ///   for order >= 3 of `crank.speed` and order >= 4 of `crank.angle`) is accepted
     ///   silently; any other value of these cannot be used: it is ignored with a warning.
     /// - Order <= 0, variables that are not inputs and non-finite values are errors, and then
     ///   nothing is set.

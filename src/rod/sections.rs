@@ -55,7 +55,8 @@ impl CutSection {
         }
     }
 
-    /// Largest outer-fibre stress of the two sides, Pa (NaN without a fibre distance).
+    /// Largest outer-fibre stress of the two sides, Pa (a side without a fibre distance gives
+    /// NaN, which `max` passes over: -inf where neither side has one).
     pub fn stress(&self, n: f64, m: f64) -> f64 {
         let [(a0, k0), (a1, k1)] = self.sides;
         f64::NEG_INFINITY

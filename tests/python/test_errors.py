@@ -210,8 +210,8 @@ def test_input_derivatives_errors(running):
 
 
 @pytest.mark.parametrize("name,order", [
-    ("slider.force", 1), ("slider.force", 2), ("crank.speed", 2), ("crank.speed", 3),
-    ("crank.angle", 3), ("crank.angle", 4),
+    ("slider.force", 1), ("slider.force", 2), ("crank.speed", 3), ("crank.speed", 4),
+    ("crank.angle", 4), ("crank.angle", 5),
 ])
 def test_unusable_input_derivatives_are_ignored_with_a_warning(running, name, order):
     vr = running.vr[name]
@@ -224,6 +224,22 @@ def test_unusable_input_derivatives_are_ignored_with_a_warning(running, name, or
     assert running.log.messages == []
     t = running.fmu.getRealStatus(2)
     running.fmu.doStep(t, 1e-4)
+
+
+def test_crank_jerk_beyond_its_window_is_refused_by_the_step(running):
+    """A jerk (order 2 of crank.speed) is checked finite when set and against its window,
+    |j| <= 1e12 rad/s^3, by fmi2DoStep: fmi2Error naming it, the instance unchanged; the
+    next point's derivatives step on."""
+    vr = running.vr
+    t = running.fmu.getRealStatus(2)
+    before = running.get("crank.angle", "crank.speed", "rod.deflection")
+    assert set_derivatives(running, [vr["crank.speed"]], [2], [2e12]) == OK
+    expect_error(running, lambda: running.fmu.doStep(t, 1e-4), "crank jerk", "1e12")
+    assert running.get("crank.angle", "crank.speed", "rod.deflection") == before
+    assert running.fmu.getRealStatus(2) == t
+    assert set_derivatives(running, [vr["crank.speed"]], [2], [1e6]) == OK
+    running.fmu.doStep(t, 1e-4)
+    assert running.fmu.getRealStatus(2) == pytest.approx(t + 1e-4)
 
 
 def test_crank_acceleration_from_angle_and_speed(running):

@@ -256,6 +256,16 @@ def test_crank_jerk_input_gives_the_input_derivative_results(unzipdir, unzipdir3
     assert math.isclose(speed3, 150.0 + accel * t + n * 0.5 * jerk * h * h, rel_tol=1e-12)
 
 
+def test_crank_jerk_input_beyond_its_window_is_refused(unzipdir3):
+    """crank.jerk past |j| <= 1e12 rad/s^3: fmi3Error at the set call naming it, nothing set."""
+    s = Slave3(unzipdir3)
+    s.init()
+    expect_error(s, lambda: s.set(crank__jerk=2e12), "crank.jerk", "1e12")
+    assert s.get("crank.jerk") == [0.0]
+    s.step(0.0, 1e-4)
+    s.free()
+
+
 def test_acceleration_input_holds_between_points(unzipdir3):
     """Set once, crank.acceleration holds over later steps (an FMI 2.0 input derivative would
     be reset to 0 at the next point): the angle and speed follow theta0 + w0 t + a t^2/2."""

@@ -1,4 +1,4 @@
-//! Derivatives: `fmi2SetRealInputDerivatives` (the crank acceleration of the input law; what
+//! Derivatives: `fmi2SetRealInputDerivatives` (the crank acceleration and jerk of the input law; what
 //! each derivative means is the model's, see [`crate::model::inputs`]), and the two derivative
 //! functions this FMU does not provide.
 
@@ -9,7 +9,7 @@ use crate::fmi::variables::{Family, ValueReference, Variable};
 use crate::model::Inputs;
 
 impl Instance {
-    /// `fmi2SetRealInputDerivatives`: the crank acceleration alpha_k of the law that starts
+    /// `fmi2SetRealInputDerivatives`: the crank acceleration alpha_k and jerk j_k of the law that starts
     /// at this communication point ([`crate::model::Inputs::set_derivatives`]). Unknown value
     /// references, variables that are not Real, and the model's refusals are errors, and
     /// then nothing is set; the model's warnings are logged.

@@ -53,8 +53,9 @@ pub struct Interface {
     /// frequencies are the scalars `rod.frequency[k]` and there is no shape.
     pub arrays: bool,
     /// Derivatives of inputs set at communication points: the crank acceleration is the
-    /// derivative of `crank.speed` (order 1) or `crank.angle` (order 2); without them it is
-    /// the input `crank.acceleration`.
+    /// derivative of `crank.speed` (order 1) or `crank.angle` (order 2), the crank jerk order 2
+    /// of `crank.speed` or 3 of `crank.angle`; without them they are the inputs
+    /// `crank.acceleration` and `crank.jerk`.
     pub input_derivatives: bool,
     /// The independent variable `time` declared as a variable.
     pub independent_variable: bool,

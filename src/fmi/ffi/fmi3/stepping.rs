@@ -1,7 +1,8 @@
 //! Co-simulation: `fmi3DoStep` with its out-arguments, `fmi3EnterStepMode` (only with event
 //! mode, which this FMU does not have), and the derivatives it does not provide (FMI 3.0,
-//! 4.2 and 2.3.11). The crank acceleration, an input derivative in FMI 2.0, is the input
-//! `crank.acceleration` here (FMI 3.0 Co-Simulation has no input derivatives).
+//! 4.2 and 2.3.11). The crank acceleration and jerk, input derivatives in FMI 2.0, are the
+//! inputs `crank.acceleration` and `crank.jerk` here (FMI 3.0 Co-Simulation has no input
+//! derivatives).
 
 use super::super::component::dispatch;
 use super::super::convert::out;
