@@ -232,64 +232,63 @@ fn jerk_keeps_a_sparsely_set_crank_from_ringing_the_rod() {
 /// (The FFR rod on its closed form; the integrators that hold no step have nothing to drop.)
 #[test]
 fn a_new_jerk_alone_drops_a_step_held_past_the_point() {
-    let mut ffr = Scene::benchmark();
-    ffr.rod.model = flexrod::scene::RodModelKind::Ffr;
-    for (scene, bound) in [(ffr, 1e-8)] {
-        let law = CrankInput {
-            angle: 0.0,
-            speed: 150.0,
-            acceleration: 500.0,
-            jerk: 0.0,
-        };
-        let row = 1e-4;
-        // The rows, and whether a step was held past the point where the jerk changes: at the
-        // first row from the tenth on that holds one (`switch_at`: that row).
-        let run = |nudge: f64, switch_at: Option<usize>| {
-            let mut sim = Simulation::new(&scene).unwrap();
-            sim.start(0.0, law, 0.0).unwrap();
-            let (mut rows, mut switched) = (vec![], None);
-            for k in 0..60 {
-                let held = sim.state().ahead.held;
-                let now = match switch_at {
-                    Some(at) => k == at,
-                    None => switched.is_none() && k >= 10 && held,
-                };
-                if now {
-                    switched = Some((k, held));
-                    let (angle, speed, acceleration) = CrankLaw {
-                        length: 0.0,
-                        t_k: 0.0,
-                        input: law,
-                    }
-                    .kinematics(sim.time());
-                    sim.set_input(CrankInput {
-                        angle,
-                        speed,
-                        acceleration: acceleration * (1.0 + nudge),
-                        jerk: 2.0e6,
-                    })
-                    .unwrap();
+    let mut scene = Scene::benchmark();
+    scene.rod.model = flexrod::scene::RodModelKind::Ffr;
+    let bound = 1e-8;
+    let law = CrankInput {
+        angle: 0.0,
+        speed: 150.0,
+        acceleration: 500.0,
+        jerk: 0.0,
+    };
+    let row = 1e-4;
+    // The rows, and whether a step was held past the point where the jerk changes: at the
+    // first row from the tenth on that holds one (`switch_at`: that row).
+    let run = |nudge: f64, switch_at: Option<usize>| {
+        let mut sim = Simulation::new(&scene).unwrap();
+        sim.start(0.0, law, 0.0).unwrap();
+        let (mut rows, mut switched) = (vec![], None);
+        for k in 0..60 {
+            let held = sim.state().ahead.held;
+            let now = match switch_at {
+                Some(at) => k == at,
+                None => switched.is_none() && k >= 10 && held,
+            };
+            if now {
+                switched = Some((k, held));
+                let (angle, speed, acceleration) = CrankLaw {
+                    length: 0.0,
+                    t_k: 0.0,
+                    input: law,
                 }
-                sim.advance(row).unwrap();
-                let o = sim.outputs();
-                rows.push([
-                    o.deflection_rel,
-                    o.pin_b_force[0],
-                    o.pin_c_force[1],
-                    o.crank_torque,
-                ]);
+                .kinematics(sim.time());
+                sim.set_input(CrankInput {
+                    angle,
+                    speed,
+                    acceleration: acceleration * (1.0 + nudge),
+                    jerk: 2.0e6,
+                })
+                .unwrap();
             }
-            (rows, switched)
-        };
-        let (jerk_alone, switched) = run(0.0, None);
-        let (at, held) = switched.expect("a row from the tenth on holds a step past it");
-        let (restarted, _) = run(1e-9, Some(at));
-        let difference = worst(&jerk_alone, &restarted);
-        println!(
-            "{:?}: jerk set at row {at} (a step held past it: {held}), difference {difference:.1e}",
-            scene.rod.model
-        );
-        assert!(held);
-        assert!(difference < bound, "{difference:e}");
-    }
+            sim.advance(row).unwrap();
+            let o = sim.outputs();
+            rows.push([
+                o.deflection_rel,
+                o.pin_b_force[0],
+                o.pin_c_force[1],
+                o.crank_torque,
+            ]);
+        }
+        (rows, switched)
+    };
+    let (jerk_alone, switched) = run(0.0, None);
+    let (at, held) = switched.expect("a row from the tenth on holds a step past it");
+    let (restarted, _) = run(1e-9, Some(at));
+    let difference = worst(&jerk_alone, &restarted);
+    println!(
+        "{:?}: jerk set at row {at} (a step held past it: {held}), difference {difference:.1e}",
+        scene.rod.model
+    );
+    assert!(held);
+    assert!(difference < bound, "{difference:e}");
 }
