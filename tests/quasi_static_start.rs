@@ -138,11 +138,12 @@ fn an_undeformed_start_at_speed_carries_its_free_vibration() {
     // there is most of the forced motion's, 1 to 2 % of L at 150 rad/s.
     assert!((3e-3..3e-2).contains(&amplitudes[0]), "{}", amplitudes[0]);
     // The amplitude's place in the bytes: after the magic, version and fingerprint (20 bytes),
-    // 22 numbers (times, inputs, slider force, outputs, t, step hint, amplitude).
+    // 24 numbers (times, the two laws' inputs with their jerks, slider force, outputs, t, step
+    // hint, amplitude).
     let mut sim = Simulation::new(&Scene::benchmark()).unwrap();
     sim.start(0.0, input(0.0), 0.0).unwrap();
     let mut bytes = sim.snapshot_to_bytes();
-    let at = 20 + 8 * 22;
+    let at = 20 + 8 * 24;
     assert_eq!(
         f64::from_le_bytes(bytes[at..at + 8].try_into().unwrap()),
         sim.state().start_vibration
