@@ -40,8 +40,8 @@ pub struct SliderCrankDae<'a> {
 }
 
 /// The crank pin's position, velocity and acceleration at a time under a crank law, and the
-/// gas force at the crank angle then (a cache: [`PinAt::pin`], [`PinAt::gas`]; the stages of
-/// a step share their times).
+/// gas force at the crank angle then (a cache: [`PinAt::pin_and_gas`]; the stages of a step
+/// share their times).
 #[derive(Clone, Copy, Debug)]
 pub struct PinAt {
     /// An entry is held (the default holds none).
@@ -90,37 +90,45 @@ impl PinAt {
         law: &CrankLaw,
         t: f64,
     ) -> (Vector2<f64>, Vector2<f64>, Vector2<f64>) {
-        let cached = cache.get();
-        if cached.filled && cached.t.to_bits() == t.to_bits() && same_bits(&cached.law, law) {
-            let [p, v, a] = cached.pin;
-            return (p, v, a);
-        }
-        let (p, v, a) = law.pin(t);
-        cache.set(PinAt {
-            filled: true,
-            law: *law,
-            t,
-            pin: [p, v, a],
-            gas: f64::NAN,
-        });
+        let ([p, v, a], _) = PinAt::pin_and_gas(cache, law, t, None);
         (p, v, a)
     }
 
-    /// `gas` at the crank angle of `law` at `t`, from `cache` when it holds it for the same law
-    /// and time bit for bit (the pin's entry, which [`PinAt::pin`] fills first).
-    pub fn gas(cache: &Cell<PinAt>, law: &CrankLaw, t: f64, gas: &GasForce) -> f64 {
-        let mut cached = cache.get();
-        let same =
-            cached.filled && cached.t.to_bits() == t.to_bits() && same_bits(&cached.law, law);
-        if same && !cached.gas.is_nan() {
-            return cached.gas;
+    /// [`PinAt::pin`] and, with a `gas` table, the gas force at the crank angle of `law` at
+    /// `t` (0 without), N: one look into `cache`, which holds both for the same law and time
+    /// bit for bit.
+    pub fn pin_and_gas(
+        cache: &Cell<PinAt>,
+        law: &CrankLaw,
+        t: f64,
+        gas: Option<&GasForce>,
+    ) -> ([Vector2<f64>; 3], f64) {
+        let mut entry = cache.get();
+        let hit = entry.filled && entry.t.to_bits() == t.to_bits() && same_bits(&entry.law, law);
+        let mut changed = !hit;
+        if !hit {
+            let (p, v, a) = law.pin(t);
+            entry = PinAt {
+                filled: true,
+                law: *law,
+                t,
+                pin: [p, v, a],
+                gas: f64::NAN,
+            };
         }
-        let force = gas.at(law.kinematics(t).0);
-        if same {
-            cached.gas = force;
-            cache.set(cached);
+        let force = match gas {
+            None => 0.0,
+            Some(table) if entry.gas.is_nan() => {
+                entry.gas = table.at(law.kinematics(t).0);
+                changed = true;
+                entry.gas
+            }
+            Some(_) => entry.gas,
+        };
+        if changed {
+            cache.set(entry);
         }
-        force
+        (entry.pin, force)
     }
 }
 
@@ -137,7 +145,9 @@ impl SliderCrankDae<'_> {
     /// at the crank angle of `t`.
     pub fn slider_force_at(&self, t: f64) -> f64 {
         match self.gas {
-            Some(gas) => self.slider_force + PinAt::gas(self.pin_cache, &self.crank, t, gas),
+            Some(gas) => {
+                self.slider_force + PinAt::pin_and_gas(self.pin_cache, &self.crank, t, Some(gas)).1
+            }
             None => self.slider_force,
         }
     }

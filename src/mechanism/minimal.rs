@@ -39,7 +39,7 @@
 
 use nalgebra::Vector2;
 
-use super::dae::SliderCrankDae;
+use super::dae::{PinAt, SliderCrankDae};
 use crate::integrator::StepFailure;
 use crate::rod::ffr::{FfrKernel, MAX_MODES};
 
@@ -90,14 +90,19 @@ impl SliderCrankDae<'_> {
         qdd: &mut [f64],
         lambda: Option<&mut [f64]>,
     ) -> Result<(), StepFailure> {
-        let (pin, pin_v, pin_a) = self.pin_at(t);
+        let ([pin, pin_v, pin_a], gas) =
+            PinAt::pin_and_gas(self.pin_cache, &self.crank, t, self.gas);
         let inputs = Inputs {
             pin,
             pin_v,
             pin_a,
             offset: self.slider_offset,
             slider_mass: self.slider_mass,
-            slider_force: self.slider_force_at(t),
+            slider_force: if self.gas.is_some() {
+                self.slider_force + gas
+            } else {
+                self.slider_force
+            },
             gravity: self.gravity,
         };
         if kernel.pinned {
