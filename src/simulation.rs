@@ -113,11 +113,15 @@ impl Simulation {
         Ok(())
     }
 
-    /// Set the crank input that holds from the current time on.
+    /// Set the crank input that holds from the current time on. Set again at the same time,
+    /// the last one holds, and the law before the first stays the one the state followed
+    /// (which the next step compares the new law with).
     pub fn set_input(&mut self, input: CrankInput) -> Result<(), ModelError> {
         check_input(input, self.state.slider_force)?;
-        self.state.previous_input = self.state.input;
-        self.state.previous_input_time = self.state.input_time;
+        if self.state.input_time != self.state.time {
+            self.state.previous_input = self.state.input;
+            self.state.previous_input_time = self.state.input_time;
+        }
         self.state.input = input;
         self.state.input_time = self.state.time;
         Ok(())

@@ -227,7 +227,8 @@ fn jerk_keeps_a_sparsely_set_crank_from_ringing_the_rod() {
 /// A new jerk alone (the angle, speed and acceleration continue the law) at a communication
 /// point past which the integrator holds a step: the held step, taken under the old law, is
 /// dropped, and the run equals one whose acceleration there differs by 1e-9 relative (which
-/// restarts the integration on the new law), within 1e-8 of the peaks. A held step reused
+/// restarts the integration on the new law), within 1e-8 of the peaks; set twice there, the
+/// same run bit for bit. A held step reused
 /// would carry the old law's acceleration (here 40 % off) past the point: 5e-3 of the peaks.
 /// (The FFR rod on its closed form; the integrators that hold no step have nothing to drop.)
 #[test]
@@ -244,7 +245,7 @@ fn a_new_jerk_alone_drops_a_step_held_past_the_point() {
     let row = 1e-4;
     // The rows, and whether a step was held past the point where the jerk changes: at the
     // first row from the tenth on that holds one (`switch_at`: that row).
-    let run = |nudge: f64, switch_at: Option<usize>| {
+    let run = |nudge: f64, switch_at: Option<usize>, twice: bool| {
         let mut sim = Simulation::new(&scene).unwrap();
         sim.start(0.0, law, 0.0).unwrap();
         let (mut rows, mut switched) = (vec![], None);
@@ -262,13 +263,16 @@ fn a_new_jerk_alone_drops_a_step_held_past_the_point() {
                     input: law,
                 }
                 .kinematics(sim.time());
-                sim.set_input(CrankInput {
+                let new = CrankInput {
                     angle,
                     speed,
                     acceleration: acceleration * (1.0 + nudge),
                     jerk: 2.0e6,
-                })
-                .unwrap();
+                };
+                sim.set_input(new).unwrap();
+                if twice {
+                    sim.set_input(new).unwrap();
+                }
             }
             sim.advance(row).unwrap();
             let o = sim.outputs();
@@ -281,9 +285,13 @@ fn a_new_jerk_alone_drops_a_step_held_past_the_point() {
         }
         (rows, switched)
     };
-    let (jerk_alone, switched) = run(0.0, None);
+    let (jerk_alone, switched) = run(0.0, None, false);
     let (at, held) = switched.expect("a row from the tenth on holds a step past it");
-    let (restarted, _) = run(1e-9, Some(at));
+    let (restarted, _) = run(1e-9, Some(at), false);
+    // The same law set twice at the point: the law the state followed is still the one
+    // before (so the held step is dropped as well).
+    let (set_twice, _) = run(0.0, Some(at), true);
+    assert_eq!(set_twice, jerk_alone);
     let difference = worst(&jerk_alone, &restarted);
     println!(
         "{:?}: jerk set at row {at} (a step held past it: {held}), difference {difference:.1e}",
