@@ -41,18 +41,7 @@ use nalgebra::Vector2;
 
 use super::dae::{PinAt, SliderCrankDae};
 use crate::integrator::StepFailure;
-use crate::rod::ffr::{FfrKernel, MAX_MODES};
-
-type Row = [f64; MAX_MODES];
-
-#[inline(always)]
-fn dot<const N: usize>(a: &Row, b: &[f64; N]) -> f64 {
-    let mut s = 0.0;
-    for j in 0..N {
-        s += a[j] * b[j];
-    }
-    s
-}
+use crate::rod::ffr::{rate_rows, stacked_rows, FfrKernel, Stacked};
 
 #[inline(always)]
 fn dot_n<const N: usize>(a: &[f64; N], b: &[f64; N]) -> f64 {
@@ -63,9 +52,23 @@ fn dot_n<const N: usize>(a: &[f64; N], b: &[f64; N]) -> f64 {
     s
 }
 
+/// The first `R` rows of the kernel's stacked matrix times `x` ([`Stacked`]): one pass over
+/// its columns, each row summed in the order of a dot product.
 #[inline(always)]
-fn mat_vec<const N: usize>(m: &[Row; MAX_MODES], x: &[f64; N]) -> [f64; N] {
-    std::array::from_fn(|i| dot(&m[i], x))
+fn stacked_product<const N: usize, const R: usize>(k: &FfrKernel, x: &[f64; N]) -> [f64; R] {
+    let mut out = [0.0; R];
+    for (column, xj) in k.stacked.columns.iter().zip(x) {
+        for r in 0..R {
+            out[r] += column[r] * xj;
+        }
+    }
+    out
+}
+
+/// Block `b` ([`Stacked::block`]) of a stacked product.
+#[inline(always)]
+fn block<const N: usize, const R: usize>(product: &[f64; R], b: usize) -> [f64; N] {
+    std::array::from_fn(|i| product[Stacked::block(b, N) + i])
 }
 
 /// The inputs of one evaluation besides the coordinates.
@@ -113,7 +116,8 @@ impl SliderCrankDae<'_> {
     }
 }
 
-/// [`evaluate`] instantiated for the kernel's mode count.
+/// [`evaluate`] instantiated for the kernel's mode count (with its stacked rows, all and those
+/// for the velocities: [`stacked_rows`], [`rate_rows`]).
 fn evaluate_modes<const PINNED: bool>(
     k: &FfrKernel,
     inputs: &Inputs,
@@ -123,14 +127,14 @@ fn evaluate_modes<const PINNED: bool>(
     lambda: Option<&mut [f64]>,
 ) -> Result<(), StepFailure> {
     match k.n {
-        1 => evaluate::<1, PINNED>(k, inputs, q, v, qdd, lambda),
-        2 => evaluate::<2, PINNED>(k, inputs, q, v, qdd, lambda),
-        3 => evaluate::<3, PINNED>(k, inputs, q, v, qdd, lambda),
-        4 => evaluate::<4, PINNED>(k, inputs, q, v, qdd, lambda),
-        5 => evaluate::<5, PINNED>(k, inputs, q, v, qdd, lambda),
-        6 => evaluate::<6, PINNED>(k, inputs, q, v, qdd, lambda),
-        7 => evaluate::<7, PINNED>(k, inputs, q, v, qdd, lambda),
-        8 => evaluate::<8, PINNED>(k, inputs, q, v, qdd, lambda),
+        1 => evaluate::<1, PINNED, 16, 10>(k, inputs, q, v, qdd, lambda),
+        2 => evaluate::<2, PINNED, 25, 13>(k, inputs, q, v, qdd, lambda),
+        3 => evaluate::<3, PINNED, 34, 16>(k, inputs, q, v, qdd, lambda),
+        4 => evaluate::<4, PINNED, 43, 19>(k, inputs, q, v, qdd, lambda),
+        5 => evaluate::<5, PINNED, 52, 22>(k, inputs, q, v, qdd, lambda),
+        6 => evaluate::<6, PINNED, 61, 25>(k, inputs, q, v, qdd, lambda),
+        7 => evaluate::<7, PINNED, 70, 28>(k, inputs, q, v, qdd, lambda),
+        8 => evaluate::<8, PINNED, 79, 31>(k, inputs, q, v, qdd, lambda),
         _ => Err(StepFailure::SingularMatrix),
     }
 }
@@ -184,7 +188,7 @@ fn solve<const N: usize>(a: &mut [[f64; N]; N], b: &mut [f64; N]) -> Result<(), 
 /// the terms of `S_B` and `S_C` are left out: the body-frame chord is `(d_x, 0)`, so `rho =
 /// |d_x|` without a square root and the frame angle is `psi` itself.
 #[allow(clippy::needless_range_loop)]
-fn evaluate<const N: usize, const PINNED: bool>(
+fn evaluate<const N: usize, const PINNED: bool, const R: usize, const RD: usize>(
     k: &FfrKernel,
     inp: &Inputs,
     q: &mut [f64],
@@ -192,19 +196,23 @@ fn evaluate<const N: usize, const PINNED: bool>(
     qdd: &mut [f64],
     lambda: Option<&mut [f64]>,
 ) -> Result<(), StepFailure> {
+    const { assert!(R == stacked_rows(N) && RD == rate_rows(N)) };
     let ns = 3 + N;
     let p: [f64; N] = std::array::from_fn(|j| q[3 + j]);
     let pd: [f64; N] = std::array::from_fn(|j| v[3 + j]);
+    // Every product of the kernel's matrices with p and p' in two passes.
+    let sp = stacked_product::<N, R>(k, &p);
+    let spd = stacked_product::<N, RD>(k, &pd);
     // Positions.
-    let g0p = mat_vec(&k.g0, &p);
+    let g0p: [f64; N] = block(&sp, Stacked::G0);
     let (u_b, u_c) = if PINNED {
         ([k.x_b, 0.0], [k.x_c - 0.5 * dot_n(&p, &g0p), 0.0])
     } else {
         (
-            [k.x_b + dot(&k.s_b[0], &p), dot(&k.s_b[1], &p)],
+            [k.x_b + sp[Stacked::S_B], sp[Stacked::S_B + 1]],
             [
-                k.x_c + dot(&k.s_c[0], &p) - 0.5 * dot_n(&p, &g0p),
-                dot(&k.s_c[1], &p),
+                k.x_c + sp[Stacked::S_C] - 0.5 * dot_n(&p, &g0p),
+                sp[Stacked::S_C + 1],
             ],
         )
     };
@@ -285,7 +293,7 @@ fn evaluate<const N: usize, const PINNED: bool>(
     let sb_pd = if PINNED {
         [0.0; 2]
     } else {
-        [dot(&k.s_b[0], &pd), dot(&k.s_b[1], &pd)]
+        [spd[Stacked::S_B], spd[Stacked::S_B + 1]]
     };
     let asb_pd = if PINNED { [0.0; 2] } else { rot(sb_pd) };
     v[2] = w;
@@ -300,9 +308,9 @@ fn evaluate<const N: usize, const PINNED: bool>(
     let sc_pd = if PINNED {
         [-dot_n(&g0p, &pd), 0.0]
     } else {
-        [dot(&k.s_c[0], &pd) - dot_n(&g0p, &pd), dot(&k.s_c[1], &pd)]
+        [spd[Stacked::S_C] - dot_n(&g0p, &pd), spd[Stacked::S_C + 1]]
     };
-    let g0pd = mat_vec(&k.g0, &pd);
+    let g0pd: [f64; N] = block(&spd, Stacked::G0);
     let beta_b = rot([
         -w2 * u_b[0] - 2.0 * w * sb_pd[1],
         -w2 * u_b[1] + 2.0 * w * sb_pd[0],
@@ -322,7 +330,7 @@ fn evaluate<const N: usize, const PINNED: bool>(
         inp.pin_a.y - beta_b[1] - a_b[1] * b_phi,
     ];
     // Mass matrix blocks.
-    let f = [k.i1[0] + dot(&k.i2[0], &p), k.i1[1] + dot(&k.i2[1], &p)];
+    let f = [k.i1[0] + sp[Stacked::I2], k.i1[1] + sp[Stacked::I2 + 1]];
     let af = rot(f);
     let arm = [-af[1], af[0]];
     let mut ai2 = [[0.0; N]; 2];
@@ -331,28 +339,25 @@ fn evaluate<const N: usize, const PINNED: bool>(
         ai2[0][j] = col[0];
         ai2[1][j] = col[1];
     }
-    let muu_p = mat_vec(&k.m_uu, &p);
-    let m_phiphi = k.i3 + 2.0 * dot(&k.i4, &p) + dot_n(&p, &muu_p);
+    let muu_p: [f64; N] = block(&sp, Stacked::M_UU);
+    let m_phiphi = k.i3 + 2.0 * sp[Stacked::I4] + dot_n(&p, &muu_p);
+    let pst: [f64; N] = block(&sp, Stacked::S_TILDE_T);
     let mut m_phip = [0.0; N];
     for j in 0..N {
-        let mut pst = 0.0;
-        for i in 0..N {
-            pst += p[i] * k.s_tilde[i][j];
-        }
-        m_phip[j] = -(k.i5[j] + pst) + k.i_rot[j];
+        m_phip[j] = -(k.i5[j] + pst[j]) + k.i_rot[j];
     }
-    let gap = mat_vec(&k.g_a, &p);
+    let gap: [f64; N] = block(&sp, Stacked::G_A);
     let m = k.mass;
     let g = inp.gravity;
     // Forces Q.
-    let i2pd = [dot(&k.i2[0], &pd), dot(&k.i2[1], &pd)];
+    let i2pd = [spd[Stacked::I2], spd[Stacked::I2 + 1]];
     let qr = rot([w2 * f[0] + 2.0 * w * i2pd[1], w2 * f[1] - 2.0 * w * i2pd[0]]);
     let mut q_phi = arm[0] * g.x + arm[1] * g.y;
     for j in 0..N {
         q_phi -= 2.0 * w * (k.i4[j] + muu_p[j]) * pd[j];
     }
-    let mgv_p = mat_vec(&k.m_uu_gv, &p);
-    let st_pd = mat_vec(&k.s_tilde, &pd);
+    let mgv_p: [f64; N] = block(&sp, Stacked::M_UU_GV);
+    let st_pd: [f64; N] = block(&spd, Stacked::S_TILDE);
     // The p rows' coupling to R'': `M_pR = (A I2)^T + c_s (G_a p) (A e_x)^T`, row i `u_i`.
     let mut u = [[0.0; N]; 2];
     for i in 0..N {
@@ -383,13 +388,12 @@ fn evaluate<const N: usize, const PINNED: bool>(
     // mode's own row `p.(T p) - w^2/2 p.(Z p) + p_a p.(F p) + p'.(Z p')` and every row m
     // `p_a (2 (T p)_m - w^2 (Z p)_m + p_a (F p)_m)`; `Z p` also gives the mass part below.
     let axial_products = k.axial_one.as_ref().map(|one| {
-        let zp = mat_vec(&one.z, &p);
         (
             one.a,
-            mat_vec(&one.t3, &p),
-            zp,
-            mat_vec(&one.t4, &p),
-            mat_vec(&one.z, &pd),
+            block::<N, R>(&sp, Stacked::T3),
+            block::<N, R>(&sp, Stacked::Z),
+            block::<N, R>(&sp, Stacked::T4),
+            block::<N, RD>(&spd, Stacked::Z),
         )
     });
     if let Some((a, t3p, zp, t4p, zpd)) = &axial_products {

@@ -22,6 +22,21 @@ use super::rod::FfrRod;
 /// Most retained modes the fixed-size kernel takes (more fall back to the general path).
 pub const MAX_MODES: usize = 8;
 
+/// Rows of [`Stacked`] for `n` modes: the [`Stacked::HEAD`] single rows and nine `n x n`
+/// blocks.
+pub const fn stacked_rows(n: usize) -> usize {
+    Stacked::HEAD + 9 * n
+}
+
+/// The leading rows of [`Stacked`] an evaluation multiplies by the modal velocities `p'`: the
+/// single rows and the blocks `G_0`, `S~` and `Z`.
+pub const fn rate_rows(n: usize) -> usize {
+    Stacked::HEAD + 3 * n
+}
+
+/// Rows of [`Stacked`] at [`MAX_MODES`].
+pub const STACKED_ROWS: usize = stacked_rows(MAX_MODES);
+
 type Row = [f64; MAX_MODES];
 type Square = [[f64; MAX_MODES]; MAX_MODES];
 
@@ -73,6 +88,80 @@ pub struct FfrKernel {
     /// The same in fixed-size arrays where one mode is axial (the common case: the slider-rod
     /// axial mode), which the closed form takes instead.
     pub axial_one: Option<Box<AxialOne>>,
+    /// Every matrix the closed form multiplies by `p` (or `p'`), stacked.
+    pub stacked: Stacked,
+}
+
+/// The rows an evaluation multiplies by the modal coordinates `p`, stacked into one matrix so
+/// that `S p` is one pass (column by column, every row's sum in the order of a dot product):
+/// the single rows `S_B` (x, y), `S_C` (x, y), `I2` (x, y), `I4`, then the `n x n` blocks
+/// `G_0`, `S~`, `Z`, `S~^T`, `M_uu`, `c_s G_a`, `M_uu - G_v`, `T`, `F` (the last three of
+/// [`AxialOne`], zero without one axial mode), block `b` at row [`Stacked::block`]`(b, n)`.
+/// The first [`rate_rows`] rows are also the products with `p'`.
+#[derive(Clone, Debug)]
+pub struct Stacked {
+    /// Column `j`: column `j` of every stacked row.
+    pub columns: [[f64; STACKED_ROWS]; MAX_MODES],
+}
+
+impl Stacked {
+    pub const S_B: usize = 0;
+    pub const S_C: usize = 2;
+    pub const I2: usize = 4;
+    pub const I4: usize = 6;
+    /// Single rows before the blocks.
+    pub const HEAD: usize = 7;
+    pub const G0: usize = 0;
+    pub const S_TILDE: usize = 1;
+    pub const Z: usize = 2;
+    pub const S_TILDE_T: usize = 3;
+    pub const M_UU: usize = 4;
+    pub const G_A: usize = 5;
+    pub const M_UU_GV: usize = 6;
+    pub const T3: usize = 7;
+    pub const T4: usize = 8;
+
+    /// First row of block `b` for `n` modes.
+    pub const fn block(b: usize, n: usize) -> usize {
+        Self::HEAD + b * n
+    }
+
+    /// The stack of `k`'s rows.
+    fn of(k: &FfrKernel) -> Stacked {
+        let n = k.n;
+        let mut columns = [[0.0; STACKED_ROWS]; MAX_MODES];
+        let zero = [[0.0; MAX_MODES]; MAX_MODES];
+        let axial = k.axial_one.as_deref();
+        let blocks: [(usize, &Square, bool); 9] = [
+            (Self::G0, &k.g0, false),
+            (Self::S_TILDE, &k.s_tilde, false),
+            (Self::Z, axial.map_or(&zero, |a| &a.z), false),
+            (Self::S_TILDE_T, &k.s_tilde, true),
+            (Self::M_UU, &k.m_uu, false),
+            (Self::G_A, &k.g_a, false),
+            (Self::M_UU_GV, &k.m_uu_gv, false),
+            (Self::T3, axial.map_or(&zero, |a| &a.t3), false),
+            (Self::T4, axial.map_or(&zero, |a| &a.t4), false),
+        ];
+        for (j, column) in columns.iter_mut().enumerate().take(n) {
+            let single = [
+                k.s_b[0][j],
+                k.s_b[1][j],
+                k.s_c[0][j],
+                k.s_c[1][j],
+                k.i2[0][j],
+                k.i2[1][j],
+                k.i4[j],
+            ];
+            column[..Self::HEAD].copy_from_slice(&single);
+            for (b, m, transposed) in blocks {
+                for i in 0..n {
+                    column[Self::block(b, n) + i] = if transposed { m[j][i] } else { m[i][j] };
+                }
+            }
+        }
+        Stacked { columns }
+    }
 }
 
 /// [`crate::modal::axial_coupling::AxialCoupling`] with one axial mode `a`: its rows `T_aij`,
@@ -142,13 +231,14 @@ impl FfrKernel {
     }
 
     /// Set [`FfrKernel::pinned`] (and the pin rows to zero) where the modes leave the pins in
-    /// place.
+    /// place, then stack the rows ([`Stacked`]).
     fn with_pins_checked(mut self) -> FfrKernel {
         if self.pin_mobility() <= PINNED_MOBILITY {
             self.pinned = true;
             self.s_b = [[0.0; MAX_MODES]; 2];
             self.s_c = [[0.0; MAX_MODES]; 2];
         }
+        self.stacked = Stacked::of(&self);
         self
     }
 
@@ -213,6 +303,9 @@ impl FfrKernel {
                     .as_ref()
                     .and_then(AxialOne::of)
                     .map(Box::new),
+                stacked: Stacked {
+                    columns: [[0.0; STACKED_ROWS]; MAX_MODES],
+                },
             }
             .with_pins_checked(),
         )

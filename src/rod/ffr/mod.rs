@@ -9,5 +9,5 @@ pub mod rod;
 pub mod sections;
 pub mod stiffening;
 
-pub use kernel::{FfrKernel, MAX_MODES};
+pub use kernel::{rate_rows, stacked_rows, FfrKernel, Stacked, MAX_MODES};
 pub use rod::FfrRod;
