@@ -90,6 +90,9 @@ pub struct FfrKernel {
     pub axial_one: Option<Box<AxialOne>>,
     /// Every matrix the closed form multiplies by `p` (or `p'`), stacked.
     pub stacked: Stacked,
+    /// `S_hat` at B, C and the midpoint as the shape integrals give them (the pin rows not set
+    /// to zero with [`FfrKernel::pinned`]), for [`FfrKernel::mid_deflection`].
+    pub points: [[Row; 2]; 3],
 }
 
 /// The rows an evaluation multiplies by the modal coordinates `p`, stacked into one matrix so
@@ -230,6 +233,32 @@ impl FfrKernel {
         largest * self.mass.sqrt()
     }
 
+    /// The rod's mid-deflection ([`crate::rod::body::chord_distance`] of `ubar` at B, C and
+    /// the midpoint) from its modal coordinates `p`: `ubar = xbar + S_hat p`, at C less
+    /// `1/2 p^T G_0 p` with the stiffening on, the sums in the order of the rod's own `ubar`.
+    pub fn mid_deflection(&self, p: &[f64]) -> f64 {
+        let p = &p[..self.n];
+        let [b, mut c, mid] = [(self.x_b, 0), (self.x_c, 1), (self.x_mid, 2)].map(|(x, at)| {
+            let [rx, ry] = &self.points[at];
+            let mut u = nalgebra::Vector2::new(x, 0.0);
+            for ((sx, sy), pj) in rx.iter().zip(ry).zip(p) {
+                u.x += sx * pj;
+                u.y += sy * pj;
+            }
+            u
+        });
+        if self.stiffening {
+            let mut quad = 0.0;
+            for (row, pi) in self.g0.iter().zip(p) {
+                for (g, pj) in row.iter().zip(p) {
+                    quad += pi * g * pj;
+                }
+            }
+            c.x -= 0.5 * quad;
+        }
+        crate::rod::body::chord_distance([b, c, mid])
+    }
+
     /// Set [`FfrKernel::pinned`] (and the pin rows to zero) where the modes leave the pins in
     /// place, then stack the rows ([`Stacked`]).
     fn with_pins_checked(mut self) -> FfrKernel {
@@ -306,6 +335,7 @@ impl FfrKernel {
                 stacked: Stacked {
                     columns: [[0.0; STACKED_ROWS]; MAX_MODES],
                 },
+                points: [two(&ig.s_b), two(&ig.s_c), two(&ig.s_mid)],
             }
             .with_pins_checked(),
         )

@@ -394,8 +394,12 @@ impl RodBody for FfrRod {
     }
 
     /// In the body frame (`ubar` of B, C and the midpoint): the distance from the chord does
-    /// not change with the frame's rotation.
+    /// not change with the frame's rotation. With the kernel, its fixed-size sums in the same
+    /// order ([`super::kernel::FfrKernel::mid_deflection`]).
     fn mid_deflection(&self, q: &[f64]) -> f64 {
+        if let Some(kernel) = &self.kernel {
+            return kernel.mid_deflection(&q[3..]);
+        }
         crate::rod::body::chord_distance(
             [RodPoint::B, RodPoint::C, RodPoint::Mid].map(|p| self.ubar(p, q)),
         )
