@@ -43,23 +43,25 @@ use super::dae::{PinAt, SliderCrankDae};
 use crate::integrator::StepFailure;
 use crate::rod::ffr::{rate_rows, stacked_rows, FfrKernel, Stacked};
 
+/// `a . b`, summed from the first product (no leading `0 +`).
 #[inline(always)]
 fn dot_n<const N: usize>(a: &[f64; N], b: &[f64; N]) -> f64 {
-    let mut s = 0.0;
-    for j in 0..N {
+    let mut s = a[0] * b[0];
+    for j in 1..N {
         s += a[j] * b[j];
     }
     s
 }
 
 /// The first `R` rows of the kernel's stacked matrix times `x` ([`Stacked`]): one pass over
-/// its columns, each row summed in the order of a dot product.
+/// its columns, each row summed in the order of a dot product from the first product.
 #[inline(always)]
 fn stacked_product<const N: usize, const R: usize>(k: &FfrKernel, x: &[f64; N]) -> [f64; R] {
-    let mut out = [0.0; R];
-    for (column, xj) in k.stacked.columns.iter().zip(x) {
+    let columns = &k.stacked.columns;
+    let mut out: [f64; R] = std::array::from_fn(|r| columns[0][r] * x[0]);
+    for j in 1..N {
         for r in 0..R {
-            out[r] += column[r] * xj;
+            out[r] += columns[j][r] * x[j];
         }
     }
     out
