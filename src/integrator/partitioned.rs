@@ -60,6 +60,9 @@ pub struct PartitionedRhs {
     /// The last evaluation came from the system's closed form
     /// ([`DaeSystem::reduced_rhs`]), which wrote the multipliers too.
     closed_form: bool,
+    /// The independent coordinates are `q[start..start + k]` (the common case: the modal
+    /// coordinates after the frame): copied as ranges.
+    contiguous_from: Option<usize>,
 }
 
 impl PartitionedRhs {
@@ -75,6 +78,10 @@ impl PartitionedRhs {
             "one dependent coordinate per constraint"
         );
         let k = independent.len();
+        let contiguous_from = independent
+            .first()
+            .copied()
+            .filter(|&start| independent.iter().enumerate().all(|(a, &i)| i == start + a));
         PartitionedRhs {
             n,
             m,
@@ -98,6 +105,7 @@ impl PartitionedRhs {
             lambda: vec![0.0; m],
             position_tolerance: 1e-14 * system.coordinate_scale(0).max(1e-300),
             closed_form: false,
+            contiguous_from,
         }
     }
 
@@ -171,6 +179,37 @@ impl PartitionedRhs {
         }
     }
 
+    /// `z`, `z'` into `q`, `v` at the independent coordinates.
+    fn scatter(&mut self, z: &[f64], zd: &[f64]) {
+        if let Some(start) = self.contiguous_from {
+            let k = self.independent.len();
+            let (q, v) = (&mut self.q[start..start + k], &mut self.v[start..start + k]);
+            for ((q, v), (z, zd)) in q.iter_mut().zip(v).zip(z.iter().zip(zd)) {
+                *q = *z;
+                *v = *zd;
+            }
+        } else {
+            for (a, &i) in self.independent.iter().enumerate() {
+                self.q[i] = z[a];
+                self.v[i] = zd[a];
+            }
+        }
+    }
+
+    /// `z''` from `q''` at the independent coordinates into `zdd`.
+    fn gather_accelerations(&self, zdd: &mut [f64]) {
+        if let Some(start) = self.contiguous_from {
+            let k = self.independent.len();
+            for (zdd, qdd) in zdd.iter_mut().zip(&self.qdd[start..start + k]) {
+                *zdd = *qdd;
+            }
+        } else {
+            for (a, &i) in self.independent.iter().enumerate() {
+                zdd[a] = self.qdd[i];
+            }
+        }
+    }
+
     /// `z''` at `(t, z, z')` into `zdd`; leaves `q, v, qdd` (full) of this evaluation.
     pub fn evaluate(
         &mut self,
@@ -196,10 +235,7 @@ impl PartitionedRhs {
         complete: bool,
     ) -> Result<(), StepFailure> {
         let (n, m, k) = (self.n, self.m, self.k());
-        for (a, &i) in self.independent.iter().enumerate() {
-            self.q[i] = z[a];
-            self.v[i] = zd[a];
-        }
+        self.scatter(z, zd);
         let lambda = if complete {
             Some(&mut self.lambda[..])
         } else {
@@ -209,9 +245,7 @@ impl PartitionedRhs {
         self.closed_form = closed.is_some();
         if let Some(result) = closed {
             result?;
-            for (a, &i) in self.independent.iter().enumerate() {
-                zdd[a] = self.qdd[i];
-            }
+            self.gather_accelerations(zdd);
             return Ok(());
         }
         self.solve_positions(system, t, z)?;
