@@ -188,6 +188,9 @@ struct ExponentialForm {
     interpolation_h: f64,
     /// Stage remainders `n = z'' + w^2 z + c z'`: start, a, b, c, end.
     remainders: [Vec<f64>; 5],
+    /// The free responses of the step's start, `E(h/2) y0` and `E(h) y0` (`z` and `z'` of
+    /// each), which stages a, b and c, end share.
+    free: Vec<[f64; 4]>,
     /// [`damped_max_phase`] over the lowest oscillator's circular frequency, s, and
     /// [`axial_max_phase`] over the axial oscillators' ([`AdaptiveRungeKutta::cap_phase_on`]).
     max_step: f64,
@@ -354,6 +357,7 @@ impl AdaptiveRungeKutta {
             full: vec![[0.0; 4]; k],
             interpolation_h: f64::NAN,
             remainders: std::array::from_fn(|_| vec![0.0; k]),
+            free: vec![[0.0; 4]; k],
             max_step,
             oscillators,
         });
@@ -496,59 +500,33 @@ impl AdaptiveRungeKutta {
             }
             form.weights_h = h;
         }
-        let weights = &form.weights;
-        for a in 0..k {
-            form.remainders[0][a] =
-                form.oscillators[a].remainder(self.z0[a], self.zd0[a], self.kv[0][a]);
+        let weights = &form.weights[..k];
+        let oscillators = &form.oscillators[..k];
+        let (z0, zd0) = (&self.z0[..k], &self.zd0[..k]);
+        for (a, free) in form.free[..k].iter_mut().enumerate() {
+            form.remainders[0][a] = oscillators[a].remainder(z0[a], zd0[a], self.kv[0][a]);
+            let (zh, vh) = exponential::apply(&weights[a].half, z0[a], zd0[a]);
+            let (zf, vf) = exponential::apply(&weights[a].full, z0[a], zd0[a]);
+            *free = [zh, vh, zf, vf];
         }
         self.rhs.q.copy_from_slice(&self.q0);
         for s in 1..5 {
-            for a in 0..k {
-                let w = &weights[a];
-                let n = &form.remainders;
-                let (z, zd) = match s {
-                    1 => {
-                        let (z, zd) = exponential::apply(&w.half, self.z0[a], self.zd0[a]);
-                        let g = 0.5 * h * n[0][a];
-                        (z + w.half_phi1[0] * g, zd + w.half_phi1[1] * g)
-                    }
-                    2 => {
-                        let (z, zd) = exponential::apply(&w.half, self.z0[a], self.zd0[a]);
-                        let (g, g2) = (0.5 * h * n[0][a], h * (n[1][a] - n[0][a]));
-                        (
-                            z + w.half_phi1[0] * g + w.half_phi2[0] * g2,
-                            zd + w.half_phi1[1] * g + w.half_phi2[1] * g2,
-                        )
-                    }
-                    3 => {
-                        let (z, zd) = exponential::apply(&w.full, self.z0[a], self.zd0[a]);
-                        let (g, g2) = (h * n[0][a], 2.0 * h * (n[2][a] - n[0][a]));
-                        (
-                            z + w.full_phi1[0] * g + w.full_phi2[0] * g2,
-                            zd + w.full_phi1[1] * g + w.full_phi2[1] * g2,
-                        )
-                    }
-                    _ => {
-                        let (z, zd) = exponential::apply(&w.full, self.z0[a], self.zd0[a]);
-                        let (g0, g1, g3) =
-                            (h * n[0][a], 2.0 * h * (n[1][a] + n[2][a]), h * n[3][a]);
-                        let f = &w.f;
-                        (
-                            z + f[0][0] * g0 + f[1][0] * g1 + f[2][0] * g3,
-                            zd + f[0][1] * g0 + f[1][1] * g1 + f[2][1] * g3,
-                        )
-                    }
-                };
-                self.z[a] = z;
-                self.zd[a] = zd;
-            }
+            exponential_stage(
+                s,
+                h,
+                weights,
+                &form.free[..k],
+                &form.remainders,
+                &mut self.z[..k],
+                &mut self.zd[..k],
+            );
             let t = state.t + if s <= 2 { 0.5 * h } else { h };
             self.rhs
                 .evaluate_stage(system, t, &self.z, &self.zd, &mut self.kv[s], s == 4)?;
             *work += 1;
-            for a in 0..k {
-                form.remainders[s][a] =
-                    form.oscillators[a].remainder(self.z[a], self.zd[a], self.kv[s][a]);
+            let (z, zd, kv) = (&self.z[..k], &self.zd[..k], &self.kv[s][..k]);
+            for (a, n) in form.remainders[s][..k].iter_mut().enumerate() {
+                *n = oscillators[a].remainder(z[a], zd[a], kv[a]);
             }
         }
         let tol = self.local_tolerance(system, state, h);
@@ -562,6 +540,60 @@ impl AdaptiveRungeKutta {
             return Err(StepFailure::NonFinite);
         }
         Ok(err)
+    }
+}
+
+/// Stage `s` of the exponential form ([`EtdWeights`]; 1, 2: a, b at `t + h/2`; 3: c at
+/// `t + h`; 4: the new solution) from the free responses `free` of the step's start
+/// (`E(h/2) y0`, `E(h) y0`) and the remainders `n` of the stages before, into `z`, `z'`:
+/// `a = E(h/2) y0 + phi_1(h/2) g`, `g = h/2 N0`; `b = a + phi_2(h/2) h (Na - N0)`;
+/// `c = E(h) y0 + phi_1(h) h N0 + phi_2(h) 2 h (Nb - N0)`;
+/// `y1 = E(h) y0 + f1 h N0 + f2 2 h (Na + Nb) + f3 h Nc`.
+fn exponential_stage(
+    s: usize,
+    h: f64,
+    weights: &[EtdWeights],
+    free: &[[f64; 4]],
+    n: &[Vec<f64>; 5],
+    z: &mut [f64],
+    zd: &mut [f64],
+) {
+    let k = z.len();
+    let (weights, free, zd) = (&weights[..k], &free[..k], &mut zd[..k]);
+    let [n0, n1, n2, n3] = [&n[0][..k], &n[1][..k], &n[2][..k], &n[3][..k]];
+    for (a, z) in z.iter_mut().enumerate() {
+        let w = &weights[a];
+        let [zh, vh, zf, vf] = free[a];
+        let (zs, vs) = match s {
+            1 => {
+                let g = 0.5 * h * n0[a];
+                (zh + w.half_phi1[0] * g, vh + w.half_phi1[1] * g)
+            }
+            2 => {
+                let (g, g2) = (0.5 * h * n0[a], h * (n1[a] - n0[a]));
+                (
+                    zh + w.half_phi1[0] * g + w.half_phi2[0] * g2,
+                    vh + w.half_phi1[1] * g + w.half_phi2[1] * g2,
+                )
+            }
+            3 => {
+                let (g, g2) = (h * n0[a], 2.0 * h * (n2[a] - n0[a]));
+                (
+                    zf + w.full_phi1[0] * g + w.full_phi2[0] * g2,
+                    vf + w.full_phi1[1] * g + w.full_phi2[1] * g2,
+                )
+            }
+            _ => {
+                let (g0, g1, g3) = (h * n0[a], 2.0 * h * (n1[a] + n2[a]), h * n3[a]);
+                let f = &w.f;
+                (
+                    zf + f[0][0] * g0 + f[1][0] * g1 + f[2][0] * g3,
+                    vf + f[0][1] * g0 + f[1][1] * g1 + f[2][1] * g3,
+                )
+            }
+        };
+        *z = zs;
+        zd[a] = vs;
     }
 }
 
