@@ -183,6 +183,10 @@ struct ExponentialForm {
     /// derived data, so a restored state replays bit for bit).
     weights: Vec<EtdWeights>,
     weights_h: f64,
+    /// The weights of the step size before (`previous_h`), kept: the steps alternate between
+    /// a proposal and the landing on a communication point.
+    previous: Vec<EtdWeights>,
+    previous_h: f64,
     /// `E(h)` of the held step `interpolation_h` (the end of the interpolant).
     full: Vec<Propagator>,
     interpolation_h: f64,
@@ -354,6 +358,8 @@ impl AdaptiveRungeKutta {
         self.exponential = Some(ExponentialForm {
             weights: vec![EtdWeights::default(); k],
             weights_h: f64::NAN,
+            previous: vec![EtdWeights::default(); k],
+            previous_h: f64::NAN,
             full: vec![[0.0; 4]; k],
             interpolation_h: f64::NAN,
             remainders: std::array::from_fn(|_| vec![0.0; k]),
@@ -495,10 +501,14 @@ impl AdaptiveRungeKutta {
     ) -> Result<f64, StepFailure> {
         let k = self.k;
         if form.weights_h != h {
-            for (w, osc) in form.weights.iter_mut().zip(&form.oscillators) {
-                *w = EtdWeights::new(osc, h);
+            std::mem::swap(&mut form.weights, &mut form.previous);
+            std::mem::swap(&mut form.weights_h, &mut form.previous_h);
+            if form.weights_h != h {
+                for (w, osc) in form.weights.iter_mut().zip(&form.oscillators) {
+                    *w = EtdWeights::new(osc, h);
+                }
+                form.weights_h = h;
             }
-            form.weights_h = h;
         }
         let weights = &form.weights[..k];
         let oscillators = &form.oscillators[..k];
