@@ -115,17 +115,19 @@ impl SliderCrankDae<'_> {
             },
             gravity: self.gravity,
         };
-        if kernel.pinned {
-            evaluate_modes::<true>(kernel, &inputs, q, v, qdd, lambda)
-        } else {
-            evaluate_modes::<false>(kernel, &inputs, q, v, qdd, lambda)
+        match (kernel.pinned, lambda.is_some()) {
+            (true, true) => evaluate_modes::<true, true>(kernel, &inputs, q, v, qdd, lambda),
+            (true, false) => evaluate_modes::<true, false>(kernel, &inputs, q, v, qdd, lambda),
+            (false, true) => evaluate_modes::<false, true>(kernel, &inputs, q, v, qdd, lambda),
+            (false, false) => evaluate_modes::<false, false>(kernel, &inputs, q, v, qdd, lambda),
         }
     }
 }
 
 /// [`evaluate`] instantiated for the kernel's mode count (with its stacked rows, all and those
-/// for the velocities: [`stacked_rows`], [`rate_rows`]).
-fn evaluate_modes<const PINNED: bool>(
+/// for the velocities: [`stacked_rows`], [`rate_rows`]); `COMPLETE`: a last stage (the
+/// multipliers asked for), else an intermediate one, each compiled without the other's work.
+fn evaluate_modes<const PINNED: bool, const COMPLETE: bool>(
     k: &FfrKernel,
     inputs: &Inputs,
     q: &mut [f64],
@@ -134,14 +136,14 @@ fn evaluate_modes<const PINNED: bool>(
     lambda: Option<&mut [f64]>,
 ) -> Result<(), StepFailure> {
     match k.n {
-        1 => evaluate::<1, PINNED, 16, 10>(k, inputs, q, v, qdd, lambda),
-        2 => evaluate::<2, PINNED, 25, 13>(k, inputs, q, v, qdd, lambda),
-        3 => evaluate::<3, PINNED, 34, 16>(k, inputs, q, v, qdd, lambda),
-        4 => evaluate::<4, PINNED, 43, 19>(k, inputs, q, v, qdd, lambda),
-        5 => evaluate::<5, PINNED, 52, 22>(k, inputs, q, v, qdd, lambda),
-        6 => evaluate::<6, PINNED, 61, 25>(k, inputs, q, v, qdd, lambda),
-        7 => evaluate::<7, PINNED, 70, 28>(k, inputs, q, v, qdd, lambda),
-        8 => evaluate::<8, PINNED, 79, 31>(k, inputs, q, v, qdd, lambda),
+        1 => evaluate::<1, PINNED, COMPLETE, 16, 10>(k, inputs, q, v, qdd, lambda),
+        2 => evaluate::<2, PINNED, COMPLETE, 25, 13>(k, inputs, q, v, qdd, lambda),
+        3 => evaluate::<3, PINNED, COMPLETE, 34, 16>(k, inputs, q, v, qdd, lambda),
+        4 => evaluate::<4, PINNED, COMPLETE, 43, 19>(k, inputs, q, v, qdd, lambda),
+        5 => evaluate::<5, PINNED, COMPLETE, 52, 22>(k, inputs, q, v, qdd, lambda),
+        6 => evaluate::<6, PINNED, COMPLETE, 61, 25>(k, inputs, q, v, qdd, lambda),
+        7 => evaluate::<7, PINNED, COMPLETE, 70, 28>(k, inputs, q, v, qdd, lambda),
+        8 => evaluate::<8, PINNED, COMPLETE, 79, 31>(k, inputs, q, v, qdd, lambda),
         _ => Err(StepFailure::SingularMatrix),
     }
 }
@@ -195,7 +197,13 @@ fn solve<const N: usize>(a: &mut [[f64; N]; N], b: &mut [f64; N]) -> Result<(), 
 /// the terms of `S_B` and `S_C` are left out: the body-frame chord is `(d_x, 0)`, so `rho =
 /// |d_x|` without a square root and the frame angle is `psi` itself.
 #[allow(clippy::needless_range_loop)]
-fn evaluate<const N: usize, const PINNED: bool, const R: usize, const RD: usize>(
+fn evaluate<
+    const N: usize,
+    const PINNED: bool,
+    const COMPLETE: bool,
+    const R: usize,
+    const RD: usize,
+>(
     k: &FfrKernel,
     inp: &Inputs,
     q: &mut [f64],
@@ -263,7 +271,7 @@ fn evaluate<const N: usize, const PINNED: bool, const R: usize, const RD: usize>
     let wb = rot(u_b);
     q[0] = inp.pin.x - wb[0];
     q[1] = inp.pin.y - wb[1];
-    if lambda.is_some() {
+    if COMPLETE {
         q[2] += wrap(s.atan2(c) - q[2]);
     }
     q[ns] = inp.pin.x + x;
@@ -304,8 +312,7 @@ fn evaluate<const N: usize, const PINNED: bool, const R: usize, const RD: usize>
     };
     let asb_pd = if PINNED { [0.0; 2] } else { rot(sb_pd) };
     v[2] = w;
-    let complete = lambda.is_some();
-    if complete {
+    if COMPLETE {
         v[0] = inp.pin_v.x - a_b[0] * w - asb_pd[0];
         v[1] = inp.pin_v.y - a_b[1] * w - asb_pd[1];
         v[ns] = inp.pin_v.x - y * w + dot_n(&ad[0], &pd);
@@ -420,7 +427,7 @@ fn evaluate<const N: usize, const PINNED: bool, const R: usize, const RD: usize>
     let mut mt_r = [[0.0; N]; 2];
     let mut mt_phi = [0.0; N];
     let mut mt_s = [0.0; N];
-    if !PINNED || lambda.is_some() {
+    if !PINNED || COMPLETE {
         for j in 0..N {
             mt_r[0][j] = m * t_r[0][j] + arm[0] * g_phi[j] + ai2[0][j];
             mt_r[1][j] = m * t_r[1][j] + arm[1] * g_phi[j] + ai2[1][j];
@@ -499,7 +506,7 @@ fn evaluate<const N: usize, const PINNED: bool, const R: usize, const RD: usize>
     }
     // Accelerations (the dependent ones at a last stage only).
     qdd[3..3 + N].copy_from_slice(&zdd);
-    let Some(lambda) = lambda else {
+    let Some(lambda) = lambda.filter(|_| COMPLETE) else {
         return Ok(());
     };
     qdd[0] = dot_n(&t_r[0], &zdd) + b_r[0];
