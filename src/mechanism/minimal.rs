@@ -72,10 +72,13 @@ fn stacked_product<const N: usize, const R: usize>(k: &FfrKernel, x: &[f64; N]) 
     out
 }
 
-/// Block `b` ([`Stacked::block`]) of a stacked product.
+/// Block `b` ([`Stacked::block`]) of a stacked product, in place.
 #[inline(always)]
-fn block<const N: usize, const R: usize>(product: &[f64; R], b: usize) -> [f64; N] {
-    std::array::from_fn(|i| product[Stacked::block(b, N) + i])
+fn block<const N: usize, const R: usize>(product: &[f64; R], b: usize) -> &[f64; N] {
+    let first = Stacked::block(b, N);
+    product[first..first + N]
+        .try_into()
+        .expect("a block is N rows")
 }
 
 /// The inputs of one evaluation besides the coordinates.
@@ -219,14 +222,14 @@ fn evaluate<
     let sp = stacked_product::<N, R>(k, &p);
     let spd = stacked_product::<N, RD>(k, &pd);
     // Positions.
-    let g0p: [f64; N] = block(&sp, Stacked::G0);
+    let g0p: &[f64; N] = block(&sp, Stacked::G0);
     let (u_b, u_c) = if PINNED {
-        ([k.x_b, 0.0], [k.x_c - 0.5 * dot_n(&p, &g0p), 0.0])
+        ([k.x_b, 0.0], [k.x_c - 0.5 * dot_n(&p, g0p), 0.0])
     } else {
         (
             [k.x_b + sp[Stacked::S_B], sp[Stacked::S_B + 1]],
             [
-                k.x_c + sp[Stacked::S_C] - 0.5 * dot_n(&p, &g0p),
+                k.x_c + sp[Stacked::S_C] - 0.5 * dot_n(&p, g0p),
                 sp[Stacked::S_C + 1],
             ],
         )
@@ -320,17 +323,17 @@ fn evaluate<
     // Velocity-product terms of the pin accelerations (body frame, then global).
     let w2 = w * w;
     let sc_pd = if PINNED {
-        [-dot_n(&g0p, &pd), 0.0]
+        [-dot_n(g0p, &pd), 0.0]
     } else {
-        [spd[Stacked::S_C] - dot_n(&g0p, &pd), spd[Stacked::S_C + 1]]
+        [spd[Stacked::S_C] - dot_n(g0p, &pd), spd[Stacked::S_C + 1]]
     };
-    let g0pd: [f64; N] = block(&spd, Stacked::G0);
+    let g0pd: &[f64; N] = block(&spd, Stacked::G0);
     let beta_b = rot([
         -w2 * u_b[0] - 2.0 * w * sb_pd[1],
         -w2 * u_b[1] + 2.0 * w * sb_pd[0],
     ]);
     let beta_c = rot([
-        -w2 * u_c[0] - 2.0 * w * sc_pd[1] - dot_n(&pd, &g0pd),
+        -w2 * u_c[0] - 2.0 * w * sc_pd[1] - dot_n(&pd, g0pd),
         -w2 * u_c[1] + 2.0 * w * sc_pd[0],
     ]);
     let delta = [
@@ -353,14 +356,14 @@ fn evaluate<
         ai2[0][j] = col[0];
         ai2[1][j] = col[1];
     }
-    let muu_p: [f64; N] = block(&sp, Stacked::M_UU);
-    let m_phiphi = k.i3 + 2.0 * sp[Stacked::I4] + dot_n(&p, &muu_p);
-    let pst: [f64; N] = block(&sp, Stacked::S_TILDE_T);
+    let muu_p: &[f64; N] = block(&sp, Stacked::M_UU);
+    let m_phiphi = k.i3 + 2.0 * sp[Stacked::I4] + dot_n(&p, muu_p);
+    let pst: &[f64; N] = block(&sp, Stacked::S_TILDE_T);
     let mut m_phip = [0.0; N];
     for j in 0..N {
         m_phip[j] = -(k.i5[j] + pst[j]) + k.i_rot[j];
     }
-    let gap: [f64; N] = block(&sp, Stacked::G_A);
+    let gap: &[f64; N] = block(&sp, Stacked::G_A);
     let m = k.mass;
     let g = inp.gravity;
     // Forces Q.
@@ -370,8 +373,8 @@ fn evaluate<
     for j in 0..N {
         q_phi -= 2.0 * w * (k.i4[j] + muu_p[j]) * pd[j];
     }
-    let mgv_p: [f64; N] = block(&sp, Stacked::M_UU_GV);
-    let st_pd: [f64; N] = block(&spd, Stacked::S_TILDE);
+    let mgv_p: &[f64; N] = block(&sp, Stacked::M_UU_GV);
+    let st_pd: &[f64; N] = block(&spd, Stacked::S_TILDE);
     // The p rows' coupling to R'': `M_pR = (A I2)^T + c_s (G_a p) (A e_x)^T`, row i `u_i`.
     let mut u = [[0.0; N]; 2];
     for i in 0..N {
