@@ -54,16 +54,11 @@ fn dot_n<const N: usize>(a: &[f64; N], b: &[f64; N]) -> f64 {
 }
 
 /// The first `R` rows of the kernel's stacked matrix times `x` ([`Stacked`]): one pass over
-/// its columns, each row summed in the order of a dot product from the first product. Out of
-/// line: inlined, its rows crowd the evaluation's registers (the automotive engine run takes
-/// 0.5 M more instructions, 5 % of its stepping).
-#[inline(never)]
+/// its columns, each row summed in the order of a dot product from the first product.
+#[inline(always)]
 fn stacked_product<const N: usize, const R: usize>(k: &FfrKernel, x: &[f64; N]) -> [f64; R] {
     let columns = &k.stacked.columns;
-    let mut out = [0.0; R];
-    for r in 0..R {
-        out[r] = columns[0][r] * x[0];
-    }
+    let mut out: [f64; R] = std::array::from_fn(|r| columns[0][r] * x[0]);
     for j in 1..N {
         for r in 0..R {
             out[r] += columns[j][r] * x[j];
@@ -72,13 +67,10 @@ fn stacked_product<const N: usize, const R: usize>(k: &FfrKernel, x: &[f64; N]) 
     out
 }
 
-/// Block `b` ([`Stacked::block`]) of a stacked product, in place.
+/// Block `b` ([`Stacked::block`]) of a stacked product.
 #[inline(always)]
-fn block<const N: usize, const R: usize>(product: &[f64; R], b: usize) -> &[f64; N] {
-    let first = Stacked::block(b, N);
-    product[first..first + N]
-        .try_into()
-        .expect("a block is N rows")
+fn block<const N: usize, const R: usize>(product: &[f64; R], b: usize) -> [f64; N] {
+    std::array::from_fn(|i| product[Stacked::block(b, N) + i])
 }
 
 /// The inputs of one evaluation besides the coordinates.
@@ -118,19 +110,17 @@ impl SliderCrankDae<'_> {
             },
             gravity: self.gravity,
         };
-        match (kernel.pinned, lambda.is_some()) {
-            (true, true) => evaluate_modes::<true, true>(kernel, &inputs, q, v, qdd, lambda),
-            (true, false) => evaluate_modes::<true, false>(kernel, &inputs, q, v, qdd, lambda),
-            (false, true) => evaluate_modes::<false, true>(kernel, &inputs, q, v, qdd, lambda),
-            (false, false) => evaluate_modes::<false, false>(kernel, &inputs, q, v, qdd, lambda),
+        if kernel.pinned {
+            evaluate_modes::<true>(kernel, &inputs, q, v, qdd, lambda)
+        } else {
+            evaluate_modes::<false>(kernel, &inputs, q, v, qdd, lambda)
         }
     }
 }
 
 /// [`evaluate`] instantiated for the kernel's mode count (with its stacked rows, all and those
-/// for the velocities: [`stacked_rows`], [`rate_rows`]); `COMPLETE`: a last stage (the
-/// multipliers asked for), else an intermediate one, each compiled without the other's work.
-fn evaluate_modes<const PINNED: bool, const COMPLETE: bool>(
+/// for the velocities: [`stacked_rows`], [`rate_rows`]).
+fn evaluate_modes<const PINNED: bool>(
     k: &FfrKernel,
     inputs: &Inputs,
     q: &mut [f64],
@@ -139,14 +129,14 @@ fn evaluate_modes<const PINNED: bool, const COMPLETE: bool>(
     lambda: Option<&mut [f64]>,
 ) -> Result<(), StepFailure> {
     match k.n {
-        1 => evaluate::<1, PINNED, COMPLETE, 16, 10>(k, inputs, q, v, qdd, lambda),
-        2 => evaluate::<2, PINNED, COMPLETE, 25, 13>(k, inputs, q, v, qdd, lambda),
-        3 => evaluate::<3, PINNED, COMPLETE, 34, 16>(k, inputs, q, v, qdd, lambda),
-        4 => evaluate::<4, PINNED, COMPLETE, 43, 19>(k, inputs, q, v, qdd, lambda),
-        5 => evaluate::<5, PINNED, COMPLETE, 52, 22>(k, inputs, q, v, qdd, lambda),
-        6 => evaluate::<6, PINNED, COMPLETE, 61, 25>(k, inputs, q, v, qdd, lambda),
-        7 => evaluate::<7, PINNED, COMPLETE, 70, 28>(k, inputs, q, v, qdd, lambda),
-        8 => evaluate::<8, PINNED, COMPLETE, 79, 31>(k, inputs, q, v, qdd, lambda),
+        1 => evaluate::<1, PINNED, 16, 10>(k, inputs, q, v, qdd, lambda),
+        2 => evaluate::<2, PINNED, 25, 13>(k, inputs, q, v, qdd, lambda),
+        3 => evaluate::<3, PINNED, 34, 16>(k, inputs, q, v, qdd, lambda),
+        4 => evaluate::<4, PINNED, 43, 19>(k, inputs, q, v, qdd, lambda),
+        5 => evaluate::<5, PINNED, 52, 22>(k, inputs, q, v, qdd, lambda),
+        6 => evaluate::<6, PINNED, 61, 25>(k, inputs, q, v, qdd, lambda),
+        7 => evaluate::<7, PINNED, 70, 28>(k, inputs, q, v, qdd, lambda),
+        8 => evaluate::<8, PINNED, 79, 31>(k, inputs, q, v, qdd, lambda),
         _ => Err(StepFailure::SingularMatrix),
     }
 }
@@ -200,13 +190,7 @@ fn solve<const N: usize>(a: &mut [[f64; N]; N], b: &mut [f64; N]) -> Result<(), 
 /// the terms of `S_B` and `S_C` are left out: the body-frame chord is `(d_x, 0)`, so `rho =
 /// |d_x|` without a square root and the frame angle is `psi` itself.
 #[allow(clippy::needless_range_loop)]
-fn evaluate<
-    const N: usize,
-    const PINNED: bool,
-    const COMPLETE: bool,
-    const R: usize,
-    const RD: usize,
->(
+fn evaluate<const N: usize, const PINNED: bool, const R: usize, const RD: usize>(
     k: &FfrKernel,
     inp: &Inputs,
     q: &mut [f64],
@@ -222,14 +206,14 @@ fn evaluate<
     let sp = stacked_product::<N, R>(k, &p);
     let spd = stacked_product::<N, RD>(k, &pd);
     // Positions.
-    let g0p: &[f64; N] = block(&sp, Stacked::G0);
+    let g0p: [f64; N] = block(&sp, Stacked::G0);
     let (u_b, u_c) = if PINNED {
-        ([k.x_b, 0.0], [k.x_c - 0.5 * dot_n(&p, g0p), 0.0])
+        ([k.x_b, 0.0], [k.x_c - 0.5 * dot_n(&p, &g0p), 0.0])
     } else {
         (
             [k.x_b + sp[Stacked::S_B], sp[Stacked::S_B + 1]],
             [
-                k.x_c + sp[Stacked::S_C] - 0.5 * dot_n(&p, g0p),
+                k.x_c + sp[Stacked::S_C] - 0.5 * dot_n(&p, &g0p),
                 sp[Stacked::S_C + 1],
             ],
         )
@@ -274,7 +258,7 @@ fn evaluate<
     let wb = rot(u_b);
     q[0] = inp.pin.x - wb[0];
     q[1] = inp.pin.y - wb[1];
-    if COMPLETE {
+    if lambda.is_some() {
         q[2] += wrap(s.atan2(c) - q[2]);
     }
     q[ns] = inp.pin.x + x;
@@ -315,7 +299,8 @@ fn evaluate<
     };
     let asb_pd = if PINNED { [0.0; 2] } else { rot(sb_pd) };
     v[2] = w;
-    if COMPLETE {
+    let complete = lambda.is_some();
+    if complete {
         v[0] = inp.pin_v.x - a_b[0] * w - asb_pd[0];
         v[1] = inp.pin_v.y - a_b[1] * w - asb_pd[1];
         v[ns] = inp.pin_v.x - y * w + dot_n(&ad[0], &pd);
@@ -323,17 +308,17 @@ fn evaluate<
     // Velocity-product terms of the pin accelerations (body frame, then global).
     let w2 = w * w;
     let sc_pd = if PINNED {
-        [-dot_n(g0p, &pd), 0.0]
+        [-dot_n(&g0p, &pd), 0.0]
     } else {
-        [spd[Stacked::S_C] - dot_n(g0p, &pd), spd[Stacked::S_C + 1]]
+        [spd[Stacked::S_C] - dot_n(&g0p, &pd), spd[Stacked::S_C + 1]]
     };
-    let g0pd: &[f64; N] = block(&spd, Stacked::G0);
+    let g0pd: [f64; N] = block(&spd, Stacked::G0);
     let beta_b = rot([
         -w2 * u_b[0] - 2.0 * w * sb_pd[1],
         -w2 * u_b[1] + 2.0 * w * sb_pd[0],
     ]);
     let beta_c = rot([
-        -w2 * u_c[0] - 2.0 * w * sc_pd[1] - dot_n(&pd, g0pd),
+        -w2 * u_c[0] - 2.0 * w * sc_pd[1] - dot_n(&pd, &g0pd),
         -w2 * u_c[1] + 2.0 * w * sc_pd[0],
     ]);
     let delta = [
@@ -356,14 +341,14 @@ fn evaluate<
         ai2[0][j] = col[0];
         ai2[1][j] = col[1];
     }
-    let muu_p: &[f64; N] = block(&sp, Stacked::M_UU);
-    let m_phiphi = k.i3 + 2.0 * sp[Stacked::I4] + dot_n(&p, muu_p);
-    let pst: &[f64; N] = block(&sp, Stacked::S_TILDE_T);
+    let muu_p: [f64; N] = block(&sp, Stacked::M_UU);
+    let m_phiphi = k.i3 + 2.0 * sp[Stacked::I4] + dot_n(&p, &muu_p);
+    let pst: [f64; N] = block(&sp, Stacked::S_TILDE_T);
     let mut m_phip = [0.0; N];
     for j in 0..N {
         m_phip[j] = -(k.i5[j] + pst[j]) + k.i_rot[j];
     }
-    let gap: &[f64; N] = block(&sp, Stacked::G_A);
+    let gap: [f64; N] = block(&sp, Stacked::G_A);
     let m = k.mass;
     let g = inp.gravity;
     // Forces Q.
@@ -373,8 +358,8 @@ fn evaluate<
     for j in 0..N {
         q_phi -= 2.0 * w * (k.i4[j] + muu_p[j]) * pd[j];
     }
-    let mgv_p: &[f64; N] = block(&sp, Stacked::M_UU_GV);
-    let st_pd: &[f64; N] = block(&spd, Stacked::S_TILDE);
+    let mgv_p: [f64; N] = block(&sp, Stacked::M_UU_GV);
+    let st_pd: [f64; N] = block(&spd, Stacked::S_TILDE);
     // The p rows' coupling to R'': `M_pR = (A I2)^T + c_s (G_a p) (A e_x)^T`, row i `u_i`.
     let mut u = [[0.0; N]; 2];
     for i in 0..N {
@@ -430,7 +415,7 @@ fn evaluate<
     let mut mt_r = [[0.0; N]; 2];
     let mut mt_phi = [0.0; N];
     let mut mt_s = [0.0; N];
-    if !PINNED || COMPLETE {
+    if !PINNED || lambda.is_some() {
         for j in 0..N {
             mt_r[0][j] = m * t_r[0][j] + arm[0] * g_phi[j] + ai2[0][j];
             mt_r[1][j] = m * t_r[1][j] + arm[1] * g_phi[j] + ai2[1][j];
@@ -509,7 +494,7 @@ fn evaluate<
     }
     // Accelerations (the dependent ones at a last stage only).
     qdd[3..3 + N].copy_from_slice(&zdd);
-    let Some(lambda) = lambda.filter(|_| COMPLETE) else {
+    let Some(lambda) = lambda else {
         return Ok(());
     };
     qdd[0] = dot_n(&t_r[0], &zdd) + b_r[0];
