@@ -40,7 +40,7 @@ impl CrankLaw {
         } = self.input;
         // Without a jerk the same operations as the quadratic law (bit for bit).
         (
-            angle + speed * s + 0.5 * acceleration * s * s + jerk * s * s * s / 6.0,
+            angle + speed * s + 0.5 * acceleration * s * s + jerk * s * s * s * (1.0 / 6.0),
             speed + acceleration * s + 0.5 * jerk * s * s,
             acceleration + jerk * s,
         )
