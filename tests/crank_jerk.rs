@@ -15,12 +15,7 @@ fn speed(t: f64) -> f64 {
 /// acceleration `now` and the jerk that reaches `speed` after `h` (as
 /// `flexrod::drive::engine` sets it).
 fn continued_with_jerk(input: CrankInput, s: f64, now: f64, speed: f64, h: f64) -> CrankInput {
-    let law = CrankLaw {
-        length: 0.0,
-        t_k: 0.0,
-        input,
-    };
-    let (angle, omega, _) = law.kinematics(s);
+    let (angle, omega, _) = input.after(s);
     CrankInput {
         angle,
         speed: omega,
@@ -63,12 +58,7 @@ fn sparse_run(
                     input_step,
                 )
             } else {
-                let (angle, omega, _) = CrankLaw {
-                    length: 0.0,
-                    t_k: 0.0,
-                    input,
-                }
-                .kinematics(s);
+                let (angle, omega, _) = input.after(s);
                 CrankInput {
                     angle,
                     speed: omega,
@@ -81,13 +71,7 @@ fn sparse_run(
             sim.set_input(input).unwrap();
         }
         sim.advance(row).unwrap();
-        let o = sim.outputs();
-        rows.push([
-            o.deflection_rel,
-            o.pin_b_force[0],
-            o.pin_c_force[1],
-            o.crank_torque,
-        ]);
+        rows.push(outputs(&sim));
     }
     (rows, laws)
 }
@@ -128,16 +112,21 @@ fn dense_run(
         sim.set_input(at(k as f64 * fine)).unwrap();
         sim.advance(fine).unwrap();
         if (k + 1) % every == 0 {
-            let o = sim.outputs();
-            rows.push([
-                o.deflection_rel,
-                o.pin_b_force[0],
-                o.pin_c_force[1],
-                o.crank_torque,
-            ]);
+            rows.push(outputs(&sim));
         }
     }
     rows
+}
+
+/// The compared outputs now: `v_mid/L`, pin B's x force, pin C's y force, the crank torque.
+fn outputs(sim: &Simulation) -> [f64; 4] {
+    let o = sim.outputs();
+    [
+        o.deflection_rel,
+        o.pin_b_force[0],
+        o.pin_c_force[1],
+        o.crank_torque,
+    ]
 }
 
 /// Largest difference of each column relative to the column's peak in `b`.
@@ -202,13 +191,7 @@ fn jerk_keeps_a_sparsely_set_crank_from_ringing_the_rod() {
         sim.set_input(exact(k as f64 * fine)).unwrap();
         sim.advance(fine).unwrap();
         if (k + 1) % every == 0 {
-            let o = sim.outputs();
-            reference.push([
-                o.deflection_rel,
-                o.pin_b_force[0],
-                o.pin_c_force[1],
-                o.crank_torque,
-            ]);
+            reference.push(outputs(&sim));
         }
     }
     let smooth = worst(
@@ -257,12 +240,7 @@ fn a_new_jerk_alone_drops_a_step_held_past_the_point() {
             };
             if now {
                 switched = Some((k, held));
-                let (angle, speed, acceleration) = CrankLaw {
-                    length: 0.0,
-                    t_k: 0.0,
-                    input: law,
-                }
-                .kinematics(sim.time());
+                let (angle, speed, acceleration) = law.after(sim.time());
                 let new = CrankInput {
                     angle,
                     speed,
@@ -275,13 +253,7 @@ fn a_new_jerk_alone_drops_a_step_held_past_the_point() {
                 }
             }
             sim.advance(row).unwrap();
-            let o = sim.outputs();
-            rows.push([
-                o.deflection_rel,
-                o.pin_b_force[0],
-                o.pin_c_force[1],
-                o.crank_torque,
-            ]);
+            rows.push(outputs(&sim));
         }
         (rows, switched)
     };

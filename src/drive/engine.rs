@@ -11,7 +11,7 @@ use std::time::{Duration, Instant};
 use super::law::CrankDrive;
 use crate::error::ModelError;
 use crate::mechanism::gas_force::GasForceTable;
-use crate::mechanism::{CrankInput, CrankLaw};
+use crate::mechanism::CrankInput;
 use crate::scene::Scene;
 use crate::simulation::Simulation;
 
@@ -206,12 +206,7 @@ impl EngineRun {
 /// 2e-7 rad on the ramp to 6000 rpm), and the state needs no projection at the new input
 /// (`Mechanism::advance`: a new acceleration on the same angle and speed).
 fn continued(input: CrankInput, s: f64, speed: f64, h: f64) -> CrankInput {
-    let (angle, omega, _) = CrankLaw {
-        length: 0.0,
-        t_k: 0.0,
-        input,
-    }
-    .kinematics(s);
+    let (angle, omega, _) = input.after(s);
     CrankInput {
         angle,
         speed: omega,
@@ -231,12 +226,7 @@ fn continued(input: CrankInput, s: f64, speed: f64, h: f64) -> CrankInput {
 /// acceleration too would leave the steps' speeds no free parameter but the jerk, and any
 /// error of the first acceleration would alternate in sign from step to step for ever.)
 fn continued_smoothly(input: CrankInput, s: f64, now: f64, speed: f64, h: f64) -> CrankInput {
-    let (angle, omega, _) = CrankLaw {
-        length: 0.0,
-        t_k: 0.0,
-        input,
-    }
-    .kinematics(s);
+    let (angle, omega, _) = input.after(s);
     CrankInput {
         angle,
         speed: omega,

@@ -27,23 +27,29 @@ pub struct CrankLaw {
     pub input: CrankInput,
 }
 
-impl CrankLaw {
-    /// Angle, speed and acceleration at time t: `theta_k + omega_k s + alpha_k s^2 / 2 +
-    /// j_k s^3 / 6` and its derivatives.
-    pub fn kinematics(&self, t: f64) -> (f64, f64, f64) {
-        let s = t - self.t_k;
+impl CrankInput {
+    /// Angle, speed and acceleration `s` seconds after this input was set:
+    /// `theta_k + omega_k s + alpha_k s^2 / 2 + j_k s^3 / 6` and its derivatives.
+    pub fn after(&self, s: f64) -> (f64, f64, f64) {
         let CrankInput {
             angle,
             speed,
             acceleration,
             jerk,
-        } = self.input;
+        } = *self;
         // Without a jerk the same operations as the quadratic law (bit for bit).
         (
             angle + speed * s + 0.5 * acceleration * s * s + jerk * s * s * s * (1.0 / 6.0),
             speed + acceleration * s + 0.5 * jerk * s * s,
             acceleration + jerk * s,
         )
+    }
+}
+
+impl CrankLaw {
+    /// Angle, speed and acceleration at time t ([`CrankInput::after`] of the input at `t_k`).
+    pub fn kinematics(&self, t: f64) -> (f64, f64, f64) {
+        self.input.after(t - self.t_k)
     }
 
     /// Position, velocity and acceleration of the crank pin B (global, m, m/s, m/s^2).
