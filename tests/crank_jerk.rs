@@ -3,25 +3,13 @@
 //! piecewise-cubic motion set densely does, including the rows read between its input points
 //! (communication points that set no input, where the integrator holds a step past the point).
 
+use flexrod::drive::engine::continued_smoothly;
 use flexrod::mechanism::CrankLaw;
 use flexrod::{CrankInput, Scene, Simulation};
 
 /// A smooth crank speed, rad/s: 150 rad/s with a 20 rad/s ripple at 25 Hz.
 fn speed(t: f64) -> f64 {
     150.0 + 20.0 * (2.0 * std::f64::consts::PI * 25.0 * t).sin()
-}
-
-/// The law that continues `input` (set `s` ago) in angle and speed, with the motion's
-/// acceleration `now` and the jerk that reaches `speed` after `h` (as
-/// `flexrod::drive::engine` sets it).
-fn continued_with_jerk(input: CrankInput, s: f64, now: f64, speed: f64, h: f64) -> CrankInput {
-    let (angle, omega, _) = input.after(s);
-    CrankInput {
-        angle,
-        speed: omega,
-        acceleration: now,
-        jerk: 2.0 * (speed - omega - now * h) / (h * h),
-    }
 }
 
 /// The outputs every `row` s over `stop` s with the crank set every `input_step` s: with its
@@ -50,7 +38,7 @@ fn sparse_run(
         if k % every == 0 {
             let s = t - input_time;
             input = if smooth {
-                continued_with_jerk(
+                continued_smoothly(
                     input,
                     s,
                     exact(t).acceleration,

@@ -225,7 +225,7 @@ fn continued(input: CrankInput, s: f64, speed: f64, h: f64) -> CrankInput {
 /// acceleration held over the step), so the steps barely ring the rod. (Continuing the
 /// acceleration too would leave the steps' speeds no free parameter but the jerk, and any
 /// error of the first acceleration would alternate in sign from step to step for ever.)
-fn continued_smoothly(input: CrankInput, s: f64, now: f64, speed: f64, h: f64) -> CrankInput {
+pub fn continued_smoothly(input: CrankInput, s: f64, now: f64, speed: f64, h: f64) -> CrankInput {
     let (angle, omega, _) = input.after(s);
     CrankInput {
         angle,
