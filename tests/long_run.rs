@@ -83,25 +83,31 @@ fn undamped_amplitude_holds_over_two_thousand_revolutions() {
 }
 
 /// A damped rod steps at the phase cap its damping lifts (`damped_max_phase`: the default
-/// scene with 3 % damping at the default tolerance, `w_1 h = 1` instead of 0.36): over 300
-/// revolutions its per-revolution peaks stay within a tenth of the tolerance of a converged
-/// run's, at the start and at the end.
+/// scene with 3 % damping at the default tolerance, `w_1 h = 1.02` instead of 0.36, and with
+/// 8.3 % at the full cap `EXPONENTIAL_MAX_PHASE`): over 300 revolutions its per-revolution
+/// peaks stay within a fifth of the tolerance of a converged run's, at the start and at the end
+/// (measured: 6.8e-5 and 1.0e-4 of the peak; 3.9e-5 with 8.3 % at `w_1 h = 1`: the local error,
+/// fourth order in the step).
 #[test]
 fn damped_rod_at_its_lifted_phase_cap() {
-    let zeta = 0.03;
-    assert_eq!(damped_max_phase(3e-5, zeta), EXPONENTIAL_MAX_PHASE);
     let revolutions = 300;
-    let (reference, _) = peaks_damped(1e-7, 1e-4, zeta, revolutions);
-    let (run, _) = peaks_damped(1e-3, 1e-4, zeta, revolutions);
-    let peak = reference.iter().copied().fold(0.0, f64::max);
-    let worst = run
-        .iter()
-        .zip(&reference)
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0, f64::max)
-        / peak;
-    println!("3 % damping, 300 revolutions: largest per-revolution peak difference {worst:.2e} of the peak");
-    assert!(worst < 1e-4, "{worst}");
+    for (zeta, cap) in [(0.03, 1.021), (0.083, EXPONENTIAL_MAX_PHASE)] {
+        assert!((damped_max_phase(3e-5, zeta) - cap).abs() < 1e-3);
+        let (reference, _) = peaks_damped(1e-7, 1e-4, zeta, revolutions);
+        let (run, _) = peaks_damped(1e-3, 1e-4, zeta, revolutions);
+        let peak = reference.iter().copied().fold(0.0, f64::max);
+        let worst = run
+            .iter()
+            .zip(&reference)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max)
+            / peak;
+        println!(
+            "{:.1} % damping (w_1 h = {cap:.3}), {revolutions} revolutions: largest per-revolution peak difference {worst:.2e} of the peak",
+            zeta * 100.0
+        );
+        assert!(worst < 2e-4, "{zeta}: {worst}");
+    }
 }
 
 /// `DRIFT_PER_PERIOD` bounds the drift that the long-run table (docs/generated/long-run.md,
