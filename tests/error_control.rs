@@ -196,7 +196,7 @@ fn stated_tolerance_holds_on_damped_sets_at_the_lifted_phase_cap() {
     common::check_generated(
         "error-control-damped",
         &format!(
-            "The same 30 sets damped at 5 % and at tolerance 1e-2 or 3e-3, where the lowest mode's steps reach `w_1 h = 1.25`: the largest pointwise error is {:.2} of the stated tolerance.",
+            "The same 30 sets damped at 5 % and at tolerance 1e-2 or 3e-3, where the lowest mode's phase cap is `w_1 h = 1.25`: the largest pointwise error is {:.2} of the stated tolerance.",
             worst
         ),
     );
