@@ -38,7 +38,7 @@ const ROOTS: &[&str] = &[
 /// - docs/report/*, docs/generated/report-*: `cargo run --release --bin report` (its text is in
 ///   src/bin/report);
 /// - docs/generated/extreme-cases.md: `FLEXROD_BLESS=1 cargo test --release --test extreme`;
-/// - docs/generated/fuzz-long.md: the long mode of tests/fuzz_fmi.rs (about two hours on 2 threads).
+/// - docs/generated/fuzz-long.md: the long mode of tests/fuzz_fmi.rs (about an hour on 2 threads).
 const KNOWN_HITS: &[(&str, &str)] = &[];
 
 /// Files under `dir` (recursively) whose extension is one of `extensions`, sorted.

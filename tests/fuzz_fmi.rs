@@ -103,7 +103,7 @@ fn run_range(first: u64, n: u64, vars: &Vars) -> (Totals, Violations) {
 const DEFAULT_SEQUENCES: u64 = 6000;
 
 /// Sequences from which a run counts as the long mode (fragment `fuzz-long`).
-const LONG_RUN: u64 = 1_000_000;
+const LONG_RUN: u64 = 500_000;
 
 #[test]
 fn random_call_sequences_keep_the_contract() {
