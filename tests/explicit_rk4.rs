@@ -43,13 +43,6 @@ fn run(scene: &Scene) -> (Vec<f64>, f64) {
     (run.deflection_rel(), drift)
 }
 
-fn max_diff(a: &[f64], b: &[f64]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max)
-}
-
 #[test]
 fn rk4_converges_at_fourth_order_and_keeps_the_constraints() {
     let (reference, _) = run(&rk4(5e-6));
@@ -59,7 +52,7 @@ fn rk4_converges_at_fourth_order_and_keeps_the_constraints() {
     let mut errors = Vec::new();
     for h in steps {
         let (v, drift) = run(&rk4(h));
-        let e = max_diff(&v, &reference) / peak;
+        let e = runs::max_diff(&v, &reference) / peak;
         println!("rk4 h = {h:e}: error {e:.3e} of the peak, pin B drift {drift:.1e} m");
         assert!(drift < 1e-12, "{drift}");
         errors.push(e);
@@ -80,7 +73,7 @@ fn rk4_agrees_with_generalized_alpha() {
     implicit_scene.solver.step = 1e-5;
     let (implicit, _) = run(&implicit_scene);
     let peak = implicit.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    let d = max_diff(&explicit, &implicit) / peak;
+    let d = runs::max_diff(&explicit, &implicit) / peak;
     println!(
         "rk4 (h 1e-4) against generalized-alpha (h 1e-5): {:.3} % of the peak",
         100.0 * d

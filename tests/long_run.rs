@@ -10,6 +10,9 @@
 //! instead of Krogstad's (the cause: docs/solvers.md, "Long runs"). The 100,000-revolution
 //! table: `cargo run --release --example long_run` (docs/generated/long-run.md).
 
+mod common;
+use common::runs;
+
 use flexrod::drive::CrankDrive;
 use flexrod::integrator::adaptive_runge_kutta::{
     damped_max_phase, DRIFT_PER_PERIOD, EXPONENTIAL_MAX_PHASE,
@@ -95,13 +98,7 @@ fn damped_rod_at_its_lifted_phase_cap() {
         assert!((damped_max_phase(3e-5, zeta) - cap).abs() < 1e-3);
         let (reference, _) = peaks_damped(1e-7, 1e-4, zeta, revolutions);
         let (run, _) = peaks_damped(1e-3, 1e-4, zeta, revolutions);
-        let peak = reference.iter().copied().fold(0.0, f64::max);
-        let worst = run
-            .iter()
-            .zip(&reference)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max)
-            / peak;
+        let worst = runs::max_diff(&run, &reference) / runs::peak(&reference);
         println!(
             "{:.1} % damping (w_1 h = {cap:.3}), {revolutions} revolutions: largest per-revolution peak difference {worst:.2e} of the peak",
             zeta * 100.0

@@ -379,15 +379,10 @@ fn sampled_ramp_matches_the_constraint_based_rk4() {
             .collect::<Vec<f64>>()
     };
     let reference = run(SolverMethod::Rk4, 1e-3, 1e-5);
-    let peak = reference.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    let peak = common::runs::peak(&reference);
     for method in [SolverMethod::Auto, SolverMethod::Dopri5] {
         let x = run(method, 1e-5, 1e-4);
-        let worst = x
-            .iter()
-            .zip(&reference)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max)
-            / peak;
+        let worst = common::runs::max_diff(&x, &reference) / peak;
         println!("{method:?}: {worst:.3e} of peak");
         assert!(worst < 2e-4, "{method:?}: {worst:e}");
     }
