@@ -32,6 +32,9 @@ pub enum ModelError {
         step: f64,
         message: String,
     },
+    /// A model whose build or evaluation is predicted to cost more than the limits of one call
+    /// (`rod::cost`); refused before the work starts.
+    TooCostly { message: String },
     /// A step whose rod deflection exceeds `rod.deflection_limit` under the policy "discard"
     /// or "error"; the state before the step is kept.
     DeflectionLimit {
@@ -66,6 +69,7 @@ impl fmt::Display for ModelError {
                 "rod.modes = {requested} is out of range: allowed 0..={available} (the number of elastic coordinates left by the reference conditions)"
             ),
             ModelError::Numerical { message } => write!(f, "numerical failure: {message}"),
+            ModelError::TooCostly { message } => write!(f, "model refused by its cost: {message}"),
             ModelError::Scene { origin, message } => write!(f, "scene {origin}: {message}"),
             ModelError::StepFailed { time, step, reason } => write!(
                 f,

@@ -141,6 +141,50 @@ fn shape_points_is_a_scene_key_with_a_range() {
     assert_eq!(parsed.outputs.shape_points, 5);
 }
 
+/// The middle sample of an odd `rod.shape` is `rod.deflection` to the bit at every step, also
+/// where the output's evaluation takes accelerations of its own (every mode of a 4-element FFR
+/// rod retained; the automotive rod's residual flexibility above its mode band).
+#[test]
+fn shape_midpoint_is_the_deflection_output_to_the_bit() {
+    use flexrod::simulation::CrankInput;
+    use flexrod::Simulation;
+    let all_modes = flexrod::scene::DEFAULT_SCENE_TOML
+        .replace("model = \"auto\"", "model = \"ffr\"")
+        .replace("elements = 8", "elements = 4")
+        .replace("modes = 3", "modes = 12");
+    let automotive = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/automotive_rod.toml"),
+    )
+    .unwrap();
+    for (name, text, speed) in [
+        ("4 elements, 12 modes", all_modes, 150.0),
+        ("automotive", automotive, 628.3),
+    ] {
+        let scene = Scene::from_toml_str(&text, name).unwrap();
+        let mut sim = Simulation::new(&scene).unwrap();
+        let input = CrankInput {
+            angle: 0.0,
+            speed,
+            acceleration: 0.0,
+            jerk: 0.0,
+        };
+        sim.start(0.0, input, 0.0).unwrap();
+        let mut shape = [f64::NAN; 9];
+        for step in 0..20 {
+            sim.advance(1e-4).unwrap();
+            sim.mechanism().deflection_shape(sim.state(), &mut shape);
+            let v_mid = sim.outputs().deflection;
+            assert!(v_mid != 0.0, "{name}: step {step}");
+            assert_eq!(
+                shape[4].to_bits(),
+                v_mid.to_bits(),
+                "{name}: step {step}: rod.shape's midpoint {} against rod.deflection {v_mid}",
+                shape[4]
+            );
+        }
+    }
+}
+
 /// `rod.shape` (Mechanism::deflection_shape): 0 at both ends, `v_mid` in the middle of an odd
 /// count, and RodBody::point_at at the ends and the midpoint equal to the named points, for
 /// both rod models, after 2 ms at 150 rad/s (a deflected rod).

@@ -123,6 +123,7 @@ fn worst_case_time_per_call() {
     ] {
         let (init, mut sim) = initialization(&scene);
         let n = sim.state().dae.q.len();
+        let cost = sim.mechanism().evaluation_cost();
         let (step, outcome) = one_step(&mut sim, h);
         worst_init = worst_init.max(init);
         worst_step = worst_step.max(step);
@@ -137,7 +138,7 @@ fn worst_case_time_per_call() {
         println!("{label}: n = {n}, init {init:.2} s, step {step:.2} s, {outcome}");
         rows.push(format!(
             "| {label} | {n} | {} | {init:.2} | {step:.2} (h = {h} s: {outcome}) |",
-            evaluations_allowed(n)
+            evaluations_allowed(cost)
         ));
     }
     let markdown = format!(
@@ -165,7 +166,7 @@ fn the_work_budget_refuses_a_long_step_of_a_large_model_with_the_state_kept() {
     let took = t0.elapsed().as_secs_f64();
     println!(
         "n = {n}, {} evaluations allowed: refused after {took:.2} s: {e}",
-        evaluations_allowed(n)
+        evaluations_allowed(sim.mechanism().evaluation_cost())
     );
     assert!(matches!(e, ModelError::TooMuchWork { .. }), "{e}");
     assert!(e.to_string().contains("work budget"), "{e}");
@@ -196,7 +197,7 @@ fn the_work_budget_counts_the_chain_behind_its_modes() {
     println!(
         "work coordinates {n} ({} reduced), {} evaluations allowed: refused after {took:.2} s: {e}",
         sim.state().dae.q.len(),
-        evaluations_allowed(n)
+        evaluations_allowed(sim.mechanism().evaluation_cost())
     );
     assert!(matches!(e, ModelError::TooMuchWork { .. }), "{e}");
     assert_eq!(sim.time(), 0.0);

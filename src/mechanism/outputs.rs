@@ -61,8 +61,8 @@ impl Mechanism {
     /// The transverse deflection of the rod from the chord B -> C, m, positive to the left of
     /// B -> C, at `out.len()` = N equally spaced points `s_i = i L / (N - 1)` (the definition
     /// of `v_mid`, docs/physics.md "Output definitions"; the ends are 0 by definition, and
-    /// the middle point of an odd N is the material midpoint, so it equals `v_mid`). From the
-    /// positions alone; no allocation. N < 2 writes zeros.
+    /// the middle point of an odd N is the material midpoint: there the cached output `v_mid`
+    /// itself). From the positions alone; no allocation. N < 2 writes zeros.
     pub fn deflection_shape(&self, state: &MechanismState, out: &mut [f64]) {
         let q = &state.dae.q;
         let [rb, rc, _] = self.rod.points(q);
@@ -71,14 +71,16 @@ impl Mechanism {
         let n = out.len();
         for (i, v) in out.iter_mut().enumerate() {
             *v = 0.0;
-            if n < 2 || i == 0 || i + 1 == n || length == 0.0 {
+            if n < 2 || i == 0 || i + 1 == n {
                 continue;
             }
             if 2 * i + 1 == n {
-                // The output's own evaluation, so that the two agree to the last bit.
-                *v = self
-                    .rod
-                    .mid_deflection_dynamic(q, &state.dae.qdd, self.gravity());
+                // The output itself (cached with the state), so that the two agree to the last
+                // bit whatever accelerations the output's evaluation took.
+                *v = state.outputs.deflection;
+                continue;
+            }
+            if length == 0.0 {
                 continue;
             }
             let r = self

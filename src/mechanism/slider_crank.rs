@@ -97,6 +97,24 @@ pub(super) fn dae_context<'a>(
     }
 }
 
+/// Refuse a rod one evaluation of which costs more than a communication step can afford
+/// [`crate::rod::cost::MIN_EVALUATIONS_PER_CALL`] times within the work budget of one call
+/// (`stepping::WORK_BUDGET`): every call would be refused or nearly so.
+fn check_evaluation_cost(rod: &dyn RodBody) -> Result<(), ModelError> {
+    use crate::rod::cost::{dense_evaluation, MIN_EVALUATIONS_PER_CALL};
+    let n = rod.work_coordinates() + 1;
+    let cost = dense_evaluation(n) + rod.extra_evaluation_cost();
+    let allowed = super::stepping::WORK_BUDGET / MIN_EVALUATIONS_PER_CALL;
+    if cost <= allowed {
+        return Ok(());
+    }
+    Err(ModelError::TooCostly {
+        message: format!(
+            "one evaluation of this rod ({n} coordinates) takes {cost:.2e} work units, more than the {allowed:.2e} that leave a communication step {MIN_EVALUATIONS_PER_CALL} evaluations within the work budget of one call; retain fewer modes or take fewer rod.elements"
+        ),
+    })
+}
+
 impl Mechanism {
     /// Validate `spec`, build and preprocess the rod, choose the integrator
     /// ([`super::integrator_choice`]).
@@ -108,6 +126,7 @@ impl Mechanism {
             ..spec.clone()
         };
         let rod = crate::rod::build(&spec.rod, spec.slider.mass)?;
+        check_evaluation_cost(rod.as_ref())?;
         let n = rod.n_coordinates() + 1;
         let probe_pins = Cell::default();
         let probe = SliderCrankDae {

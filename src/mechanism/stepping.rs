@@ -17,14 +17,13 @@ pub const LARGE_DEFLECTION_WARNING: f64 = 0.05;
 /// A longer communication step is refused with the state kept (`ModelError::TooMuchWork`).
 pub const MAX_INTERNAL_STEPS: u64 = 100_000;
 
-/// The work one communication step may do, in units of `n^2 (n + 100)` per counted evaluation
-/// (a Newton iteration or a right-hand-side evaluation, accepted or not, plus one per internal
-/// step and one per halving), `n` the number of coordinates: an evaluation costs a dense
-/// product (`n^2`) and a dense solve (`n^3`), measured about equal at `n = 100`. The budget so
-/// bounds the time of one call about equally at every model size (340 evaluations at the
-/// largest FFR rod, n = 388; docs/fmu.md, "Time per call", gives the measured worst case);
-/// small models reach [`MAX_INTERNAL_STEPS`] first. A communication step that would need more
-/// is refused with the state kept.
+/// The work one communication step may do, in work units ([`crate::rod::cost`]): each counted
+/// evaluation (a Newton iteration or a right-hand-side evaluation, accepted or not, plus one
+/// per internal step and one per halving) costs [`Mechanism::evaluation_cost`], the dense terms
+/// of its coordinates and what the rod adds (the FFR rod's axial coupling). The budget so
+/// bounds the time of one call about equally at every model size (docs/fmu.md, "Time per
+/// call", gives the measured worst case). A communication step that would need more is
+/// refused with the state kept.
 pub const WORK_BUDGET: f64 = 2.5e10;
 
 /// Largest `solver.max_halvings` (checked by the scene validation): a failed step is split
@@ -139,13 +138,13 @@ impl Mechanism {
             }
             Err((t_fail, _, reason)) if reason == OVER_BUDGET => {
                 restore(self, state);
-                let n = self.work_coordinates();
+                let cost = self.evaluation_cost();
                 Err(ModelError::TooMuchWork {
                     time: t_start,
                     step: h,
                     message: format!(
-                        "it reached only t = {t_fail} s of t = {t_end} s within the work budget of one call ({} evaluations for this model's {n} coordinates, WORK_BUDGET / (n^2 (n + 100))), allowed at most that much work per communication step",
-                        evaluations_allowed(n)
+                        "it reached only t = {t_fail} s of t = {t_end} s within the work budget of one call ({} evaluations of {cost:.3e} work units each for this model, WORK_BUDGET / cost), allowed at most that much work per communication step",
+                        evaluations_allowed(cost)
                     ),
                 })
             }
@@ -371,7 +370,7 @@ impl Mechanism {
             if taken >= MAX_INTERNAL_STEPS {
                 return Err((state.dae.t, t_end - state.dae.t, TOO_MANY_STEPS.to_string()));
             }
-            if over_budget(state, &entry, self.work_coordinates()) {
+            if over_budget(state, &entry, self.evaluation_cost()) {
                 return Err((state.dae.t, t_end - state.dae.t, OVER_BUDGET.to_string()));
             }
             taken += 1;
@@ -455,7 +454,7 @@ impl Mechanism {
         while len > 0 {
             len -= 1;
             let (target, depth) = pending[len];
-            if over_budget(state, entry, self.work_coordinates()) {
+            if over_budget(state, entry, self.evaluation_cost()) {
                 return Err((state.dae.t, target - state.dae.t, OVER_BUDGET.to_string()));
             }
             let h = target - state.dae.t;
@@ -522,21 +521,19 @@ impl Mechanism {
     }
 }
 
-/// The evaluations [`WORK_BUDGET`] allows one communication step of a model with `n`
-/// coordinates.
-pub fn evaluations_allowed(n: usize) -> u64 {
-    let n = n.max(1) as f64;
-    (WORK_BUDGET / (n * n * (n + 100.0))) as u64
+/// The evaluations [`WORK_BUDGET`] allows one communication step of a model whose evaluation
+/// costs `cost` work units ([`Mechanism::evaluation_cost`]).
+pub fn evaluations_allowed(cost: f64) -> u64 {
+    (WORK_BUDGET / cost.max(1.0)) as u64
 }
 
 /// Whether the work since `entry` (the statistics at the start of the communication step)
-/// has used up [`WORK_BUDGET`] for a model that evaluates like `n` coordinates
-/// ([`Mechanism::work_coordinates`]).
-fn over_budget(state: &MechanismState, entry: &StepStats, n: usize) -> bool {
+/// has used up [`WORK_BUDGET`] for a model whose evaluation costs `cost` work units.
+fn over_budget(state: &MechanismState, entry: &StepStats, cost: f64) -> bool {
     let evaluations = (state.stats.newton_iterations - entry.newton_iterations)
         + (state.stats.steps - entry.steps)
         + (state.stats.halvings - entry.halvings);
-    evaluations > evaluations_allowed(n)
+    evaluations > evaluations_allowed(cost)
 }
 
 impl Mechanism {
@@ -544,6 +541,14 @@ impl Mechanism {
     /// ([`crate::rod::RodBody::work_coordinates`]) and the slider.
     pub fn work_coordinates(&self) -> usize {
         self.rod.work_coordinates() + 1
+    }
+
+    /// Work units of one evaluation ([`crate::rod::cost`]): the dense terms of
+    /// [`Self::work_coordinates`] and what the rod adds
+    /// ([`crate::rod::RodBody::extra_evaluation_cost`]).
+    pub fn evaluation_cost(&self) -> f64 {
+        crate::rod::cost::dense_evaluation(self.work_coordinates())
+            + self.rod.extra_evaluation_cost()
     }
 }
 

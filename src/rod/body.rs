@@ -87,6 +87,11 @@ pub trait RodBody: Send {
     fn work_coordinates(&self) -> usize {
         self.n_coordinates()
     }
+    /// Work units one evaluation costs beyond the dense terms of its
+    /// [`Self::work_coordinates`] ([`crate::rod::cost`]): the FFR rod's axial coupling.
+    fn extra_evaluation_cost(&self) -> f64 {
+        0.0
+    }
     /// [`Self::mass`] and [`Self::forces`] at the same coordinates, in one pass where the model
     /// can (the chain on its modes).
     fn mass_and_forces(&self, q: &[f64], v: &[f64], m: MatMut<'_, f64>, f: &mut [f64]) {

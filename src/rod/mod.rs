@@ -6,9 +6,11 @@
 //!   1985; the CDI benchmark note of J. O'Shea);
 //! - [`segments`]: the finite segment chain (Huston 1991);
 //! - [`spec`]: what a scene says about the rod ([`RodSpec`], [`RodModelKind`]);
+//! - [`cost`]: what a model costs to build and to evaluate, checked before it is built;
 //! - [`build`]: the rod a spec describes.
 
 pub mod body;
+pub mod cost;
 pub mod ffr;
 pub mod physics_choice;
 pub mod sections;
@@ -73,6 +75,15 @@ pub fn build(spec: &RodSpec, slider_mass: f64) -> Result<Box<dyn RodBody>, Model
                 &added,
             )?;
             let modes = all.select(&selection)?;
+            check_resolved_frequencies(spec, &modes)?;
+            let axial = if spec.axial_stiffening {
+                (0..modes.n_modes())
+                    .filter(|&j| modes.is_axial(modes.retained[j]))
+                    .count()
+            } else {
+                0
+            };
+            cost::check_ffr(modes.n_modes(), axial, spec.elements, spec.section.len())?;
             let rod = ffr::FfrRod::new(modes, spec.damping_ratio, spec.axial_stiffening);
             Ok(Box::new(rod.with_residual_flexibility(&all)))
         }
@@ -102,4 +113,39 @@ pub fn build(spec: &RodSpec, slider_mass: f64) -> Result<Box<dyn RodBody>, Model
             message: "rod.model = auto is resolved to a rod model before one is built (rod::physics_choice::choose)".into(),
         }),
     }
+}
+
+/// The smallest ratio of a retained natural frequency to the highest of the rod's eigenproblem
+/// that the eigensolver resolves: its squared frequencies carry an error of about `1e-16`
+/// times the largest, so at a ratio of `1e-6` (`1e-12` in the squares) a frequency keeps about
+/// four digits. A rod whose bending stiffness is below that (a section far too thin for its
+/// length, within each key's own range) has modes of round-off, 0 Hz where the solver clips
+/// them, and every step would fail.
+pub const MIN_RESOLVED_FREQUENCY_RATIO: f64 = 1e-6;
+
+/// Refuse an FFR rod whose retained natural frequencies are not resolved by its eigenproblem
+/// ([`MIN_RESOLVED_FREQUENCY_RATIO`]), naming the section and the frequencies.
+fn check_resolved_frequencies(spec: &RodSpec, modes: &ComponentModes) -> Result<(), ModelError> {
+    let highest = modes.all_frequencies_hz.iter().copied().fold(0.0, f64::max);
+    let lowest = modes
+        .retained
+        .iter()
+        .map(|&k| modes.all_frequencies_hz[k])
+        .fold(f64::INFINITY, f64::min);
+    if modes.retained.is_empty()
+        || (lowest.is_finite() && lowest > MIN_RESOLVED_FREQUENCY_RATIO * highest)
+    {
+        return Ok(());
+    }
+    let properties = spec.properties();
+    Err(ModelError::InvalidParameter {
+        name: "rod.area_moment",
+        value: properties.area_moment,
+        allowed: format!(
+            "a bending stiffness the rod's eigenproblem resolves: its lowest retained natural frequency is {lowest:.3e} Hz, {:.1e} of its highest ({highest:.3e} Hz), below the {MIN_RESOLVED_FREQUENCY_RATIO:e} that keeps four digits (radius of gyration {:.3e} m on a {} m rod: a string, not a beam); a larger rod.area_moment, a shorter rod or fewer rod.elements",
+            lowest / highest,
+            (properties.area_moment / properties.area).sqrt(),
+            properties.length
+        ),
+    })
 }

@@ -196,6 +196,12 @@ impl RodBody for FfrRod {
         3 + self.n
     }
 
+    fn extra_evaluation_cost(&self) -> f64 {
+        self.axial_coupling.as_ref().map_or(0.0, |c| {
+            crate::rod::cost::axial_coupling_evaluation(c.n, c.axial.len())
+        })
+    }
+
     fn coordinate_scale(&self, i: usize) -> f64 {
         match i {
             0 | 1 => self.length,
