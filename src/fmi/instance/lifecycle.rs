@@ -7,6 +7,7 @@ use super::{model_error, Instance};
 use crate::fmi::experiment::Experiment;
 use crate::fmi::state_machine::{Call, MachineState};
 use crate::fmi::status::{FmiError, FmiResult, Status};
+use crate::scene::check_experiment_times;
 impl Instance {
     /// `fmi2SetDebugLogging`.
     pub fn set_debug_logging(&mut self, on: bool, categories: &[Cow<str>]) -> FmiResult<Status> {
@@ -15,25 +16,18 @@ impl Instance {
         Ok(Status::Ok)
     }
 
-    /// `fmi2SetupExperiment`. The tolerance is not used: the solver settings come from the scene.
+    /// `fmi2SetupExperiment` (and the experiment of `fmi3EnterInitializationMode`): the times
+    /// within the ranges of a scene's `[experiment]` ([`check_experiment_times`]), refused
+    /// before anything changes. The tolerance is not used: the solver settings come from the
+    /// scene.
     pub fn setup_experiment(
         &mut self,
         tolerance: Option<f64>,
         start_time: f64,
         stop_time: Option<f64>,
     ) -> FmiResult<Status> {
-        if !start_time.is_finite() {
-            return Err(FmiError::rejected(format!(
-                "startTime = {start_time} is out of range: allowed a finite value"
-            )));
-        }
-        if let Some(stop) = stop_time {
-            if !(stop.is_finite() && stop >= start_time) {
-                return Err(FmiError::rejected(format!(
-                    "stopTime = {stop} is out of range: allowed a finite value >= startTime = {start_time}"
-                )));
-            }
-        }
+        check_experiment_times(start_time, stop_time, ["startTime", "stopTime"])
+            .map_err(|e| FmiError::rejected(range_message(e)))?;
         if let Some(tol) = tolerance {
             self.logger.event(&format!(
                 "{}: tolerance = {tol} is not used; {}",
@@ -105,5 +99,17 @@ impl Instance {
         self.model
             .ensure_started(self.experiment.start_time, &self.table)
             .map_err(|e| FmiError::rejected(model_error(e)))
+    }
+}
+
+/// A range error as the FMI calls word it: the argument, its value and the allowed range.
+pub(super) fn range_message(e: crate::error::ModelError) -> String {
+    match e {
+        crate::error::ModelError::InvalidParameter {
+            name,
+            value,
+            allowed,
+        } => format!("{name} = {value:e} is out of range: allowed {allowed}"),
+        e => model_error(e),
     }
 }
