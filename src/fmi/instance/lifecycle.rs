@@ -7,7 +7,6 @@ use super::{model_error, Instance};
 use crate::fmi::experiment::Experiment;
 use crate::fmi::state_machine::{Call, MachineState};
 use crate::fmi::status::{FmiError, FmiResult, Status};
-use crate::scene::check_experiment_times;
 impl Instance {
     /// `fmi2SetDebugLogging`.
     pub fn set_debug_logging(&mut self, on: bool, categories: &[Cow<str>]) -> FmiResult<Status> {
@@ -17,7 +16,7 @@ impl Instance {
     }
 
     /// `fmi2SetupExperiment` (and the experiment of `fmi3EnterInitializationMode`): the times
-    /// within the ranges of a scene's `[experiment]` ([`check_experiment_times`]), refused
+    /// within the ranges of a scene's `[experiment]` ([`Experiment::check_times`]), refused
     /// before anything changes. The tolerance is not used: the solver settings come from the
     /// scene.
     pub fn setup_experiment(
@@ -26,8 +25,8 @@ impl Instance {
         start_time: f64,
         stop_time: Option<f64>,
     ) -> FmiResult<Status> {
-        check_experiment_times(start_time, stop_time, ["startTime", "stopTime"])
-            .map_err(|e| FmiError::rejected(range_message(e)))?;
+        Experiment::check_times(start_time, stop_time, ["startTime", "stopTime"])
+            .map_err(FmiError::rejected)?;
         if let Some(tol) = tolerance {
             self.logger.event(&format!(
                 "{}: tolerance = {tol} is not used; {}",
@@ -99,17 +98,5 @@ impl Instance {
         self.model
             .ensure_started(self.experiment.start_time, &self.table)
             .map_err(|e| FmiError::rejected(model_error(e)))
-    }
-}
-
-/// A range error as the FMI calls word it: the argument, its value and the allowed range.
-pub(super) fn range_message(e: crate::error::ModelError) -> String {
-    match e {
-        crate::error::ModelError::InvalidParameter {
-            name,
-            value,
-            allowed,
-        } => format!("{name} = {value:e} is out of range: allowed {allowed}"),
-        e => model_error(e),
     }
 }
