@@ -127,25 +127,41 @@ pub const EXPERIMENT_TIME_LIMIT: f64 = 1e6;
 /// `[experiment]` step_size range, s.
 pub const EXPERIMENT_STEP_RANGE: (f64, f64) = (1e-9, 1.0);
 
+/// The experiment's start and stop time, one check for scene files (`[experiment]`), the
+/// experiment of `fmi2SetupExperiment` / `fmi3EnterInitializationMode` and serialized states:
+/// the start finite in `[-EXPERIMENT_TIME_LIMIT, EXPERIMENT_TIME_LIMIT]` s, the stop (where
+/// given) finite, after the start and at most `EXPERIMENT_TIME_LIMIT` s. `names` are the start's
+/// and the stop's names in messages (the scene keys, or the arguments of the FMI call).
+pub fn check_experiment_times(
+    start_time: f64,
+    stop_time: Option<f64>,
+    names: [&'static str; 2],
+) -> Result<(), ModelError> {
+    let limit = EXPERIMENT_TIME_LIMIT;
+    let [start_name, stop_name] = names;
+    require_within(start_name, start_time, -limit, limit, "s")?;
+    match stop_time {
+        Some(stop) if !(stop.is_finite() && stop > start_time && stop <= limit) => {
+            Err(ModelError::InvalidParameter {
+                name: stop_name,
+                value: stop,
+                allowed: format!(
+                    "a finite value in ({start_name}, {limit:e}] s, {start_name} = {start_time} s"
+                ),
+            })
+        }
+        _ => Ok(()),
+    }
+}
+
+/// The scene keys of the experiment's start and stop time.
+pub const EXPERIMENT_TIME_KEYS: [&str; 2] = ["experiment.start_time", "experiment.stop_time"];
+
 impl ExperimentSpec {
-    /// Start and stop time finite, within `+-1e6` s and in order, the step in `[1e-9, 1]` s
+    /// Start and stop time as [`check_experiment_times`] checks them, the step in `[1e-9, 1]` s
     /// and not longer than the run, the crank speed within its input window.
     pub fn validate(&self) -> Result<(), ModelError> {
-        let limit = EXPERIMENT_TIME_LIMIT;
-        require_within("experiment.start_time", self.start_time, -limit, limit, "s")?;
-        if !(self.stop_time.is_finite()
-            && self.stop_time > self.start_time
-            && self.stop_time <= limit)
-        {
-            return Err(ModelError::InvalidParameter {
-                name: "experiment.stop_time",
-                value: self.stop_time,
-                allowed: format!(
-                    "a finite value in (start_time, {limit:e}] s, start_time = {} s",
-                    self.start_time
-                ),
-            });
-        }
+        check_experiment_times(self.start_time, Some(self.stop_time), EXPERIMENT_TIME_KEYS)?;
         let (low, high) = EXPERIMENT_STEP_RANGE;
         let span = self.stop_time - self.start_time;
         if !(self.step_size.is_finite()

@@ -19,6 +19,13 @@ pub struct Snapshot {
     state: MechanismState,
 }
 
+impl Snapshot {
+    /// The time of the saved state, s.
+    pub fn time(&self) -> f64 {
+        self.state.time
+    }
+}
+
 /// One slider-crank simulation.
 pub struct Simulation {
     mechanism: Mechanism,

@@ -7,3 +7,23 @@ pub struct Experiment {
     pub start_time: f64,
     pub stop_time: Option<f64>,
 }
+
+impl Experiment {
+    /// The experiment's times within the ranges of a scene's `[experiment]` (one check,
+    /// [`crate::scene::check_experiment_times`]), as a message naming the value (`names`: the
+    /// start's and the stop's) and its range.
+    pub fn check_times(
+        start_time: f64,
+        stop_time: Option<f64>,
+        names: [&'static str; 2],
+    ) -> Result<(), String> {
+        crate::scene::check_experiment_times(start_time, stop_time, names).map_err(|e| match e {
+            crate::error::ModelError::InvalidParameter {
+                name,
+                value,
+                allowed,
+            } => format!("{name} = {value:e} is out of range: allowed {allowed}"),
+            e => e.to_string(),
+        })
+    }
+}

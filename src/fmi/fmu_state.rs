@@ -21,13 +21,46 @@
 //! their own magic, version and model fingerprint. The checksum makes any corruption of the
 //! bytes (a flipped bit in a stored double, too) a rejection rather than a silently different
 //! state.
+//!
+//! The checksum is unkeyed, so every field is checked against its range when the bytes are
+//! read; a state holds nothing a set call or an accepted step would refuse:
+//!
+//! | field | range | checked by |
+//! |---|---|---|
+//! | magic, format version | `FLXRFMI2`, [`VERSION`] | [`deserialize`] |
+//! | GUID / `instantiationToken` | the instance's own | [`deserialize`] |
+//! | machine state | a known code | [`deserialize`] |
+//! | last step status | OK, or Discard; Discard in StepFailed | [`deserialize`] |
+//! | started, stop time defined, simulation present | 0 or 1; a simulation after initialization | [`deserialize`] |
+//! | start time, stop time | the experiment's range, `Experiment::check_times`: start in [-1e6, 1e6] s, stop after it and at most 1e6 s (the same check as `[experiment]` and the FMI calls) | [`deserialize`] |
+//! | inputs: `crank.angle`, `crank.speed`, `slider.force`, crank acceleration, jerk | the windows of their set calls | `Inputs::from_bytes` |
+//! | acceleration and jerk sources, force changed | known codes, 0 or 1 | `Inputs::from_bytes` |
+//! | scene text | the scene keys' ranges (`Scene::validate_settings`) | `SavedModel::from_parts` |
+//! | scene text | the instance's own scene with only declared parameters changed, Real finite, Integer within the declared range | `model::binding::check_same_model` |
+//! | scene's physical parameters | the ranges of the model's build | `Simulation::new` (states with a simulation; otherwise at initialization, as set values) |
+//! | core: magic, version, model fingerprint, length | `FLEXROD\0`, the core's version, this scene's model, this model's dimensions | `Simulation::restore_from_bytes`, `MechanismState::read_bytes` |
+//! | core: time, input time, previous input time | finite, within +-1e6 s, input time <= time; the time in [start, stop or 1e6] s after initialization | `MechanismState::validate`, [`check_time`] |
+//! | core: law in force and the one before (angle, speed, acceleration, jerk), slider force | the windows of the set calls | `Simulation::restore_from_bytes` |
+//! | core: cached outputs (the nine scalars, section loads) | finite, \|value\| < `MAX_OUTPUT_MAGNITUDE` = 1e12, the range of an accepted step (`Outputs::out_of_range`, the same check); stress NaN where not computed | `MechanismState::validate` |
+//! | core: coordinates, velocities, accelerations, multipliers | finite (the range of an accepted step) | `MechanismState::validate` |
+//! | core: integrator time | equal to the time | `MechanismState::validate` |
+//! | core: step proposal | finite, >= 0 | `MechanismState::validate` |
+//! | core: deflection amplitude, the start's vibration amplitude | finite, >= 0, < 1e12 | `MechanismState::validate`, `read_bytes` |
+//! | core: held internal step | finite, length in (0, 0.0125] s, contains the time | `MechanismState::validate` |
+//! | core: counters (steps, Newton iterations, halvings) | any u64 (counts only) | none needed |
+//! | core: deflection warned, held-step flag | 0 or 1 (held only with dense output) | `MechanismState::read_bytes` |
+//!
+//! Outputs are also checked when they are read (`Model::get_real`): a computed value outside the
+//! range of an accepted step is never handed out with OK.
 
 use super::experiment::Experiment;
+use super::instance::TIME_TOLERANCE;
 use super::standard::Standard;
 use super::state_machine::MachineState;
 use super::status::Status;
 use crate::hash::fnv1a_64;
 use crate::model::{Inputs, SavedModel};
+use crate::scene::EXPERIMENT_TIME_LIMIT;
 
 const MAGIC: &[u8; 8] = b"FLXRFMI2";
 const VERSION: u32 = 3;
@@ -211,16 +244,11 @@ pub(crate) fn deserialize<'a>(
             r.at
         ));
     }
-    if !start_time.is_finite() {
-        return Err(format!(
-            "the start time is {start_time}, allowed a finite value"
-        ));
-    }
-    if stop_defined && !(stop.is_finite() && stop >= start_time) {
-        return Err(format!(
-            "the stop time {stop} s is not finite or before the start time {start_time} s"
-        ));
-    }
+    Experiment::check_times(
+        start_time,
+        stop_defined.then_some(stop),
+        ["the start time", "the stop time"],
+    )?;
     if !matches!(last_step, Status::Ok | Status::Discard)
         || (machine == MachineState::StepFailed && last_step != Status::Discard)
     {
@@ -231,11 +259,7 @@ pub(crate) fn deserialize<'a>(
             p = standard.prefix()
         ));
     }
-    let stepping = matches!(
-        machine,
-        MachineState::StepComplete | MachineState::StepFailed | MachineState::Terminated
-    );
-    if stepping && simulation_bytes.is_none() {
+    if machine.is_stepping() && simulation_bytes.is_none() {
         return Err(format!(
             "machine state {} without a simulation (a state after initialization always holds one, with its model fingerprint)",
             machine.name()
@@ -253,6 +277,22 @@ pub(crate) fn deserialize<'a>(
         },
         simulation_bytes,
     })
+}
+
+/// The time of a state after initialization within its experiment: from the start time to
+/// the stop time (or the end of the experiment's range without one), within the tolerance of a
+/// communication point.
+pub(crate) fn check_time(time: f64, experiment: &Experiment) -> Result<(), String> {
+    let start = experiment.start_time;
+    let end = experiment.stop_time.unwrap_or(EXPERIMENT_TIME_LIMIT);
+    let tolerance = |t: f64| TIME_TOLERANCE * t.abs().max(1.0);
+    if time >= start - tolerance(start) && time <= end + tolerance(end) {
+        Ok(())
+    } else {
+        Err(format!(
+            "the time {time} s is outside the experiment [{start}, {end}] s (allowed from the start time to the stop time, or to {EXPERIMENT_TIME_LIMIT:e} s without one)"
+        ))
+    }
 }
 
 #[cfg(test)]

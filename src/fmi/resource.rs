@@ -1,5 +1,7 @@
-//! Finding the scene an FMU was exported for: `resources/scene.toml` under the
-//! `fmuResourceLocation` URI, checked against the GUID the importer passes.
+//! Finding the scene an FMU was exported for: `resources/scene.toml` under the FMI 2.0
+//! `fmuResourceLocation` (a URI, percent-decoded) or in the FMI 3.0 `resourcePath` (a plain
+//! file-system path, taken as it is: `%` is a character of the folder's name), checked against
+//! the GUID or `instantiationToken` the importer passes.
 
 use std::path::PathBuf;
 
@@ -71,8 +73,8 @@ pub fn load_model(resource_location: Option<&str>, guid: &str) -> Result<LoadedM
     load_model_for(resource_location, guid, Standard::Fmi2)
 }
 
-/// [`load_model`] for an FMU of `standard` (the FMI 3.0 `resourcePath` is a plain absolute
-/// path, which [`path_from_uri`] accepts too); `guid` is the `instantiationToken` for FMI 3.0.
+/// [`load_model`] for an FMU of `standard` (the resource folder from [`resource_folder`]);
+/// `guid` is the `instantiationToken` for FMI 3.0.
 pub fn load_model_for(
     resource_location: Option<&str>,
     guid: &str,
@@ -111,8 +113,27 @@ pub fn load_model_for(
     }
 }
 
+/// The resource folder an importer names: FMI 2.0's `fmuResourceLocation` is a URI
+/// ([`path_from_uri`], percent-decoded); FMI 3.0's `resourcePath` is an absolute file-system
+/// path, used as it is (never decoded: a folder named `a%20b` is that folder).
+pub fn resource_folder(location: &str, standard: Standard) -> Result<PathBuf, String> {
+    match standard {
+        Standard::Fmi2 => path_from_uri(location),
+        Standard::Fmi3 => {
+            let path = PathBuf::from(location);
+            if path.is_absolute() {
+                Ok(path)
+            } else {
+                Err(format!(
+                    "resourcePath \"{location}\" is not an absolute path; allowed: the absolute path of the resources folder (FMI 3.0 passes a path, not a URI)"
+                ))
+            }
+        }
+    }
+}
+
 fn load_from_resources(uri: &str, standard: Standard) -> Result<LoadedModel, String> {
-    let path = path_from_uri(uri)?.join(SCENE_FILE);
+    let path = resource_folder(uri, standard)?.join(SCENE_FILE);
     let text = std::fs::read_to_string(&path)
         .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let origin = path.display().to_string();
@@ -162,5 +183,21 @@ mod tests {
         assert!(path_from_uri("file://host/x").is_err());
         assert!(path_from_uri("file:///bad%2").is_err());
         assert!(path_from_uri("file:///bad%zz").is_err());
+    }
+
+    #[test]
+    fn fmi3_resource_paths_are_not_decoded() {
+        for folder in ["/tmp/pct 100%/resources/", "/tmp/a%20b/resources/"] {
+            assert_eq!(
+                resource_folder(folder, Standard::Fmi3).unwrap(),
+                PathBuf::from(folder)
+            );
+        }
+        assert_eq!(
+            resource_folder("file:///tmp/a%20b/resources", Standard::Fmi2).unwrap(),
+            PathBuf::from("/tmp/a b/resources")
+        );
+        assert!(resource_folder("relative/resources", Standard::Fmi3).is_err());
+        assert!(resource_folder("file:///tmp/r", Standard::Fmi3).is_err());
     }
 }

@@ -62,6 +62,14 @@ impl MachineState {
     }
 
     /// Stable code for serialized FMU states.
+    /// After initialization: the instance holds a simulation at a time within the experiment.
+    pub fn is_stepping(self) -> bool {
+        matches!(
+            self,
+            MachineState::StepComplete | MachineState::StepFailed | MachineState::Terminated
+        )
+    }
+
     pub fn code(self) -> u8 {
         self as u8
     }

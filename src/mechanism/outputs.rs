@@ -29,6 +29,27 @@ pub struct Outputs {
 }
 
 impl Outputs {
+    /// The first output outside the range of every accepted step: finite with
+    /// |value| < [`super::MAX_OUTPUT_MAGNITUDE`] in SI units (`rod.stress_max` and its position
+    /// may be NaN, where the rod has no fibre distances). One check for an accepted step, the
+    /// start and a saved state.
+    pub fn out_of_range(&self) -> Option<(&'static str, f64)> {
+        let bounded = |x: f64| x.is_finite() && x.abs() < super::MAX_OUTPUT_MAGNITUDE;
+        let s = &self.section;
+        let section = [
+            ("rod.axial_force_mid", s.axial_force_mid, false),
+            ("rod.bending_moment_mid", s.bending_moment_mid, false),
+            ("rod.stress_max", s.stress_max, true),
+            ("rod.stress_max_position", s.stress_max_position, true),
+        ];
+        self.named()
+            .into_iter()
+            .map(|(name, x)| (name, x, false))
+            .chain(section)
+            .find(|&(_, x, nan_allowed)| !(bounded(x) || (nan_allowed && x.is_nan())))
+            .map(|(name, x, _)| (name, x))
+    }
+
     /// The scalar outputs with their FMU names (the section loads excepted), in one order for
     /// every check and record that lists them.
     pub fn named(&self) -> [(&'static str, f64); 9] {

@@ -82,17 +82,15 @@ impl Mechanism {
         state.outputs = self.compute_outputs(Some(&mut work), &state)?;
         // The initial outputs obey the bound of every accepted step (a heavy slider at the
         // fastest crank can ask for forces no model stands behind).
-        for (name, x) in state.outputs.named() {
-            if !(x.is_finite() && x.abs() < super::MAX_OUTPUT_MAGNITUDE) {
-                return Err(ModelError::InvalidParameter {
-                    name: "initial state",
-                    value: x,
-                    allowed: format!(
-                        "output {name} finite with |value| < {:e} in SI units at the start (lower the crank speed, the slider force or the masses)",
-                        super::MAX_OUTPUT_MAGNITUDE
-                    ),
-                });
-            }
+        if let Some((name, x)) = state.outputs.out_of_range() {
+            return Err(ModelError::InvalidParameter {
+                name: "initial state",
+                value: x,
+                allowed: format!(
+                    "output {name} finite with |value| < {:e} in SI units at the start (lower the crank speed, the slider force or the masses)",
+                    super::MAX_OUTPUT_MAGNITUDE
+                ),
+            });
         }
         Ok(state)
     }

@@ -278,8 +278,11 @@ impl MechanismState {
     }
 
     /// Every field of a state read from bytes in range (the checksum of the byte form is
-    /// unkeyed, so crafted bytes must not get in): all numbers finite, the step proposal
-    /// and the amplitude >= 0, `dae.t == time`, `input_time <= time`.
+    /// unkeyed, so crafted bytes must not get in): all numbers finite, the outputs in the range
+    /// of an accepted step ([`super::Outputs::out_of_range`]), the times within the
+    /// experiment's range, the step proposal and the amplitudes >= 0 and bounded like the
+    /// outputs, `dae.t == time`, `input_time <= time`. The ranges of every field:
+    /// the table in `src/fmi/fmu_state.rs`.
     pub fn validate(&self) -> Result<(), String> {
         let o = &self.outputs;
         let named = [
@@ -302,22 +305,42 @@ impl MechanismState {
             ("the step proposal", self.dae.step_hint),
             ("the deflection amplitude", self.dae.amplitude),
         ];
-        let section = [
-            ("rod.axial_force_mid", o.section.axial_force_mid),
-            ("rod.bending_moment_mid", o.section.bending_moment_mid),
-        ];
-        for (name, x) in named.into_iter().chain(o.named()).chain(section) {
+        for (name, x) in named {
             if !x.is_finite() {
                 return Err(format!("{name} is {x}, allowed a finite value"));
             }
         }
-        // The stress is NaN where the rod has no fibre distances (not computed).
-        for (name, x) in [
-            ("rod.stress_max", o.section.stress_max),
-            ("rod.stress_max_position", o.section.stress_max_position),
+        // The outputs in the range of an accepted step (the same check).
+        if let Some((name, x)) = o.out_of_range() {
+            return Err(format!(
+                "output {name} is {x:e}, allowed finite with |value| < {:e} in SI units (the range of every accepted step)",
+                super::MAX_OUTPUT_MAGNITUDE
+            ));
+        }
+        // The times within the experiment's range (`[experiment]`, the FMI experiment).
+        let limit = crate::scene::EXPERIMENT_TIME_LIMIT * (1.0 + 1e-9);
+        for (name, t) in [
+            ("the time", self.time),
+            ("the input time", self.input_time),
+            ("the previous input time", self.previous_input_time),
         ] {
-            if x.is_infinite() {
-                return Err(format!("{name} is {x}, allowed a finite value or NaN"));
+            if t.abs() > limit {
+                return Err(format!(
+                    "{name} is {t:e} s, allowed within +-{:e} s (the experiment's range)",
+                    crate::scene::EXPERIMENT_TIME_LIMIT
+                ));
+            }
+        }
+        // Amplitudes of v_mid/L and of the deflection: bounded like the outputs.
+        for (name, x) in [
+            ("the deflection amplitude", self.dae.amplitude),
+            ("the start's vibration amplitude", self.start_vibration),
+        ] {
+            if x.abs() >= super::MAX_OUTPUT_MAGNITUDE {
+                return Err(format!(
+                    "{name} is {x:e}, allowed |value| < {:e}",
+                    super::MAX_OUTPUT_MAGNITUDE
+                ));
             }
         }
         let d = &self.dae;

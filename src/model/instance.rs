@@ -45,6 +45,11 @@ pub struct SavedModel {
 }
 
 impl SavedModel {
+    /// The simulation's time, if a simulation was saved.
+    pub fn time(&self) -> Option<f64> {
+        self.simulation.as_ref().map(Snapshot::time)
+    }
+
     /// The simulation was started with the saved inputs.
     pub fn started(&self) -> bool {
         self.started
@@ -229,8 +234,26 @@ impl Model {
 
     /// The values of the Real variable `v` (one, or an array's elements) into `out`; outputs
     /// need the simulation (see [`Access::needs_simulation`]), `time` before it is built is
-    /// `start_time`.
+    /// `start_time`. A value the model computes (an output, the shape, a frequency) is handed
+    /// out only within the range of an accepted step: finite, |value| <
+    /// [`crate::mechanism::MAX_OUTPUT_MAGNITUDE`]; else an error names it.
     pub fn get_real(&self, v: &Variable, out: &mut [f64], start_time: f64) -> Result<(), String> {
+        self.read_real(v, out, start_time)?;
+        let computed = matches!(
+            v.access,
+            Access::Output(_) | Access::Frequency(_) | Access::Frequencies | Access::Shape
+        );
+        let bound = crate::mechanism::MAX_OUTPUT_MAGNITUDE;
+        match out.iter().find(|x| !(x.is_finite() && x.abs() < bound)) {
+            Some(x) if computed => Err(format!(
+                "{} = {x:e} is outside the range of every accepted step (finite, |value| < {bound:e} in SI units): the model does not stand behind it",
+                v.name
+            )),
+            _ => Ok(()),
+        }
+    }
+
+    fn read_real(&self, v: &Variable, out: &mut [f64], start_time: f64) -> Result<(), String> {
         let frequencies = self
             .simulation
             .as_ref()
@@ -443,6 +466,16 @@ impl Model {
             Ok(s.snapshot_to_bytes())
         })
         .map(Some)
+    }
+
+    /// Refuse a saved model whose scene is not this model's exported scene with only the
+    /// parameters of `table` changed ([`super::binding::check_same_model`]).
+    pub fn check_same_model(
+        &self,
+        saved: &SavedModel,
+        table: &VariableTable,
+    ) -> Result<(), String> {
+        super::binding::check_same_model(&self.exported, &saved.scene, table)
     }
 
     /// `saved` (from [`SavedModel::from_parts`]) with the simulation read from the core's

@@ -8,6 +8,8 @@
 //!   of their own, an independent variable, the interface's words in descriptions);
 //! - [`inputs`]: the crank input law between communication points,
 //!   `theta_k + omega_k s + alpha_k s^2 / 2 + j_k s^3 / 6`, its state and its byte form;
+//! - [`binding`]: a saved state's scene is this model's, with only declared parameters
+//!   changed;
 //! - [`instance`]: one model instance as an importer drives it ([`Model`]: parameters,
 //!   inputs, the simulation built from them, its validity checks with messages naming the
 //!   value and its allowed range, saved states).
@@ -15,6 +17,7 @@
 //! Everything here reports failures as [`crate::error::ModelError`] or as text; how an
 //! interface turns them into statuses is its own concern.
 
+pub mod binding;
 pub mod inputs;
 pub mod instance;
 pub mod variables;

@@ -60,7 +60,7 @@ pub struct Component {
     /// Set while a nested call is being reported (a logger that calls back on every
     /// message must not recurse without end).
     reporting: AtomicBool,
-    /// The standard of the instance (for the function names in messages).
+    /// The standard of the instance: only the functions of this standard accept its handle.
     standard: Standard,
     /// The importer's logger, for reporting nested calls without touching `instance`.
     sink: Option<Box<dyn LogSink>>,
@@ -68,20 +68,37 @@ pub struct Component {
 }
 
 impl Component {
-    /// Report a call that arrived while another call on this instance was running.
-    fn report_busy(&self, name: &str) {
+    /// Report `message` through the importer's logger without touching the instance (a
+    /// logger that calls back on every message does not recurse: a report during a report
+    /// is dropped).
+    fn report(&self, message: &str) {
         if self.reporting.swap(true, Ordering::Acquire) {
             return;
         }
         if let Some(sink) = &self.sink {
-            let message = format!(
-                "{name}: illegal call while another call on this instance is in progress (a re-entrant call from a callback, or concurrent calls from two threads); nothing was done"
-            );
             let _ = guard::catch(AssertUnwindSafe(|| {
-                sink.emit(Status::Error, "logStatusError", &message);
+                sink.emit(Status::Error, "logStatusError", message);
             }));
         }
         self.reporting.store(false, Ordering::Release);
+    }
+
+    /// Report a call that arrived while another call on this instance was running.
+    fn report_busy(&self, name: &str) {
+        self.report(&format!(
+            "{name}: illegal call while another call on this instance is in progress (a re-entrant call from a callback, or concurrent calls from two threads); nothing was done"
+        ));
+    }
+
+    /// Report a call of one standard's function with an instance of the other standard.
+    fn report_other_standard(&self, name: &str, called_as: Standard) {
+        self.report(&format!(
+            "{name}: the handle is an {} instance (created by {}), not an {} one: allowed an instance created by {}; nothing was done",
+            self.standard.interface().name,
+            instantiate_name(self.standard),
+            called_as.interface().name,
+            instantiate_name(called_as),
+        ));
     }
 }
 
@@ -134,17 +151,31 @@ fn register(component: Component) -> fmi2Component {
     handle as fmi2Component
 }
 
-/// The registered component of handle `c`, marked busy; `Err(None)` for an unknown handle,
-/// `Err(Some(component))` for one already busy (a nested or concurrent call).
-fn acquire(c: fmi2Component) -> Result<*const Component, Option<*const Component>> {
+/// Why a handle cannot be used by a call.
+enum Refused {
+    /// Not a live handle (NULL, freed, foreign).
+    Unknown,
+    /// A live component with a call running on it (a nested or concurrent call).
+    Busy(*const Component),
+    /// A live component of the other standard, marked busy by this call (so that it is not
+    /// freed while the refusal is reported); the caller clears the flag.
+    OtherStandard(*const Component),
+}
+
+/// The registered component of handle `c`, marked busy, if it is an instance of `standard`.
+fn acquire(standard: Standard, c: fmi2Component) -> Result<*const Component, Refused> {
     let registry = registry();
     let Some(Registered(component)) = registry.live.get(&(c as usize)) else {
-        return Err(None);
+        return Err(Refused::Unknown);
     };
     let component: *const Component = &**component;
     // SAFETY: registered, and it cannot be freed while the lock is held.
-    if unsafe { &*component }.busy.swap(true, Ordering::Acquire) {
-        return Err(Some(component));
+    let registered = unsafe { &*component };
+    if registered.busy.swap(true, Ordering::Acquire) {
+        return Err(Refused::Busy(component));
+    }
+    if registered.standard != standard {
+        return Err(Refused::OtherStandard(component));
     }
     Ok(component)
 }
@@ -158,20 +189,30 @@ impl Drop for Busy<'_> {
     }
 }
 
-/// Run `f` on the instance `c` as FMI call `call` (FMI 2.0 and FMI 3.0 alike).
+/// Run `f` on the instance `c` as FMI call `call` of `standard` (the standard of the calling
+/// function: a handle of the other standard is refused without touching its instance).
 pub unsafe fn dispatch(
+    standard: Standard,
     c: fmi2Component,
     call: Call,
     f: impl FnOnce(&mut Instance) -> FmiResult<Status>,
 ) -> fmi2Status {
-    let component = match acquire(c) {
+    let component = match acquire(standard, c) {
         Ok(component) => component,
-        Err(None) => return ERROR,
-        Err(Some(busy)) => {
+        Err(Refused::Unknown) => return ERROR,
+        Err(Refused::Busy(busy)) => {
             // SAFETY: registered and busy: the running call keeps it from being freed. Only a
             // shared reference is made: that call may hold one at the same time.
             let component = unsafe { &*busy };
-            component.report_busy(call.name(component.standard));
+            component.report_busy(call.name(standard));
+            return ERROR;
+        }
+        Err(Refused::OtherStandard(other)) => {
+            // SAFETY: registered and marked busy by this call, so `free` leaves it alone until
+            // the flag is cleared (when `_busy` drops); the instance is not touched.
+            let component = unsafe { &*other };
+            let _busy = Busy(&component.busy);
+            component.report_other_standard(call.name(standard), standard);
             return ERROR;
         }
     };
@@ -298,10 +339,14 @@ pub unsafe fn instantiate(
     }
 }
 
-/// `fmi2FreeInstance` and `fmi3FreeInstance`. A handle that is not live (NULL, freed already,
-/// foreign) is ignored; a component with a call running (freed from inside a callback) is
-/// refused with a message.
-pub unsafe fn free(c: fmi2Component) {
+/// `fmi2FreeInstance` and `fmi3FreeInstance` (`standard` the one of the calling function). A
+/// handle that is not live (NULL, freed already, foreign) is ignored; a component with a call
+/// running (freed from inside a callback) or of the other standard is refused with a message.
+pub unsafe fn free(standard: Standard, c: fmi2Component) {
+    let name = match standard {
+        Standard::Fmi2 => "fmi2FreeInstance",
+        Standard::Fmi3 => "fmi3FreeInstance",
+    };
     let removed = {
         let mut registry = registry();
         let handle = c as usize;
@@ -309,21 +354,31 @@ pub unsafe fn free(c: fmi2Component) {
             None => return,
             Some(Registered(component)) if component.busy.load(Ordering::Acquire) => {
                 let component: *const Component = &**component;
-                Err(component)
+                Err(Refused::Busy(component))
+            }
+            Some(Registered(component)) if component.standard != standard => {
+                let component: *const Component = &**component;
+                // SAFETY: registered, and it cannot be freed while the lock is held; marked
+                // busy here so that it stays registered while the refusal is reported.
+                unsafe { &*component }.busy.store(true, Ordering::Release);
+                Err(Refused::OtherStandard(component))
             }
             Some(_) => Ok(registry.live.remove(&handle)),
         }
     };
     match removed {
-        Err(busy) => {
+        Err(Refused::Busy(busy)) => {
             // SAFETY: registered and busy: the running call keeps it from being freed.
             let component = unsafe { &*busy };
-            let name = match component.standard {
-                Standard::Fmi2 => "fmi2FreeInstance",
-                Standard::Fmi3 => "fmi3FreeInstance",
-            };
             component.report_busy(name);
         }
+        Err(Refused::OtherStandard(other)) => {
+            // SAFETY: registered and marked busy above; the flag is cleared when `_busy` drops.
+            let component = unsafe { &*other };
+            let _busy = Busy(&component.busy);
+            component.report_other_standard(name, standard);
+        }
+        Err(Refused::Unknown) => {}
         Ok(component) => {
             // Dropped outside the registry's lock (the instance's drop may log).
             let _ = guard::catch(AssertUnwindSafe(move || drop(component)));

@@ -7,6 +7,7 @@ use super::component::{self, dispatch};
 use super::convert::strings;
 use super::{fmi2Boolean, fmi2CallbackFunctions, fmi2Component, fmi2Real, fmi2Status, fmi2String};
 use crate::fmi::instance::Instance;
+use crate::fmi::standard::Standard;
 use crate::fmi::state_machine::Call;
 
 #[no_mangle]
@@ -43,7 +44,7 @@ pub unsafe extern "C" fn fmi2Instantiate(
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2FreeInstance(c: fmi2Component) {
-    unsafe { component::free(c) }
+    unsafe { component::free(Standard::Fmi2, c) }
 }
 
 #[no_mangle]
@@ -54,7 +55,7 @@ pub unsafe extern "C" fn fmi2SetDebugLogging(
     categories: *const fmi2String,
 ) -> fmi2Status {
     unsafe {
-        dispatch(c, Call::SetDebugLogging, |i| {
+        dispatch(Standard::Fmi2, c, Call::SetDebugLogging, |i| {
             i.set_debug_logging(
                 loggingOn != 0,
                 &strings(categories, nCategories, "categories")?,
@@ -73,7 +74,7 @@ pub unsafe extern "C" fn fmi2SetupExperiment(
     stopTime: fmi2Real,
 ) -> fmi2Status {
     unsafe {
-        dispatch(c, Call::SetupExperiment, |i| {
+        dispatch(Standard::Fmi2, c, Call::SetupExperiment, |i| {
             i.setup_experiment(
                 (toleranceDefined != 0).then_some(tolerance),
                 startTime,
@@ -87,6 +88,7 @@ pub unsafe extern "C" fn fmi2SetupExperiment(
 pub unsafe extern "C" fn fmi2EnterInitializationMode(c: fmi2Component) -> fmi2Status {
     unsafe {
         dispatch(
+            Standard::Fmi2,
             c,
             Call::EnterInitializationMode,
             Instance::enter_initialization_mode,
@@ -98,6 +100,7 @@ pub unsafe extern "C" fn fmi2EnterInitializationMode(c: fmi2Component) -> fmi2St
 pub unsafe extern "C" fn fmi2ExitInitializationMode(c: fmi2Component) -> fmi2Status {
     unsafe {
         dispatch(
+            Standard::Fmi2,
             c,
             Call::ExitInitializationMode,
             Instance::exit_initialization_mode,
@@ -107,10 +110,10 @@ pub unsafe extern "C" fn fmi2ExitInitializationMode(c: fmi2Component) -> fmi2Sta
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2Terminate(c: fmi2Component) -> fmi2Status {
-    unsafe { dispatch(c, Call::Terminate, Instance::terminate) }
+    unsafe { dispatch(Standard::Fmi2, c, Call::Terminate, Instance::terminate) }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2Reset(c: fmi2Component) -> fmi2Status {
-    unsafe { dispatch(c, Call::Reset, Instance::reset) }
+    unsafe { dispatch(Standard::Fmi2, c, Call::Reset, Instance::reset) }
 }

@@ -4,6 +4,7 @@
 use super::component::dispatch;
 use super::convert::{answer, clear_handle, handle, slice, slice_mut, store_handle};
 use super::{fmi2Byte, fmi2Component, fmi2FMUstate, fmi2Status};
+use crate::fmi::standard::Standard;
 use crate::fmi::state_machine::Call;
 
 #[no_mangle]
@@ -12,7 +13,7 @@ pub unsafe extern "C" fn fmi2GetFMUstate(
     FMUstate: *mut fmi2FMUstate,
 ) -> fmi2Status {
     unsafe {
-        dispatch(c, Call::GetFMUstate, |i| {
+        dispatch(Standard::Fmi2, c, Call::GetFMUstate, |i| {
             store_handle(FMUstate, |existing| i.get_fmu_state(existing))
         })
     }
@@ -20,7 +21,11 @@ pub unsafe extern "C" fn fmi2GetFMUstate(
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetFMUstate(c: fmi2Component, FMUstate: fmi2FMUstate) -> fmi2Status {
-    unsafe { dispatch(c, Call::SetFMUstate, |i| i.set_fmu_state(handle(FMUstate)?)) }
+    unsafe {
+        dispatch(Standard::Fmi2, c, Call::SetFMUstate, |i| {
+            i.set_fmu_state(handle(FMUstate)?)
+        })
+    }
 }
 
 #[no_mangle]
@@ -29,7 +34,7 @@ pub unsafe extern "C" fn fmi2FreeFMUstate(
     FMUstate: *mut fmi2FMUstate,
 ) -> fmi2Status {
     unsafe {
-        dispatch(c, Call::FreeFMUstate, |i| {
+        dispatch(Standard::Fmi2, c, Call::FreeFMUstate, |i| {
             clear_handle(FMUstate, |h| i.free_fmu_state(h))
         })
     }
@@ -42,7 +47,7 @@ pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
     size: *mut usize,
 ) -> fmi2Status {
     unsafe {
-        dispatch(c, Call::SerializedFMUstateSize, |i| {
+        dispatch(Standard::Fmi2, c, Call::SerializedFMUstateSize, |i| {
             answer(size, "size", || i.serialized_size(handle(FMUstate)?))
         })
     }
@@ -56,7 +61,7 @@ pub unsafe extern "C" fn fmi2SerializeFMUstate(
     size: usize,
 ) -> fmi2Status {
     unsafe {
-        dispatch(c, Call::SerializeFMUstate, |i| {
+        dispatch(Standard::Fmi2, c, Call::SerializeFMUstate, |i| {
             i.serialize_fmu_state(
                 handle(FMUstate)?,
                 slice_mut(serializedState.cast::<u8>(), size, "serializedState[]")?,
@@ -73,7 +78,7 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
     FMUstate: *mut fmi2FMUstate,
 ) -> fmi2Status {
     unsafe {
-        dispatch(c, Call::DeSerializeFMUstate, |i| {
+        dispatch(Standard::Fmi2, c, Call::DeSerializeFMUstate, |i| {
             let bytes = slice(serializedState.cast::<u8>(), size, "serializedState[]")?;
             store_handle(FMUstate, |existing| {
                 i.deserialize_fmu_state(bytes, existing)

@@ -8,6 +8,7 @@ use super::convert::{answer, out, slice};
 use super::{
     fmi2Boolean, fmi2Component, fmi2Integer, fmi2Real, fmi2Status, fmi2String, fmi2ValueReference,
 };
+use crate::fmi::standard::Standard;
 use crate::fmi::state_machine::Call;
 use crate::fmi::status::{Status, StatusKind};
 
@@ -22,7 +23,7 @@ pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
     _dvUnknown: *mut fmi2Real,
 ) -> fmi2Status {
     unsafe {
-        dispatch(c, Call::GetDirectionalDerivative, |i| {
+        dispatch(Standard::Fmi2, c, Call::GetDirectionalDerivative, |i| {
             i.get_directional_derivative()
         })
     }
@@ -37,7 +38,7 @@ pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
     value: *const fmi2Real,
 ) -> fmi2Status {
     unsafe {
-        dispatch(c, Call::SetRealInputDerivatives, |i| {
+        dispatch(Standard::Fmi2, c, Call::SetRealInputDerivatives, |i| {
             i.set_real_input_derivatives(
                 slice(vr, nvr, "vr[]")?,
                 slice(order, nvr, "order[]")?,
@@ -56,7 +57,7 @@ pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
     _value: *mut fmi2Real,
 ) -> fmi2Status {
     unsafe {
-        dispatch(c, Call::GetRealOutputDerivatives, |i| {
+        dispatch(Standard::Fmi2, c, Call::GetRealOutputDerivatives, |i| {
             i.get_real_output_derivatives()
         })
     }
@@ -70,7 +71,7 @@ pub unsafe extern "C" fn fmi2DoStep(
     _noSetFMUStatePriorToCurrentPoint: fmi2Boolean,
 ) -> fmi2Status {
     unsafe {
-        dispatch(c, Call::DoStep, |i| {
+        dispatch(Standard::Fmi2, c, Call::DoStep, |i| {
             i.do_step(currentCommunicationPoint, communicationStepSize)
         })
     }
@@ -79,7 +80,7 @@ pub unsafe extern "C" fn fmi2DoStep(
 #[no_mangle]
 pub unsafe extern "C" fn fmi2CancelStep(c: fmi2Component) -> fmi2Status {
     // Always rejected by the call sequence: no step is ever in progress.
-    unsafe { dispatch(c, Call::CancelStep, |_| Ok(Status::Ok)) }
+    unsafe { dispatch(Standard::Fmi2, c, Call::CancelStep, |_| Ok(Status::Ok)) }
 }
 
 #[no_mangle]
@@ -89,7 +90,7 @@ pub unsafe extern "C" fn fmi2GetStatus(
     value: *mut fmi2Status,
 ) -> fmi2Status {
     unsafe {
-        dispatch(c, Call::GetStatus, |i| {
+        dispatch(Standard::Fmi2, c, Call::GetStatus, |i| {
             answer(value, "value", || {
                 Ok(i.get_status(StatusKind::from_code(s)?)?.code())
             })
@@ -104,7 +105,7 @@ pub unsafe extern "C" fn fmi2GetRealStatus(
     value: *mut fmi2Real,
 ) -> fmi2Status {
     unsafe {
-        dispatch(c, Call::GetRealStatus, |i| {
+        dispatch(Standard::Fmi2, c, Call::GetRealStatus, |i| {
             answer(value, "value", || {
                 i.get_real_status(StatusKind::from_code(s)?)
             })
@@ -119,7 +120,7 @@ pub unsafe extern "C" fn fmi2GetIntegerStatus(
     value: *mut fmi2Integer,
 ) -> fmi2Status {
     unsafe {
-        dispatch(c, Call::GetIntegerStatus, |i| {
+        dispatch(Standard::Fmi2, c, Call::GetIntegerStatus, |i| {
             answer(value, "value", || {
                 i.get_integer_status(StatusKind::from_code(s)?)
             })
@@ -134,7 +135,7 @@ pub unsafe extern "C" fn fmi2GetBooleanStatus(
     value: *mut fmi2Boolean,
 ) -> fmi2Status {
     unsafe {
-        dispatch(c, Call::GetBooleanStatus, |i| {
+        dispatch(Standard::Fmi2, c, Call::GetBooleanStatus, |i| {
             answer(value, "value", || {
                 Ok(fmi2Boolean::from(
                     i.get_boolean_status(StatusKind::from_code(s)?)?,
@@ -151,7 +152,7 @@ pub unsafe extern "C" fn fmi2GetStringStatus(
     value: *mut fmi2String,
 ) -> fmi2Status {
     unsafe {
-        dispatch(c, Call::GetStringStatus, |i| {
+        dispatch(Standard::Fmi2, c, Call::GetStringStatus, |i| {
             out(value, "value")?;
             i.get_string_status(StatusKind::from_code(s)?)
         })

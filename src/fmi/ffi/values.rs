@@ -6,6 +6,7 @@ use super::convert::{slice, slice_mut};
 use super::{
     fmi2Boolean, fmi2Component, fmi2Integer, fmi2Real, fmi2Status, fmi2String, fmi2ValueReference,
 };
+use crate::fmi::standard::Standard;
 use crate::fmi::state_machine::Call;
 use crate::fmi::variables::Family;
 
@@ -17,7 +18,7 @@ pub unsafe extern "C" fn fmi2GetReal(
     value: *mut fmi2Real,
 ) -> fmi2Status {
     unsafe {
-        dispatch(c, Call::GetReal, |i| {
+        dispatch(Standard::Fmi2, c, Call::GetReal, |i| {
             i.get_real(slice(vr, nvr, "vr[]")?, slice_mut(value, nvr, "value[]")?)
         })
     }
@@ -31,7 +32,7 @@ pub unsafe extern "C" fn fmi2GetInteger(
     value: *mut fmi2Integer,
 ) -> fmi2Status {
     unsafe {
-        dispatch(c, Call::GetInteger, |i| {
+        dispatch(Standard::Fmi2, c, Call::GetInteger, |i| {
             i.get_integer(
                 Family::Integer,
                 slice(vr, nvr, "vr[]")?,
@@ -49,7 +50,7 @@ pub unsafe extern "C" fn fmi2GetBoolean(
     value: *mut fmi2Boolean,
 ) -> fmi2Status {
     unsafe {
-        dispatch(c, Call::GetBoolean, |i| {
+        dispatch(Standard::Fmi2, c, Call::GetBoolean, |i| {
             slice_mut(value, nvr, "value[]")?;
             i.no_variables_of(Family::Boolean, slice(vr, nvr, "vr[]")?)
         })
@@ -64,7 +65,7 @@ pub unsafe extern "C" fn fmi2GetString(
     value: *mut fmi2String,
 ) -> fmi2Status {
     unsafe {
-        dispatch(c, Call::GetString, |i| {
+        dispatch(Standard::Fmi2, c, Call::GetString, |i| {
             slice_mut(value, nvr, "value[]")?;
             i.no_variables_of(Family::String, slice(vr, nvr, "vr[]")?)
         })
@@ -79,7 +80,7 @@ pub unsafe extern "C" fn fmi2SetReal(
     value: *const fmi2Real,
 ) -> fmi2Status {
     unsafe {
-        dispatch(c, Call::SetReal, |i| {
+        dispatch(Standard::Fmi2, c, Call::SetReal, |i| {
             i.set_real(slice(vr, nvr, "vr[]")?, slice(value, nvr, "value[]")?)
         })
     }
@@ -93,7 +94,7 @@ pub unsafe extern "C" fn fmi2SetInteger(
     value: *const fmi2Integer,
 ) -> fmi2Status {
     unsafe {
-        dispatch(c, Call::SetInteger, |i| {
+        dispatch(Standard::Fmi2, c, Call::SetInteger, |i| {
             i.set_integer(
                 Family::Integer,
                 slice(vr, nvr, "vr[]")?,
@@ -111,7 +112,7 @@ pub unsafe extern "C" fn fmi2SetBoolean(
     value: *const fmi2Boolean,
 ) -> fmi2Status {
     unsafe {
-        dispatch(c, Call::SetBoolean, |i| {
+        dispatch(Standard::Fmi2, c, Call::SetBoolean, |i| {
             slice(value, nvr, "value[]")?;
             i.no_variables_of(Family::Boolean, slice(vr, nvr, "vr[]")?)
         })
@@ -126,7 +127,7 @@ pub unsafe extern "C" fn fmi2SetString(
     value: *const fmi2String,
 ) -> fmi2Status {
     unsafe {
-        dispatch(c, Call::SetString, |i| {
+        dispatch(Standard::Fmi2, c, Call::SetString, |i| {
             slice(value, nvr, "value[]")?;
             i.no_variables_of(Family::String, slice(vr, nvr, "vr[]")?)
         })

@@ -15,25 +15,18 @@ impl Instance {
         Ok(Status::Ok)
     }
 
-    /// `fmi2SetupExperiment`. The tolerance is not used: the solver settings come from the scene.
+    /// `fmi2SetupExperiment` (and the experiment of `fmi3EnterInitializationMode`): the times
+    /// within the ranges of a scene's `[experiment]` ([`Experiment::check_times`]), refused
+    /// before anything changes. The tolerance is not used: the solver settings come from the
+    /// scene.
     pub fn setup_experiment(
         &mut self,
         tolerance: Option<f64>,
         start_time: f64,
         stop_time: Option<f64>,
     ) -> FmiResult<Status> {
-        if !start_time.is_finite() {
-            return Err(FmiError::rejected(format!(
-                "startTime = {start_time} is out of range: allowed a finite value"
-            )));
-        }
-        if let Some(stop) = stop_time {
-            if !(stop.is_finite() && stop >= start_time) {
-                return Err(FmiError::rejected(format!(
-                    "stopTime = {stop} is out of range: allowed a finite value >= startTime = {start_time}"
-                )));
-            }
-        }
+        Experiment::check_times(start_time, stop_time, ["startTime", "stopTime"])
+            .map_err(FmiError::rejected)?;
         if let Some(tol) = tolerance {
             self.logger.event(&format!(
                 "{}: tolerance = {tol} is not used; {}",

@@ -46,7 +46,7 @@ use crate::model::{Model, Scene};
 pub const FMI2_CO_SIMULATION: i32 = 1;
 
 /// Relative tolerance on `currentCommunicationPoint` and `stopTime`.
-const TIME_TOLERANCE: f64 = 1e-9;
+pub(crate) const TIME_TOLERANCE: f64 = 1e-9;
 
 /// Arguments of `fmi2Instantiate` or `fmi3InstantiateCoSimulation`, already converted from C.
 pub struct InstantiateArgs<'a> {

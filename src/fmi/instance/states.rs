@@ -120,19 +120,28 @@ impl Instance {
 
     /// `fmi2DeSerializeFMUstate`: a new handle, or `existing` overwritten if it is this
     /// instance's (a handle of another instance, e.g. the one the bytes were serialized from,
-    /// gets a new handle here). Foreign, truncated, corrupted or other-model bytes are
-    /// rejected and nothing changes.
+    /// gets a new handle here). Foreign, truncated, corrupted or other-model bytes, and every
+    /// field outside its range (the table in [`crate::fmi::fmu_state`]), are rejected and
+    /// nothing changes.
     pub fn deserialize_fmu_state(
         &mut self,
         bytes: &[u8],
         existing: Option<usize>,
     ) -> FmiResult<usize> {
-        let parsed = fmu_state::deserialize(&self.guid, self.standard, bytes)
-            .map_err(|m| FmiError::rejected(format!("serialized state rejected: {m}")))?;
+        let rejected = |m: String| FmiError::rejected(format!("serialized state rejected: {m}"));
+        let parsed = fmu_state::deserialize(&self.guid, self.standard, bytes).map_err(rejected)?;
+        self.model
+            .check_same_model(&parsed.state.model, &self.table)
+            .map_err(rejected)?;
         let model = self
             .model
             .saved_from_bytes(parsed.state.model, parsed.simulation_bytes)
             .map_err(|e| FmiError::rejected(model_error(e)))?;
+        if parsed.state.machine.is_stepping() {
+            if let Some(time) = model.time() {
+                fmu_state::check_time(time, &parsed.state.experiment).map_err(rejected)?;
+            }
+        }
         let state = FmuState {
             model,
             ..parsed.state

@@ -5,6 +5,7 @@ use crate::error::ModelError;
 use crate::fmi::state_machine::{Call, MachineState};
 use crate::fmi::status::{FmiError, FmiResult, Status, StatusKind};
 use crate::model::StepError;
+use crate::scene::EXPERIMENT_TIME_LIMIT;
 
 impl Instance {
     /// `fmi2DoStep`: integrate from the FMU time `t` to `t + h`.
@@ -34,6 +35,16 @@ impl Instance {
                     stop - t
                 )));
             }
+        }
+        // The FMU's time stays within the experiment's range (`[experiment]` of a scene, the
+        // times of the experiment set up), also without a stop time.
+        let limit = EXPERIMENT_TIME_LIMIT;
+        if t + h > limit * (1.0 + TIME_TOLERANCE) {
+            return Err(FmiError::rejected(format!(
+                "the step from currentCommunicationPoint = {t} s with communicationStepSize = {h} s would end at {} s, after the end of the time range {limit:e} s: allowed communicationStepSize <= {} s",
+                t + h,
+                limit - t
+            )));
         }
         // Refusals that change nothing come first: a step beyond the work bound.
         self.model

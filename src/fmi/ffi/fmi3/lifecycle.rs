@@ -69,7 +69,7 @@ pub unsafe extern "C" fn fmi3SetDebugLogging(
     categories: *const fmi3String,
 ) -> fmi3Status {
     unsafe {
-        dispatch(instance, Call::SetDebugLogging, |i| {
+        dispatch(Standard::Fmi3, instance, Call::SetDebugLogging, |i| {
             i.set_debug_logging(loggingOn, &strings(categories, nCategories, "categories")?)
         })
     }
@@ -167,7 +167,7 @@ pub unsafe extern "C" fn fmi3InstantiateScheduledExecution(
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi3FreeInstance(instance: fmi3Instance) {
-    unsafe { component::free(instance) }
+    unsafe { component::free(Standard::Fmi3, instance) }
 }
 
 #[no_mangle]
@@ -180,14 +180,19 @@ pub unsafe extern "C" fn fmi3EnterInitializationMode(
     stopTime: fmi3Float64,
 ) -> fmi3Status {
     unsafe {
-        dispatch(instance, Call::EnterInitializationMode, |i| {
-            i.setup_experiment(
-                toleranceDefined.then_some(tolerance),
-                startTime,
-                stopTimeDefined.then_some(stopTime),
-            )?;
-            i.enter_initialization_mode()
-        })
+        dispatch(
+            Standard::Fmi3,
+            instance,
+            Call::EnterInitializationMode,
+            |i| {
+                i.setup_experiment(
+                    toleranceDefined.then_some(tolerance),
+                    startTime,
+                    stopTimeDefined.then_some(stopTime),
+                )?;
+                i.enter_initialization_mode()
+            },
+        )
     }
 }
 
@@ -195,6 +200,7 @@ pub unsafe extern "C" fn fmi3EnterInitializationMode(
 pub unsafe extern "C" fn fmi3ExitInitializationMode(instance: fmi3Instance) -> fmi3Status {
     unsafe {
         dispatch(
+            Standard::Fmi3,
             instance,
             Call::ExitInitializationMode,
             Instance::exit_initialization_mode,
@@ -204,12 +210,19 @@ pub unsafe extern "C" fn fmi3ExitInitializationMode(instance: fmi3Instance) -> f
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi3Terminate(instance: fmi3Instance) -> fmi3Status {
-    unsafe { dispatch(instance, Call::Terminate, Instance::terminate) }
+    unsafe {
+        dispatch(
+            Standard::Fmi3,
+            instance,
+            Call::Terminate,
+            Instance::terminate,
+        )
+    }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi3Reset(instance: fmi3Instance) -> fmi3Status {
-    unsafe { dispatch(instance, Call::Reset, Instance::reset) }
+    unsafe { dispatch(Standard::Fmi3, instance, Call::Reset, Instance::reset) }
 }
 
 /// A function of a feature the FMU does not declare: `fmi3Error` with the reason.
@@ -219,7 +232,7 @@ pub(super) unsafe fn not_provided(
     why: &'static str,
 ) -> fmi3Status {
     unsafe {
-        dispatch(instance, Call::NotProvided(name), |_| {
+        dispatch(Standard::Fmi3, instance, Call::NotProvided(name), |_| {
             Err(FmiError::rejected(format!(
                 "not provided: {why}; nothing was done"
             )))

@@ -4,6 +4,7 @@
 use super::super::component::dispatch;
 use super::super::convert::{answer, clear_handle, handle, slice, slice_mut, store_handle};
 use super::{fmi3Byte, fmi3FMUState, fmi3Instance, fmi3Status};
+use crate::fmi::standard::Standard;
 use crate::fmi::state_machine::Call;
 
 #[no_mangle]
@@ -12,7 +13,7 @@ pub unsafe extern "C" fn fmi3GetFMUState(
     FMUState: *mut fmi3FMUState,
 ) -> fmi3Status {
     unsafe {
-        dispatch(instance, Call::GetFMUstate, |i| {
+        dispatch(Standard::Fmi3, instance, Call::GetFMUstate, |i| {
             store_handle(FMUState, |existing| i.get_fmu_state(existing))
         })
     }
@@ -24,7 +25,7 @@ pub unsafe extern "C" fn fmi3SetFMUState(
     FMUState: fmi3FMUState,
 ) -> fmi3Status {
     unsafe {
-        dispatch(instance, Call::SetFMUstate, |i| {
+        dispatch(Standard::Fmi3, instance, Call::SetFMUstate, |i| {
             i.set_fmu_state(handle(FMUState)?)
         })
     }
@@ -36,7 +37,7 @@ pub unsafe extern "C" fn fmi3FreeFMUState(
     FMUState: *mut fmi3FMUState,
 ) -> fmi3Status {
     unsafe {
-        dispatch(instance, Call::FreeFMUstate, |i| {
+        dispatch(Standard::Fmi3, instance, Call::FreeFMUstate, |i| {
             clear_handle(FMUState, |h| i.free_fmu_state(h))
         })
     }
@@ -49,9 +50,12 @@ pub unsafe extern "C" fn fmi3SerializedFMUStateSize(
     size: *mut usize,
 ) -> fmi3Status {
     unsafe {
-        dispatch(instance, Call::SerializedFMUstateSize, |i| {
-            answer(size, "size", || i.serialized_size(handle(FMUState)?))
-        })
+        dispatch(
+            Standard::Fmi3,
+            instance,
+            Call::SerializedFMUstateSize,
+            |i| answer(size, "size", || i.serialized_size(handle(FMUState)?)),
+        )
     }
 }
 
@@ -63,7 +67,7 @@ pub unsafe extern "C" fn fmi3SerializeFMUState(
     size: usize,
 ) -> fmi3Status {
     unsafe {
-        dispatch(instance, Call::SerializeFMUstate, |i| {
+        dispatch(Standard::Fmi3, instance, Call::SerializeFMUstate, |i| {
             i.serialize_fmu_state(
                 handle(FMUState)?,
                 slice_mut(serializedState, size, "serializedState[]")?,
@@ -80,7 +84,7 @@ pub unsafe extern "C" fn fmi3DeserializeFMUState(
     FMUState: *mut fmi3FMUState,
 ) -> fmi3Status {
     unsafe {
-        dispatch(instance, Call::DeSerializeFMUstate, |i| {
+        dispatch(Standard::Fmi3, instance, Call::DeSerializeFMUstate, |i| {
             let bytes = slice(serializedState, size, "serializedState[]")?;
             store_handle(FMUState, |existing| {
                 i.deserialize_fmu_state(bytes, existing)

@@ -8,6 +8,7 @@ use super::super::component::dispatch;
 use super::super::convert::out;
 use super::lifecycle::not_provided;
 use super::{fmi3Boolean, fmi3Float64, fmi3Instance, fmi3Int32, fmi3Status, fmi3ValueReference};
+use crate::fmi::standard::Standard;
 use crate::fmi::state_machine::Call;
 
 #[no_mangle]
@@ -22,7 +23,7 @@ pub unsafe extern "C" fn fmi3DoStep(
     lastSuccessfulTime: *mut fmi3Float64,
 ) -> fmi3Status {
     unsafe {
-        dispatch(instance, Call::DoStep, |i| {
+        dispatch(Standard::Fmi3, instance, Call::DoStep, |i| {
             // All out-arguments first: a NULL one rejects the call before anything changes.
             let event = out(eventHandlingNeeded, "eventHandlingNeeded")?;
             let terminate = out(terminateSimulation, "terminateSimulation")?;
@@ -61,9 +62,12 @@ pub unsafe extern "C" fn fmi3GetOutputDerivatives(
     _nValues: usize,
 ) -> fmi3Status {
     unsafe {
-        dispatch(instance, Call::GetRealOutputDerivatives, |i| {
-            i.get_real_output_derivatives()
-        })
+        dispatch(
+            Standard::Fmi3,
+            instance,
+            Call::GetRealOutputDerivatives,
+            |i| i.get_real_output_derivatives(),
+        )
     }
 }
 
@@ -80,9 +84,12 @@ pub unsafe extern "C" fn fmi3GetDirectionalDerivative(
     _nSensitivity: usize,
 ) -> fmi3Status {
     unsafe {
-        dispatch(instance, Call::GetDirectionalDerivative, |i| {
-            i.get_directional_derivative()
-        })
+        dispatch(
+            Standard::Fmi3,
+            instance,
+            Call::GetDirectionalDerivative,
+            |i| i.get_directional_derivative(),
+        )
     }
 }
 

@@ -8,6 +8,7 @@ use std::ffi::c_void;
 use super::super::component::dispatch;
 use super::super::convert::{slice, slice_mut};
 use super::{fmi3Float64, fmi3Instance, fmi3Int32, fmi3Int64, fmi3Status, fmi3ValueReference};
+use crate::fmi::standard::Standard;
 use crate::fmi::state_machine::Call;
 use crate::fmi::variables::Family;
 
@@ -20,7 +21,7 @@ pub unsafe extern "C" fn fmi3GetFloat64(
     nValues: usize,
 ) -> fmi3Status {
     unsafe {
-        dispatch(instance, Call::GetReal, |i| {
+        dispatch(Standard::Fmi3, instance, Call::GetReal, |i| {
             i.get_real(
                 slice(valueReferences, nValueReferences, "valueReferences[]")?,
                 slice_mut(values, nValues, "values[]")?,
@@ -38,7 +39,7 @@ pub unsafe extern "C" fn fmi3SetFloat64(
     nValues: usize,
 ) -> fmi3Status {
     unsafe {
-        dispatch(instance, Call::SetReal, |i| {
+        dispatch(Standard::Fmi3, instance, Call::SetReal, |i| {
             i.set_real(
                 slice(valueReferences, nValueReferences, "valueReferences[]")?,
                 slice(values, nValues, "values[]")?,
@@ -56,7 +57,7 @@ pub unsafe extern "C" fn fmi3GetInt32(
     nValues: usize,
 ) -> fmi3Status {
     unsafe {
-        dispatch(instance, Call::GetInteger, |i| {
+        dispatch(Standard::Fmi3, instance, Call::GetInteger, |i| {
             i.get_integer(
                 Family::Integer,
                 slice(valueReferences, nValueReferences, "valueReferences[]")?,
@@ -75,7 +76,7 @@ pub unsafe extern "C" fn fmi3SetInt32(
     nValues: usize,
 ) -> fmi3Status {
     unsafe {
-        dispatch(instance, Call::SetInteger, |i| {
+        dispatch(Standard::Fmi3, instance, Call::SetInteger, |i| {
             i.set_integer(
                 Family::Integer,
                 slice(valueReferences, nValueReferences, "valueReferences[]")?,
@@ -94,7 +95,7 @@ pub unsafe extern "C" fn fmi3GetInt64(
     nValues: usize,
 ) -> fmi3Status {
     unsafe {
-        dispatch(instance, Call::GetInt64, |i| {
+        dispatch(Standard::Fmi3, instance, Call::GetInt64, |i| {
             i.get_integer(
                 Family::Enumeration,
                 slice(valueReferences, nValueReferences, "valueReferences[]")?,
@@ -113,7 +114,7 @@ pub unsafe extern "C" fn fmi3SetInt64(
     nValues: usize,
 ) -> fmi3Status {
     unsafe {
-        dispatch(instance, Call::SetInt64, |i| {
+        dispatch(Standard::Fmi3, instance, Call::SetInt64, |i| {
             i.set_integer(
                 Family::Enumeration,
                 slice(valueReferences, nValueReferences, "valueReferences[]")?,
@@ -137,7 +138,7 @@ macro_rules! no_variables {
             nValues: usize,
         ) -> fmi3Status {
             unsafe {
-                dispatch(instance, Call::GetOther(stringify!($get)), |i| {
+                dispatch(Standard::Fmi3, instance, Call::GetOther(stringify!($get)), |i| {
                     slice_mut(values.cast::<u8>(), nValues, "values[]")?;
                     i.no_variables_of(
                         Family::Other($ty),
@@ -156,7 +157,7 @@ macro_rules! no_variables {
             nValues: usize,
         ) -> fmi3Status {
             unsafe {
-                dispatch(instance, Call::SetOther(stringify!($set)), |i| {
+                dispatch(Standard::Fmi3, instance, Call::SetOther(stringify!($set)), |i| {
                     slice(values.cast::<u8>(), nValues, "values[]")?;
                     i.no_variables_of(
                         Family::Other($ty),
@@ -190,14 +191,19 @@ pub unsafe extern "C" fn fmi3GetBinary(
     nValues: usize,
 ) -> fmi3Status {
     unsafe {
-        dispatch(instance, Call::GetOther("fmi3GetBinary"), |i| {
-            slice_mut(valueSizes, nValues, "valueSizes[]")?;
-            slice_mut(values, nValues, "values[]")?;
-            i.no_variables_of(
-                Family::Other("Binary"),
-                slice(valueReferences, nValueReferences, "valueReferences[]")?,
-            )
-        })
+        dispatch(
+            Standard::Fmi3,
+            instance,
+            Call::GetOther("fmi3GetBinary"),
+            |i| {
+                slice_mut(valueSizes, nValues, "valueSizes[]")?;
+                slice_mut(values, nValues, "values[]")?;
+                i.no_variables_of(
+                    Family::Other("Binary"),
+                    slice(valueReferences, nValueReferences, "valueReferences[]")?,
+                )
+            },
+        )
     }
 }
 
@@ -211,14 +217,19 @@ pub unsafe extern "C" fn fmi3SetBinary(
     nValues: usize,
 ) -> fmi3Status {
     unsafe {
-        dispatch(instance, Call::SetOther("fmi3SetBinary"), |i| {
-            slice(valueSizes, nValues, "valueSizes[]")?;
-            slice(values, nValues, "values[]")?;
-            i.no_variables_of(
-                Family::Other("Binary"),
-                slice(valueReferences, nValueReferences, "valueReferences[]")?,
-            )
-        })
+        dispatch(
+            Standard::Fmi3,
+            instance,
+            Call::SetOther("fmi3SetBinary"),
+            |i| {
+                slice(valueSizes, nValues, "valueSizes[]")?;
+                slice(values, nValues, "values[]")?;
+                i.no_variables_of(
+                    Family::Other("Binary"),
+                    slice(valueReferences, nValueReferences, "valueReferences[]")?,
+                )
+            },
+        )
     }
 }
 
@@ -230,13 +241,18 @@ pub unsafe extern "C" fn fmi3GetClock(
     values: *mut bool,
 ) -> fmi3Status {
     unsafe {
-        dispatch(instance, Call::GetOther("fmi3GetClock"), |i| {
-            slice_mut(values, nValueReferences, "values[]")?;
-            i.no_variables_of(
-                Family::Other("Clock"),
-                slice(valueReferences, nValueReferences, "valueReferences[]")?,
-            )
-        })
+        dispatch(
+            Standard::Fmi3,
+            instance,
+            Call::GetOther("fmi3GetClock"),
+            |i| {
+                slice_mut(values, nValueReferences, "values[]")?;
+                i.no_variables_of(
+                    Family::Other("Clock"),
+                    slice(valueReferences, nValueReferences, "valueReferences[]")?,
+                )
+            },
+        )
     }
 }
 
@@ -248,12 +264,17 @@ pub unsafe extern "C" fn fmi3SetClock(
     values: *const bool,
 ) -> fmi3Status {
     unsafe {
-        dispatch(instance, Call::SetOther("fmi3SetClock"), |i| {
-            slice(values, nValueReferences, "values[]")?;
-            i.no_variables_of(
-                Family::Other("Clock"),
-                slice(valueReferences, nValueReferences, "valueReferences[]")?,
-            )
-        })
+        dispatch(
+            Standard::Fmi3,
+            instance,
+            Call::SetOther("fmi3SetClock"),
+            |i| {
+                slice(values, nValueReferences, "values[]")?;
+                i.no_variables_of(
+                    Family::Other("Clock"),
+                    slice(valueReferences, nValueReferences, "valueReferences[]")?,
+                )
+            },
+        )
     }
 }
