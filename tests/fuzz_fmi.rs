@@ -219,6 +219,84 @@ fn random_call_sequences_keep_the_contract() {
     }
 }
 
+/// Sequences of the range generator in the suite (fragment `fuzz-ranges-short`).
+const DEFAULT_RANGE_SEQUENCES: u64 = 300;
+
+/// Sequences from which a run of the range generator counts as the long mode (fragment
+/// `fuzz-ranges-long`).
+const LONG_RANGE_RUN: u64 = 100_000;
+
+/// Every parameter across its whole declared range, on the default and the automotive FMU
+/// (`fuzz::ranges`): every call within the documented worst case of one call, statuses and
+/// values within the contract. `FLEXROD_FUZZ_RANGES=N` sets the number of sequences,
+/// `FLEXROD_FUZZ_THREADS=T` the threads; the long mode (`FLEXROD_BLESS=1
+/// FLEXROD_FUZZ_RANGES=100000 FLEXROD_FUZZ_THREADS=2 cargo test --release --test fuzz_fmi
+/// ranges -- --nocapture`) writes the fragment `fuzz-ranges-long`.
+#[test]
+fn parameters_across_their_declared_ranges_take_bounded_time() {
+    let n = env_u64("FLEXROD_FUZZ_RANGES", DEFAULT_RANGE_SEQUENCES);
+    let first = env_u64("FLEXROD_FUZZ_FIRST", 0);
+    let threads = env_u64("FLEXROD_FUZZ_THREADS", 1).max(1);
+    let root = std::env::temp_dir().join(format!("flexrod-ranges-{}", std::process::id()));
+    let targets = fuzz::ranges::Target::shipped(&root);
+    let t0 = Instant::now();
+    let results: Vec<(fuzz::ranges::Ranges, Violations)> = std::thread::scope(|s| {
+        let handles: Vec<_> = (0..threads)
+            .map(|k| {
+                let (a, b) = (first + n * k / threads, first + n * (k + 1) / threads);
+                let targets = &targets;
+                s.spawn(move || {
+                    let mut r = fuzz::ranges::Ranges::default();
+                    let mut v = Violations::default();
+                    for seq in a..b {
+                        fuzz::ranges::run(seq, targets, &mut r, &mut v);
+                    }
+                    (r, v)
+                })
+            })
+            .collect();
+        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    });
+    let _ = std::fs::remove_dir_all(&root);
+    let seconds = t0.elapsed().as_secs_f64();
+    let mut r = fuzz::ranges::Ranges::default();
+    let mut violations = Violations::default();
+    for (x, v) in results {
+        r.add(&x);
+        violations.count += v.count;
+        violations.first.extend(v.first);
+    }
+    println!("ranges: {r:?}, {seconds:.1} s, contract violations: {}", violations.count);
+    for line in &violations.first {
+        println!("  {line}");
+    }
+    assert_eq!(violations.count, 0, "{:#?}", violations.first);
+    assert!(r.initialized > 0 && r.refused_at_initialization > 0, "{r:?}");
+    let figures = format!(
+        "{} sequences (seeds {first} to {}) on the default and the automotive FMU: {} parameters set across their declared ranges, {} initializations completed and {} refused with a message, {} communication steps ({} of them fmi2OK or fmi2Warning); slowest call {:.2} s (sequence {}), every call within the documented worst case of {} s; **contract violations: {}**",
+        r.sequences,
+        first + n - 1,
+        r.parameters_set,
+        r.initialized,
+        r.refused_at_initialization,
+        r.steps,
+        r.steps_ok,
+        r.slowest_call,
+        r.slowest_seed,
+        fuzz::ranges::WORST_CALL,
+        violations.count,
+    );
+    if n >= LONG_RANGE_RUN && common::fragments::blessing() {
+        common::generated::check_generated(
+            "fuzz-ranges-long",
+            &format!(
+                "{figures}; {seconds:.0} s on {threads} thread(s) ({:.2} ms per sequence and thread).\n",
+                seconds * threads as f64 / n as f64 * 1e3,
+            ),
+        );
+    }
+}
+
 /// Serialized states with edited contents and a recomputed checksum (the checksum is unkeyed):
 /// the FMU refuses them, or accepts a state that it can stand behind (every accepted step's
 /// outputs finite and bounded).

@@ -88,64 +88,149 @@ fn one_step(sim: &mut Simulation, h: f64) -> (f64, Result<(), ModelError>) {
     (t0.elapsed().as_secs_f64(), r)
 }
 
+/// The automotive scene with Young's modulus (shear modulus `E / 2.6`), element count and
+/// reference conditions changed: soft rods put many modes, axial ones among them, into its
+/// 6 kHz mode band.
+fn automotive(youngs_modulus: f64, elements: usize, reference: &str) -> Scene {
+    let path = common::fragments::repository().join("scenes/automotive_rod.toml");
+    let text = std::fs::read_to_string(path)
+        .unwrap()
+        .replace("reference = \"simply_supported\"", &format!("reference = \"{reference}\""));
+    let mut s = Scene::from_toml_str(&text, "automotive").unwrap();
+    s.rod.youngs_modulus = youngs_modulus;
+    s.rod.shear_modulus = Some(youngs_modulus / 2.6);
+    s.rod.elements = elements;
+    s
+}
+
+/// One row of the worst-case table: build and start `scene`, then one communication step of
+/// `h`; (row, initialization s, step s).
+fn measure(label: &str, scene: &Scene, h: f64, speed: f64) -> (String, f64, f64) {
+    let t0 = Instant::now();
+    let built = Simulation::new(scene);
+    let mut sim = match built {
+        Ok(sim) => sim,
+        Err(e) => {
+            let init = t0.elapsed().as_secs_f64();
+            println!("{label}: refused after {init:.2} s: {e}");
+            let why = match e {
+                ModelError::TooCostly { .. } => "refused by the cost model",
+                _ => "refused",
+            };
+            return (
+                format!("| {label} | - | - | {init:.2} ({why}) | - |"),
+                init,
+                0.0,
+            );
+        }
+    };
+    sim.start(
+        0.0,
+        CrankInput {
+            angle: 0.0,
+            speed,
+            acceleration: 0.0,
+            jerk: 0.0,
+        },
+        0.0,
+    )
+    .expect("starts");
+    let init = t0.elapsed().as_secs_f64();
+    let n = sim.mechanism().work_coordinates();
+    let cost = sim.mechanism().evaluation_cost();
+    let (step, outcome) = one_step(&mut sim, h);
+    let outcome = match outcome {
+        Ok(()) => "completed".to_string(),
+        Err(ModelError::TooMuchWork { .. }) => "refused at the work budget".to_string(),
+        Err(e) => {
+            println!("{label}: {e}");
+            "failed, the state kept".to_string()
+        }
+    };
+    println!("{label}: n = {n}, init {init:.2} s, step {step:.2} s, {outcome}");
+    (
+        format!(
+            "| {label} | {n} | {} | {init:.2} | {step:.2} (h = {h} s: {outcome}) |",
+            evaluations_allowed(cost)
+        ),
+        init,
+        step,
+    )
+}
+
 #[test]
 #[ignore]
 fn worst_case_time_per_call() {
-    let mut rows = Vec::new();
-    let mut worst_init: f64 = 0.0;
-    let mut worst_step: f64 = 0.0;
     let mut mid = largest_ffr();
     mid.rod.elements = 48;
     mid.rod.modes = 3 * 48;
+    let mut widest = largest_ffr();
+    widest.rod.modes = 192;
+    let mut stations = with_most_stations(largest_ffr());
+    stations.rod.modes = 96;
     let mut fine = Scene::benchmark();
     fine.solver.tolerance = 1e-10;
     let mut soft_segments = largest_segments();
     soft_segments.rod.youngs_modulus = 1e5;
     soft_segments.rod.density = 1e5;
     soft_segments.rod.deflection_policy = flexrod::scene::DeflectionPolicy::Warn;
-    for (label, scene, h) in [
-        ("default scene", Scene::benchmark(), 0.5),
-        ("default scene, solver.tolerance = 1e-10", fine, 0.5),
-        ("FFR, 48 elements, 144 modes", mid, 1e-2),
-        ("FFR, 128 elements, 384 modes", largest_ffr(), 1e-2),
+    let mut soft_tight = automotive(1e5, 8, "simply_supported");
+    soft_tight.solver.tolerance = 1.4e-6;
+    let cases = [
+        ("default scene", Scene::benchmark(), 0.5, 150.0),
+        ("default scene, solver.tolerance = 1e-10", fine, 0.5, 150.0),
+        ("FFR, 48 elements, 144 modes", mid, 1e-2, 150.0),
+        ("FFR, 128 elements, 192 modes", widest, 1e-2, 150.0),
+        ("FFR, 128 elements, 384 modes", largest_ffr(), 1e-2, 150.0),
+        ("FFR, 128 elements, 96 modes, 256 stations", stations, 1e-2, 150.0),
         (
-            "FFR, 128 elements, 384 modes, 256 stations",
-            with_most_stations(largest_ffr()),
+            "automotive, E = 2e8 Pa, 24 elements (43 modes in the band, 11 axial)",
+            automotive(2e8, 24, "simply_supported"),
             1e-2,
+            628.3,
         ),
-        ("segments, 128", largest_segments(), 1e-2),
-        ("segments, 128, soft and heavy", soft_segments, 1e-2),
+        (
+            "automotive, E = 1e5 Pa, solver.tolerance = 1.4e-6",
+            soft_tight,
+            1e-2,
+            628.3,
+        ),
+        (
+            "automotive, E = 7.95e6 Pa, 52 elements, mean_axis",
+            automotive(7.95e6, 52, "mean_axis"),
+            1e-4,
+            628.3,
+        ),
+        (
+            "automotive, E = 7.95e6 Pa, 128 elements, mean_axis",
+            automotive(7.95e6, 128, "mean_axis"),
+            1e-4,
+            628.3,
+        ),
+        ("segments, 128", largest_segments(), 1e-2, 150.0),
+        ("segments, 128, soft and heavy", soft_segments, 1e-2, 150.0),
         (
             "segments, 128, 256 stations",
             with_most_stations(largest_segments()),
             1e-2,
+            150.0,
         ),
-    ] {
-        let (init, mut sim) = initialization(&scene);
-        let n = sim.state().dae.q.len();
-        let cost = sim.mechanism().evaluation_cost();
-        let (step, outcome) = one_step(&mut sim, h);
+    ];
+    let mut rows = Vec::new();
+    let (mut worst_init, mut worst_step) = (0.0f64, 0.0f64);
+    for (label, scene, h, speed) in cases {
+        let (row, init, step) = measure(label, &scene, h, speed);
+        rows.push(row);
         worst_init = worst_init.max(init);
         worst_step = worst_step.max(step);
-        let outcome = match outcome {
-            Ok(()) => "completed".to_string(),
-            Err(ModelError::TooMuchWork { .. }) => "refused at the work budget".to_string(),
-            Err(e) => {
-                println!("{label}: {e}");
-                "failed, the state kept".to_string()
-            }
-        };
-        println!("{label}: n = {n}, init {init:.2} s, step {step:.2} s, {outcome}");
-        rows.push(format!(
-            "| {label} | {n} | {} | {init:.2} | {step:.2} (h = {h} s: {outcome}) |",
-            evaluations_allowed(cost)
-        ));
     }
     let markdown = format!(
-        "| model at the declared maxima | coordinates n | evaluations per call (budget) | initialization, s | one communication step h, s |\n|---|---:|---:|---:|---|\n{}\n\nWorst case measured: initialization {worst_init:.1} s, one communication step {worst_step:.1} s (one thread, release build; `FLEXROD_BLESS=1 cargo test --release --test work_bound -- --ignored --nocapture`).\n",
-        rows.join("\n")
+        "| model at the declared maxima | coordinates n | evaluations per call (budget) | initialization, s | one communication step h, s |\n|---|---:|---:|---:|---|\n{}\n\nWorst case measured: initialization {worst_init:.1} s, one communication step {worst_step:.1} s, against the bound of {} s per call (one thread, release build; `FLEXROD_BLESS=1 cargo test --release --test work_bound -- --ignored --nocapture`).\n",
+        rows.join("\n"),
+        flexrod::rod::cost::WORST_CALL_SECONDS
     );
     print!("{markdown}");
+    assert!(worst_init.max(worst_step) <= flexrod::rod::cost::WORST_CALL_SECONDS);
     if common::blessing() {
         common::check_generated("worst-case-time", &markdown);
     }
@@ -203,4 +288,84 @@ fn the_work_budget_counts_the_chain_behind_its_modes() {
     assert_eq!(sim.time(), 0.0);
     assert!(took < 20.0, "{took} s");
     sim.advance(1e-4).expect("a small step goes on");
+}
+
+/// The limits of docs/robustness.md, "Limits", from the constants of the code (fragment
+/// `limits`): a changed constant fails this test until the fragment is blessed.
+#[test]
+fn limits() {
+    use flexrod::rod::cost;
+    let mib = |bytes: f64| bytes / 1048576.0;
+    let rows = [
+        (
+            "time of one call (initialization or one communication step)".to_string(),
+            format!("{} s on one core of the reference machine", cost::WORST_CALL_SECONDS),
+            "`rod::cost::WORST_CALL_SECONDS`",
+        ),
+        (
+            "work of one communication step".to_string(),
+            format!(
+                "{:.1e} work units (an evaluation of `n` coordinates: `n^2 (n + 100)` + {:.0e}, plus the FFR rod's axial coupling, {} `na n^2 (na + 3)`)",
+                flexrod::mechanism::stepping::WORK_BUDGET,
+                cost::EVALUATION_OVERHEAD,
+                cost::AXIAL_COUPLING_TERM
+            ),
+            "`mechanism::stepping::WORK_BUDGET`",
+        ),
+        (
+            "internal steps of one communication step".to_string(),
+            format!("{}", flexrod::mechanism::MAX_INTERNAL_STEPS),
+            "`mechanism::MAX_INTERNAL_STEPS`",
+        ),
+        (
+            "one evaluation of a model".to_string(),
+            format!(
+                "at most 1/{} of the work of one communication step, else refused at initialization",
+                cost::MIN_EVALUATIONS_PER_CALL
+            ),
+            "`rod::cost::MIN_EVALUATIONS_PER_CALL`",
+        ),
+        (
+            "building the FFR rod's axial coupling".to_string(),
+            format!(
+                "{:.1e} work units ({} `4 E na n^2 (na + 1)`), else refused at initialization",
+                cost::BUILD_BUDGET,
+                cost::AXIAL_BUILD_TERM
+            ),
+            "`rod::cost::BUILD_BUDGET`",
+        ),
+        (
+            "memory of one rod's precomputed tensors".to_string(),
+            format!("{:.0} MiB, else refused at initialization", mib(cost::MAX_MODEL_BYTES)),
+            "`rod::cost::MAX_MODEL_BYTES`",
+        ),
+        (
+            "elements (`rod.elements`)".to_string(),
+            format!("{}", flexrod::beam::mesh::MAX_ELEMENTS),
+            "`beam::mesh::MAX_ELEMENTS`",
+        ),
+        (
+            "`[[rod.section]]` stations".to_string(),
+            format!("{MAX_STATIONS}"),
+            "`beam::section_table::MAX_STATIONS`",
+        ),
+        (
+            "step halvings (`solver.max_halvings`)".to_string(),
+            format!("{}", flexrod::mechanism::stepping::MAX_HALVINGS),
+            "`mechanism::stepping::MAX_HALVINGS`",
+        ),
+        (
+            "lowest retained natural frequency of an FFR rod".to_string(),
+            format!(
+                "at least {:e} of the highest of its eigenproblem",
+                flexrod::rod::MIN_RESOLVED_FREQUENCY_RATIO
+            ),
+            "`rod::MIN_RESOLVED_FREQUENCY_RATIO`",
+        ),
+    ];
+    let mut markdown = String::from("| limit | value | constant |\n|---|---|---|\n");
+    for (what, value, constant) in rows {
+        markdown += &format!("| {what} | {value} | {constant} |\n");
+    }
+    common::check_generated("limits", &markdown);
 }

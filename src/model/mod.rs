@@ -22,7 +22,7 @@ pub mod inputs;
 pub mod instance;
 pub mod variables;
 
-pub use crate::scene::Scene;
+pub use crate::scene::{check_experiment_times, Scene, EXPERIMENT_TIME_LIMIT};
 pub use inputs::{AccelerationSource, Inputs};
 pub use instance::{Model, SavedModel, StepError};
 pub use variables::{Interface, VariableId, VariableTable};

@@ -39,6 +39,12 @@ pub const BUILD_BUDGET: f64 = 2.5e10;
 /// rod's section sampling and axial coupling, the only parts that grow faster than `n^2`.
 pub const MAX_MODEL_BYTES: f64 = 268_435_456.0;
 
+/// The bound on the wall time of one call that the limits here and the per-call budget keep,
+/// s: initialization or one communication step, on one core of the reference machine (2
+/// cores, x86-64). Measured worst cases are in docs/fmu.md, "Time per call"; the fuzz
+/// harness's range generator checks every call against it.
+pub const WORST_CALL_SECONDS: f64 = 5.0;
+
 /// The fewest evaluations one communication step must be able to afford within the
 /// per-call budget: a model whose evaluation costs more than `WORK_BUDGET /
 /// MIN_EVALUATIONS_PER_CALL` could take only a handful of internal steps per call, and is

@@ -5,7 +5,7 @@ use crate::error::ModelError;
 use crate::fmi::state_machine::{Call, MachineState};
 use crate::fmi::status::{FmiError, FmiResult, Status, StatusKind};
 use crate::model::StepError;
-use crate::scene::EXPERIMENT_TIME_LIMIT;
+use crate::model::EXPERIMENT_TIME_LIMIT;
 
 impl Instance {
     /// `fmi2DoStep`: integrate from the FMU time `t` to `t + h`.
