@@ -128,25 +128,36 @@ pub const EXPERIMENT_TIME_LIMIT: f64 = 1e6;
 pub const EXPERIMENT_STEP_RANGE: (f64, f64) = (1e-9, 1.0);
 
 impl ExperimentSpec {
-    /// Start and stop time finite, within `+-1e6` s and in order, the step in `[1e-9, 1]` s
-    /// and not longer than the run, the crank speed within its input window.
+    /// Start and stop time finite, within `+-1e6` s (the start at most `1e6 - 1` s), the stop at least the smallest step
+    /// (1e-9 s) after the start, the step in `[1e-9, 1]` s and not longer than the run, the
+    /// crank speed within its input window. Each error names the value that is wrong.
     pub fn validate(&self) -> Result<(), ModelError> {
         let limit = EXPERIMENT_TIME_LIMIT;
-        require_within("experiment.start_time", self.start_time, -limit, limit, "s")?;
-        if !(self.stop_time.is_finite()
-            && self.stop_time > self.start_time
-            && self.stop_time <= limit)
-        {
+        let (low, high) = EXPERIMENT_STEP_RANGE;
+        // The start leaves room for a stop time up to the limit.
+        require_within(
+            "experiment.start_time",
+            self.start_time,
+            -limit,
+            limit - high,
+            "s",
+        )?;
+        // The least stop time, rounded up where start_time + 1e-9 s rounds below it.
+        let mut least = self.start_time + low;
+        if least - self.start_time < low {
+            least = least.next_up();
+        }
+        if !(self.stop_time.is_finite() && self.stop_time >= least && self.stop_time <= limit) {
             return Err(ModelError::InvalidParameter {
                 name: "experiment.stop_time",
                 value: self.stop_time,
                 allowed: format!(
-                    "a finite value in (start_time, {limit:e}] s, start_time = {} s",
-                    self.start_time
+                    "a finite value in [start_time + {low:e}, {limit:e}] = [{}, {limit:e}] s (start_time = {} s; the run holds at least one step of the smallest step_size {low:e} s)",
+                    crate::text::number(least),
+                    crate::text::number(self.start_time)
                 ),
             });
         }
-        let (low, high) = EXPERIMENT_STEP_RANGE;
         let span = self.stop_time - self.start_time;
         if !(self.step_size.is_finite()
             && self.step_size >= low
@@ -201,9 +212,10 @@ impl Scene {
     /// The settings no importer can set are checked here ([`Scene::validate_settings`]); the
     /// physical parameters when the model is built.
     pub fn from_toml_str(text: &str, origin: &str) -> Result<Scene, ModelError> {
+        // The parser's message quotes the offending line: each line cut to a bounded echo.
         let scene: Scene = toml::from_str(text).map_err(|e| ModelError::Scene {
             origin: origin.to_string(),
-            message: e.to_string().trim().to_string(),
+            message: crate::text::echo_lines(e.to_string().trim()),
         })?;
         scene.validate_settings().map_err(|e| ModelError::Scene {
             origin: origin.to_string(),
@@ -215,19 +227,43 @@ impl Scene {
     /// Check the keys an importer cannot set against their ranges (docs/fmu.md, "Input
     /// windows"), before anything uses them: the `[solver]` settings but `solver.tolerance`
     /// ([`SolverSpec::validate_settings`]), the number of `[[rod.section]]` stations
-    /// ([`crate::beam::MAX_STATIONS`]) and the `[experiment]`. Each error names the key and its
+    /// ([`crate::beam::MAX_STATIONS`]), the `[experiment]` and the texts written into
+    /// modelDescription.xml ([`Scene::validate_texts`]). Each error names the key and its
     /// range.
     pub fn validate_settings(&self) -> Result<(), ModelError> {
+        self.validate_texts()?;
         self.solver.validate_settings()?;
         crate::beam::section_table::check_station_count(self.rod.section.len())?;
         self.experiment.validate()
     }
 
-    /// Read and parse a scene file.
+    /// The scene's texts that modelDescription.xml carries (`name` as `modelName` and
+    /// `modelIdentifier`, `description`; every other text there is the model's own) hold only
+    /// characters an XML 1.0 attribute carries unchanged: no control character (U+0000 to
+    /// U+001F, tab and line breaks included), no U+FFFE or U+FFFF. The error names the key,
+    /// the character and its position.
+    pub fn validate_texts(&self) -> Result<(), ModelError> {
+        for (key, text) in [("name", &self.name), ("description", &self.description)] {
+            if let Some((position, c)) = crate::text::first_non_xml_char(text) {
+                return Err(ModelError::InvalidText {
+                    key,
+                    character: c,
+                    position,
+                    length: text.chars().count(),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Read and parse a scene file, at most [`crate::limits::SCENE_FILE_CAP`] bytes.
     pub fn from_file(path: &Path) -> Result<Scene, ModelError> {
-        let text = std::fs::read_to_string(path).map_err(|e| ModelError::Scene {
-            origin: path.display().to_string(),
-            message: format!("cannot read the file: {e}"),
+        let cap = crate::limits::SCENE_FILE_CAP;
+        let text = crate::limits::read_text(path, cap, "the scene file").map_err(|message| {
+            ModelError::Scene {
+                origin: path.display().to_string(),
+                message,
+            }
         })?;
         Scene::from_toml_str(&text, &path.display().to_string())
     }

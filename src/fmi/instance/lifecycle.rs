@@ -1,6 +1,7 @@
 //! Life cycle: debug logging, `fmi2SetupExperiment`, initialization mode, terminate, reset,
 //! and building and starting the simulation from the instance's parameters.
 
+use crate::text::time;
 use std::borrow::Cow;
 
 use super::{model_error, Instance};
@@ -24,13 +25,16 @@ impl Instance {
     ) -> FmiResult<Status> {
         if !start_time.is_finite() {
             return Err(FmiError::rejected(format!(
-                "startTime = {start_time} is out of range: allowed a finite value"
+                "startTime = {} is out of range: allowed a finite value",
+                time(start_time)
             )));
         }
         if let Some(stop) = stop_time {
             if !(stop.is_finite() && stop >= start_time) {
                 return Err(FmiError::rejected(format!(
-                    "stopTime = {stop} is out of range: allowed a finite value >= startTime = {start_time}"
+                    "stopTime = {} is out of range: allowed a finite value >= startTime = {}",
+                    time(stop),
+                    time(start_time)
                 )));
             }
         }
@@ -70,7 +74,8 @@ impl Instance {
         self.last_step = Status::Ok;
         if self.logger.events_on() {
             self.logger.event(&format!(
-                "initialized at t = {t0} s with {}",
+                "initialized at t = {} s with {}",
+                time(t0),
                 self.model.start_summary()
             ));
         }
