@@ -11,6 +11,12 @@ pub enum ModelError {
         value: f64,
         allowed: String,
     },
+    /// An integer parameter (a count, an index) outside its allowed range.
+    InvalidInteger {
+        name: &'static str,
+        value: i64,
+        allowed: String,
+    },
     /// Reference conditions that leave a rigid-body mode in or over-constrain the rod.
     ReferenceConditions { message: String },
     /// More modes requested than the reduced rod has.
@@ -68,6 +74,11 @@ impl fmt::Display for ModelError {
                 "parameter {name} = {} is out of range: allowed {allowed}",
                 crate::text::number(*value)
             ),
+            ModelError::InvalidInteger {
+                name,
+                value,
+                allowed,
+            } => write!(f, "parameter {name} = {value} is out of range: allowed {allowed}"),
             ModelError::ReferenceConditions { message } => {
                 write!(f, "reference conditions rejected: {message}")
             }

@@ -434,9 +434,9 @@ impl RodSpec {
     pub fn validate(&self) -> Result<(), ModelError> {
         if let Some(n) = self.axial_modes {
             if n > MAX_AXIAL_MODES {
-                return Err(ModelError::InvalidParameter {
+                return Err(ModelError::InvalidInteger {
                     name: "rod.axial_modes",
-                    value: n as f64,
+                    value: n as i64,
                     allowed: format!("0..={MAX_AXIAL_MODES}, or absent for automatic"),
                 });
             }
