@@ -448,17 +448,15 @@ fn docs_list_every_enumeration_item_of_the_model_description() {
     }
 }
 
-/// The items of each enumeration type (by type name, in code order) and the variables that
-/// declare one (name, type) in an FMI 2.0 model description.
-fn enumerations(
-    xml: &str,
-) -> (
-    std::collections::BTreeMap<String, Vec<String>>,
-    Vec<(String, String)>,
-) {
+/// The item names of each enumeration type, by type name, in code order.
+type Items = std::collections::BTreeMap<String, Vec<String>>;
+
+/// The items of each enumeration type and the variables that declare one (name, type) in an
+/// FMI 2.0 model description.
+fn enumerations(xml: &str) -> (Items, Vec<(String, String)>) {
     use quick_xml::events::Event;
     let mut reader = quick_xml::Reader::from_str(xml);
-    let mut types = std::collections::BTreeMap::<String, Vec<String>>::new();
+    let mut types = Items::new();
     let mut variables = Vec::new();
     let mut simple_type = None;
     let mut variable = None;

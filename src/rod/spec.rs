@@ -419,7 +419,7 @@ impl RodSpec {
         }
         if let Some(g) = self.shear_modulus {
             let least = modulus_fraction * self.youngs_modulus;
-            if !(g >= least) {
+            if !g.is_finite() || g < least {
                 return Err(ModelError::InvalidParameter {
                     name: "rod.shear_modulus",
                     value: g,
