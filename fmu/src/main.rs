@@ -57,6 +57,8 @@ usage: fmu [SCENE.toml] [--out DIR] [--fmi 2|3] [--simulate] [--csv FILE] [--acc
   --csv FILE     with --simulate (implied): write the outputs at the communication points
   --accel A      with --simulate: a constant crank acceleration A, rad/s^2 (finite)
   --steps H1,... with --simulate: cycle through these communication steps, s (each > 0)
+
+A run records at most 10^7 communication points; the scene file is read up to 16 MiB.
   -h, --help     print this help
 
 Exit codes: 0 done, 1 packaging or the run failed, 2 a bad command line.";
