@@ -43,24 +43,22 @@ pub fn check_points(what: &str, points: f64) -> Result<(), String> {
 /// table"), read through at most `cap + 1` bytes: a longer file (or a device without end,
 /// `/dev/zero`) is refused with the cap and what was read, never read to its end.
 pub fn read_text(path: &Path, cap: u64, what: &str) -> Result<String, String> {
-    let file = std::fs::File::open(path)
-        .map_err(|e| format!("cannot read {what} {}: {e}", path.display()))?;
+    let name = crate::text::echo(&path.display().to_string());
+    let file = std::fs::File::open(path).map_err(|e| format!("cannot read {what} {name}: {e}"))?;
     let mut bytes = Vec::new();
     file.take(cap + 1)
         .read_to_end(&mut bytes)
-        .map_err(|e| format!("cannot read {what} {}: {e}", path.display()))?;
+        .map_err(|e| format!("cannot read {what} {name}: {e}"))?;
     if bytes.len() as u64 > cap {
         return Err(format!(
-            "{what} {} is larger than {cap} bytes ({} MiB), the most read: {} bytes read before stopping",
-            path.display(),
+            "{what} {name} is larger than {cap} bytes ({} MiB), the most read: {} bytes read before stopping",
             cap >> 20,
             bytes.len()
         ));
     }
     String::from_utf8(bytes).map_err(|e| {
         format!(
-            "{what} {} is not UTF-8 text (byte {} of {})",
-            path.display(),
+            "{what} {name} is not UTF-8 text (byte {} of {})",
             e.utf8_error().valid_up_to() + 1,
             e.as_bytes().len()
         )

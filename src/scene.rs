@@ -259,13 +259,14 @@ impl Scene {
     /// Read and parse a scene file, at most [`crate::limits::SCENE_FILE_CAP`] bytes.
     pub fn from_file(path: &Path) -> Result<Scene, ModelError> {
         let cap = crate::limits::SCENE_FILE_CAP;
+        let origin = crate::text::echo(&path.display().to_string());
         let text = crate::limits::read_text(path, cap, "the scene file").map_err(|message| {
             ModelError::Scene {
-                origin: path.display().to_string(),
+                origin: origin.clone(),
                 message,
             }
         })?;
-        Scene::from_toml_str(&text, &path.display().to_string())
+        Scene::from_toml_str(&text, &origin)
     }
 
     /// The default scene: the benchmark rod of the CDI parametric study at 150 rad/s.

@@ -13,7 +13,8 @@
 //!   being read to its end;
 //! - `--speed` and `--revolutions` are refused with `--input`; the summary counts the
 //!   revolutions the crank turned;
-//! - echoed input (a TOML line, a CSV line) is cut to `text::ECHO_CHARS` characters;
+//! - echoed input (a TOML line, a CSV line, a flag's value) is cut to `text::ECHO_CHARS`
+//!   characters;
 //! - messages: the shear area and shear modulus windows name their key, integers print as
 //!   integers, the `[experiment]` stop time is named with a range that is never empty, times
 //!   print exactly;
@@ -312,6 +313,18 @@ fn echoed_input_is_bounded() {
     );
     assert!(out.stderr.len() < 2000, "{} bytes", out.stderr.len());
     assert_contains(&out.stderr, &["line 2", "... (800007 bytes)"]);
+
+    // A flag's value, quoted by the command-line parser.
+    let value = "9".repeat(100_000) + "x";
+    let out = flexrod(&["simulate", "--speed", &value]);
+    assert_eq!(
+        out.code,
+        Some(2),
+        "{}",
+        &out.stderr[..out.stderr.len().min(2000)]
+    );
+    assert!(out.stderr.len() < 2000, "{} bytes", out.stderr.len());
+    assert_contains(&out.stderr, &["invalid value", "bytes)"]);
 }
 
 /// Item 6: the messages name the value that is wrong, with its range, printed exactly.

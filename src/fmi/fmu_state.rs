@@ -213,12 +213,15 @@ pub(crate) fn deserialize<'a>(
     }
     if !start_time.is_finite() {
         return Err(format!(
-            "the start time is {start_time}, allowed a finite value"
+            "the start time is {}, allowed a finite value",
+            crate::text::time(start_time)
         ));
     }
     if stop_defined && !(stop.is_finite() && stop >= start_time) {
         return Err(format!(
-            "the stop time {stop} s is not finite or before the start time {start_time} s"
+            "the stop time {} s is not finite or before the start time {} s",
+            crate::text::time(stop),
+            crate::text::time(start_time)
         ));
     }
     if !matches!(last_step, Status::Ok | Status::Discard)

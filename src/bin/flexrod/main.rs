@@ -141,8 +141,23 @@ impl From<String> for Failure {
     }
 }
 
+/// The command line, or exit: help and version to stdout with exit code 0, a bad command line
+/// to stderr with exit code 2, each line of the message cut to a bounded echo (a value
+/// quoted from the command line).
+fn parse() -> Cli {
+    Cli::try_parse().unwrap_or_else(|e| {
+        let text = e.render().to_string();
+        if e.use_stderr() {
+            eprintln!("{}", flexrod::text::echo_lines(text.trim_end()));
+        } else {
+            print!("{text}");
+        }
+        std::process::exit(e.exit_code())
+    })
+}
+
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = parse();
     let (name, result) = match &cli.command {
         Command::Modes(args) => ("modes", modes(args)),
         Command::Simulate(args) => ("simulate", simulate(args)),
