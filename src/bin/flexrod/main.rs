@@ -361,15 +361,14 @@ fn simulate(args: &SimulateArgs) -> Result<(), Failure> {
     let t0 = scene.experiment.start_time;
     let drive = if let Some(path) = &args.input {
         let text = limits::read_text(path, CSV_FILE_CAP, "the --input table")?;
-        let drive = CrankDrive::table_from_csv(&text, &path.display().to_string()).map_err(
-            |e| match e {
-                // The table's errors come as scene errors: name the file as the input table.
-                flexrod::ModelError::Scene { origin, message } => {
-                    format!("--input table {origin}: {message}")
-                }
-                other => other.to_string(),
-            },
-        )?;
+        let origin = flexrod::text::echo(&path.display().to_string());
+        let drive = CrankDrive::table_from_csv(&text, &origin).map_err(|e| match e {
+            // The table's errors come as scene errors: name the file as the input table.
+            flexrod::ModelError::Scene { origin, message } => {
+                format!("--input table {origin}: {message}")
+            }
+            other => other.to_string(),
+        })?;
         if let CrankDrive::Table(rows) = &drive {
             let (first, last) = (rows[0], rows[rows.len() - 1]);
             if first[0] > t0 {
