@@ -250,7 +250,8 @@ fn files_past_their_caps_are_refused_without_reading_them_whole() {
 }
 
 /// Item 4: `--speed` and `--revolutions` are refused with `--input` (the table gives the
-/// crank's motion), and the summary counts the revolutions the table's crank turned.
+/// crank's motion), the summary counts the revolutions the table's crank turned, and
+/// `--revolutions` with `--ramp` runs that many turns of the ramped crank.
 #[test]
 fn input_tables_refuse_speed_and_revolutions_and_the_summary_reports_what_ran() {
     let dir = scratch("input");
@@ -269,6 +270,18 @@ fn input_tables_refuse_speed_and_revolutions_and_the_summary_reports_what_ran() 
     let out = flexrod(&["simulate", "--input", &table]);
     assert_eq!(out.code, Some(0), "{}", out.stderr);
     assert_contains(&out.stdout, &["(1.00 revolutions of the crank)"]);
+    // --revolutions counts the turns of the law that runs, a ramp's slower start included.
+    let out = flexrod(&[
+        "simulate",
+        "--speed",
+        "200",
+        "--ramp",
+        "0.02",
+        "--revolutions",
+        "4",
+    ]);
+    assert_eq!(out.code, Some(0), "{}", out.stderr);
+    assert_contains(&out.stdout, &["(4.00 revolutions of the crank)"]);
     let help = flexrod(&["simulate", "--help"]).stdout;
     assert_contains(
         &help,

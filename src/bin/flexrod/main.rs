@@ -69,7 +69,8 @@ struct ModesArgs {
 #[command(
     allow_negative_numbers = true,
     after_help = "The run starts at the scene's start_time and ends at its stop_time, or after N crank \
-                  revolutions at the --speed (counted from t = 0) with --revolutions; it records at most \
+                  revolutions at the --speed (counted from t = 0, the --ramp's slower start included) with \
+                  --revolutions; it records at most \
                   10^7 communication points ((stop - start) / step). With --input the table drives the \
                   crank: --speed, --revolutions and --ramp are refused with it. Files read: a scene of at \
                   most 16 MiB, an --input table of at most 256 MiB and 10^7 rows."
@@ -304,6 +305,30 @@ fn modes(args: &ModesArgs) -> Result<(), Failure> {
     Ok(())
 }
 
+/// The time at which the crank, turning from t = 0 at `speed` (ramped up over `ramp` seconds
+/// where given, as [`CrankDrive::Ramp`]), has turned `revolutions` revolutions: the law's own
+/// angle, so that a ramp's slower start is counted.
+fn revolutions_end(revolutions: f64, speed: f64, ramp: Option<f64>) -> f64 {
+    let angle = 2.0 * std::f64::consts::PI * revolutions;
+    let Some(time) = ramp else {
+        return angle / speed.abs();
+    };
+    let law = CrankDrive::Ramp { speed, time };
+    let turned = |t: f64| (law.at(t).angle - law.at(0.0).angle).abs();
+    // Past the ramp the crank has lost W T / 2 of angle against the constant speed: the end
+    // lies below angle / |W| + T / 2 (and is that where the ramp is over).
+    let (mut low, mut high) = (0.0, angle / speed.abs() + time);
+    for _ in 0..200 {
+        let mid = 0.5 * (low + high);
+        if turned(mid) < angle {
+            low = mid;
+        } else {
+            high = mid;
+        }
+    }
+    high
+}
+
 /// The run's stop time and number of communication steps, or why the command line gives none.
 fn run_length(
     args: &SimulateArgs,
@@ -319,7 +344,7 @@ fn run_length(
                     "--revolutions {revolutions} at crank speed 0 rad/s never ends: give --speed W with W != 0"
                 )));
             }
-            2.0 * std::f64::consts::PI * revolutions / speed.abs()
+            revolutions_end(revolutions, speed, args.ramp)
         }
         None => scene.experiment.stop_time,
     };
@@ -431,11 +456,12 @@ fn simulate(args: &SimulateArgs) -> Result<(), Failure> {
     );
     let (integrator, counted) = sim.mechanism().integrator_name();
     // The revolutions the crank turned, from the recorded crank angles (whatever drove it).
+    let ran = record.times.last().map_or(0.0, |t| t - t0);
     let turned = match (record.inputs.first(), record.inputs.last()) {
         (Some(first), Some(last)) => (last.angle - first.angle).abs(),
         _ => 0.0,
     };
-    println!("simulated {} s ({:.2} revolutions of the crank) in {:.2} ms wall with {integrator}: {} steps, {} {counted}, {} halvings", time(stop - t0), turned / (2.0 * std::f64::consts::PI), elapsed * 1e3, stats.steps, stats.newton_iterations, stats.halvings);
+    println!("simulated {} s ({:.2} revolutions of the crank) in {:.2} ms wall with {integrator}: {} steps, {} {counted}, {} halvings", time(ran), turned / (2.0 * std::f64::consts::PI), elapsed * 1e3, stats.steps, stats.newton_iterations, stats.halvings);
     println!("peak |v_mid/L| = {peak:.5e}, peak |F_B| = {peak_b:.2} N, peak |F_C| = {peak_c:.2} N");
     if let Some(path) = &args.out {
         write_csv(path, &record, scene.outputs.stress)?;
