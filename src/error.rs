@@ -11,6 +11,12 @@ pub enum ModelError {
         value: f64,
         allowed: String,
     },
+    /// An integer parameter (a count, an index) outside its allowed range.
+    InvalidInteger {
+        name: &'static str,
+        value: i64,
+        allowed: String,
+    },
     /// Reference conditions that leave a rigid-body mode in or over-constrain the rod.
     ReferenceConditions { message: String },
     /// More modes requested than the reduced rod has.
@@ -46,6 +52,15 @@ pub enum ModelError {
         /// What the limit stands for in this rod model, and what goes further (words).
         range: &'static str,
     },
+    /// A text of the scene (`name`, `description`) with a character modelDescription.xml
+    /// cannot carry.
+    InvalidText {
+        key: &'static str,
+        character: char,
+        /// Position of the character, in characters from 1.
+        position: usize,
+        length: usize,
+    },
     /// A call that the model cannot serve in its current state (e.g. bad state bytes).
     State { message: String },
 }
@@ -57,7 +72,16 @@ impl fmt::Display for ModelError {
                 name,
                 value,
                 allowed,
-            } => write!(f, "parameter {name} = {value:e} is out of range: allowed {allowed}"),
+            } => write!(
+                f,
+                "parameter {name} = {} is out of range: allowed {allowed}",
+                crate::text::number(*value)
+            ),
+            ModelError::InvalidInteger {
+                name,
+                value,
+                allowed,
+            } => write!(f, "parameter {name} = {value} is out of range: allowed {allowed}"),
             ModelError::ReferenceConditions { message } => {
                 write!(f, "reference conditions rejected: {message}")
             }
@@ -73,7 +97,8 @@ impl fmt::Display for ModelError {
             ModelError::Scene { origin, message } => write!(f, "scene {origin}: {message}"),
             ModelError::StepFailed { time, step, reason } => write!(
                 f,
-                "step from t = {time} s with h = {step:e} s failed: {reason}; the state before the step is kept"
+                "step from t = {} s with h = {step:e} s failed: {reason}; the state before the step is kept",
+                crate::text::time(*time)
             ),
             ModelError::TooMuchWork {
                 time,
@@ -81,7 +106,8 @@ impl fmt::Display for ModelError {
                 message,
             } => write!(
                 f,
-                "communication step from t = {time} s with h = {step:e} s refused: {message}; the state before the step is kept, take smaller communication steps"
+                "communication step from t = {} s with h = {step:e} s refused: {message}; the state before the step is kept, take smaller communication steps",
+                crate::text::time(*time)
             ),
             ModelError::DeflectionLimit {
                 time,
@@ -92,9 +118,18 @@ impl fmt::Display for ModelError {
             } => write!(
                 f,
                 "the step to t = {} s reaches rod deflection |v_mid/L| = {deflection:.4e}, beyond rod.deflection_limit = {limit} ({range}; rod.deflection_policy = {}): the step is refused and the state before it kept",
-                // Rounded to 1e-12 s: a communication point k dt prints as its decimal value.
-                (time * 1e12).round() / 1e12,
+                crate::text::time(*time),
                 if *discard { "discard" } else { "error" }
+            ),
+            ModelError::InvalidText {
+                key,
+                character,
+                position,
+                length,
+            } => write!(
+                f,
+                "{key} holds the character U+{:04X} at position {position} (of {length} characters): allowed only characters an XML 1.0 attribute carries unchanged (no control character U+0000 to U+001F, no U+FFFE, U+FFFF)",
+                *character as u32
             ),
             ModelError::State { message } => write!(f, "{message}"),
         }

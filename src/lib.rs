@@ -36,12 +36,14 @@ pub mod error;
 pub mod fmi;
 pub mod hash;
 pub mod integrator;
+pub mod limits;
 pub mod mechanism;
 pub mod modal;
 pub mod model;
 pub mod rod;
 pub mod scene;
 pub mod simulation;
+pub mod text;
 pub mod trig;
 
 pub use error::ModelError;

@@ -129,8 +129,9 @@ pub const EXPERIMENT_STEP_RANGE: (f64, f64) = (1e-9, 1.0);
 
 /// The experiment's start and stop time, one check for scene files (`[experiment]`), the
 /// experiment of `fmi2SetupExperiment` / `fmi3EnterInitializationMode` and serialized states:
-/// the start finite in `[-EXPERIMENT_TIME_LIMIT, EXPERIMENT_TIME_LIMIT]` s, the stop (where
-/// given) finite, after the start and at most `EXPERIMENT_TIME_LIMIT` s. `names` are the start's
+/// the start finite in `[-EXPERIMENT_TIME_LIMIT, EXPERIMENT_TIME_LIMIT - 1]` s (room for a
+/// stop), the stop (where given) finite, at least the smallest step (1e-9 s) after the start
+/// and at most `EXPERIMENT_TIME_LIMIT` s. `names` are the start's
 /// and the stop's names in messages (the scene keys, or the arguments of the FMI call).
 pub fn check_experiment_times(
     start_time: f64,
@@ -138,20 +139,30 @@ pub fn check_experiment_times(
     names: [&'static str; 2],
 ) -> Result<(), ModelError> {
     let limit = EXPERIMENT_TIME_LIMIT;
+    let (low, high) = EXPERIMENT_STEP_RANGE;
     let [start_name, stop_name] = names;
-    require_within(start_name, start_time, -limit, limit, "s")?;
-    match stop_time {
-        Some(stop) if !(stop.is_finite() && stop > start_time && stop <= limit) => {
-            Err(ModelError::InvalidParameter {
-                name: stop_name,
-                value: stop,
-                allowed: format!(
-                    "a finite value in ({start_name}, {limit:e}] s, {start_name} = {start_time} s"
-                ),
-            })
-        }
-        _ => Ok(()),
+    // The start leaves room for a stop time up to the limit.
+    require_within(start_name, start_time, -limit, limit - high, "s")?;
+    let Some(stop) = stop_time else {
+        return Ok(());
+    };
+    // The least stop time, rounded up where start + 1e-9 s rounds below it.
+    let mut least = start_time + low;
+    if least - start_time < low {
+        least = least.next_up();
     }
+    if stop.is_finite() && stop >= least && stop <= limit {
+        return Ok(());
+    }
+    Err(ModelError::InvalidParameter {
+        name: stop_name,
+        value: stop,
+        allowed: format!(
+            "a finite value in [{start_name} + {low:e}, {limit:e}] = [{}, {limit:e}] s ({start_name} = {} s; the run holds at least one step of the smallest step size {low:e} s)",
+            crate::text::number(least),
+            crate::text::number(start_time)
+        ),
+    })
 }
 
 /// The scene keys of the experiment's start and stop time.
@@ -159,7 +170,8 @@ pub const EXPERIMENT_TIME_KEYS: [&str; 2] = ["experiment.start_time", "experimen
 
 impl ExperimentSpec {
     /// Start and stop time as [`check_experiment_times`] checks them, the step in `[1e-9, 1]` s
-    /// and not longer than the run, the crank speed within its input window.
+    /// and not longer than the run, the crank speed within its input window. Each error names
+    /// the value that is wrong.
     pub fn validate(&self) -> Result<(), ModelError> {
         check_experiment_times(self.start_time, Some(self.stop_time), EXPERIMENT_TIME_KEYS)?;
         let (low, high) = EXPERIMENT_STEP_RANGE;
@@ -217,9 +229,10 @@ impl Scene {
     /// The settings no importer can set are checked here ([`Scene::validate_settings`]); the
     /// physical parameters when the model is built.
     pub fn from_toml_str(text: &str, origin: &str) -> Result<Scene, ModelError> {
+        // The parser's message quotes the offending line: each line cut to a bounded echo.
         let scene: Scene = toml::from_str(text).map_err(|e| ModelError::Scene {
             origin: origin.to_string(),
-            message: e.to_string().trim().to_string(),
+            message: crate::text::echo_lines(e.to_string().trim()),
         })?;
         scene.validate_settings().map_err(|e| ModelError::Scene {
             origin: origin.to_string(),
@@ -231,21 +244,46 @@ impl Scene {
     /// Check the keys an importer cannot set against their ranges (docs/fmu.md, "Input
     /// windows"), before anything uses them: the `[solver]` settings but `solver.tolerance`
     /// ([`SolverSpec::validate_settings`]), the number of `[[rod.section]]` stations
-    /// ([`crate::beam::MAX_STATIONS`]) and the `[experiment]`. Each error names the key and its
+    /// ([`crate::beam::MAX_STATIONS`]), the `[experiment]` and the texts written into
+    /// modelDescription.xml ([`Scene::validate_texts`]). Each error names the key and its
     /// range.
     pub fn validate_settings(&self) -> Result<(), ModelError> {
+        self.validate_texts()?;
         self.solver.validate_settings()?;
         crate::beam::section_table::check_station_count(self.rod.section.len())?;
         self.experiment.validate()
     }
 
-    /// Read and parse a scene file.
+    /// The scene's texts that modelDescription.xml carries (`name` as `modelName` and
+    /// `modelIdentifier`, `description`; every other text there is the model's own) hold only
+    /// characters an XML 1.0 attribute carries unchanged: no control character (U+0000 to
+    /// U+001F, tab and line breaks included), no U+FFFE or U+FFFF. The error names the key,
+    /// the character and its position.
+    pub fn validate_texts(&self) -> Result<(), ModelError> {
+        for (key, text) in [("name", &self.name), ("description", &self.description)] {
+            if let Some((position, c)) = crate::text::first_non_xml_char(text) {
+                return Err(ModelError::InvalidText {
+                    key,
+                    character: c,
+                    position,
+                    length: text.chars().count(),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Read and parse a scene file, at most [`crate::limits::SCENE_FILE_CAP`] bytes.
     pub fn from_file(path: &Path) -> Result<Scene, ModelError> {
-        let text = std::fs::read_to_string(path).map_err(|e| ModelError::Scene {
-            origin: path.display().to_string(),
-            message: format!("cannot read the file: {e}"),
+        let cap = crate::limits::SCENE_FILE_CAP;
+        let origin = crate::text::echo(&path.display().to_string());
+        let text = crate::limits::read_text(path, cap, "the scene file").map_err(|message| {
+            ModelError::Scene {
+                origin: origin.clone(),
+                message,
+            }
         })?;
-        Scene::from_toml_str(&text, &path.display().to_string())
+        Scene::from_toml_str(&text, &origin)
     }
 
     /// The default scene: the benchmark rod of the CDI parametric study at 150 rad/s.

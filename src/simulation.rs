@@ -54,12 +54,6 @@ pub struct InputSnapshot {
     slider_force: f64,
 }
 
-/// `t` with six decimals, trailing zeros dropped (`0.0034`), for messages.
-fn trimmed(t: f64) -> String {
-    let text = format!("{t:.6}");
-    text.trim_end_matches('0').trim_end_matches('.').to_string()
-}
-
 /// Largest magnitudes of the inputs (past them no output can be trusted): crank
 /// angle 1e9 rad (the phase keeps 1e-7 rad), crank speed 1e4 rad/s (95 000 rpm), crank
 /// acceleration 1e8 rad/s^2, slider force 1e8 N.
@@ -227,7 +221,7 @@ impl Simulation {
         if let Some([time, estimate, peak]) = self.estimate_warning.take() {
             warnings.push(format!(
                 "rod.error_estimate = {estimate:.2e} at t = {} s exceeds solver.tolerance = {:e} (model and integration, peak |v_mid/L| so far {peak:.2e}; {})",
-                trimmed(time),
+                crate::text::time(time),
                 self.mechanism.spec.solver.tolerance,
                 self.mechanism.physics.summary()
             ));

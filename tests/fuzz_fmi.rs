@@ -266,12 +266,18 @@ fn parameters_across_their_declared_ranges_take_bounded_time() {
         violations.count += v.count;
         violations.first.extend(v.first);
     }
-    println!("ranges: {r:?}, {seconds:.1} s, contract violations: {}", violations.count);
+    println!(
+        "ranges: {r:?}, {seconds:.1} s, contract violations: {}",
+        violations.count
+    );
     for line in &violations.first {
         println!("  {line}");
     }
     assert_eq!(violations.count, 0, "{:#?}", violations.first);
-    assert!(r.initialized > 0 && r.refused_at_initialization > 0, "{r:?}");
+    assert!(
+        r.initialized > 0 && r.refused_at_initialization > 0,
+        "{r:?}"
+    );
     let figures = format!(
         "{} sequences (seeds {first} to {}) on the default and the automotive FMU: {} parameters set across their declared ranges, {} initializations completed and {} refused with a message, {} communication steps ({} of them fmi2OK or fmi2Warning); slowest call {:.2} s (sequence {}), every call within the documented worst case of {} s; **contract violations: {}**",
         r.sequences,

@@ -370,7 +370,7 @@ fn segment_count_is_validated() {
         println!("{text}");
         assert!(matches!(
             err,
-            ModelError::InvalidParameter {
+            ModelError::InvalidInteger {
                 name: "rod.elements",
                 ..
             }

@@ -73,14 +73,6 @@ fn with_most_stations(mut s: Scene) -> Scene {
     s
 }
 
-/// Seconds to build and start `scene`, and the number of coordinates.
-fn initialization(scene: &Scene) -> (f64, Simulation) {
-    let t0 = Instant::now();
-    let mut sim = Simulation::new(scene).expect("the maxima build");
-    start(&mut sim);
-    (t0.elapsed().as_secs_f64(), sim)
-}
-
 /// Seconds of one communication step of `h`, and its outcome.
 fn one_step(sim: &mut Simulation, h: f64) -> (f64, Result<(), ModelError>) {
     let t0 = Instant::now();
@@ -93,9 +85,10 @@ fn one_step(sim: &mut Simulation, h: f64) -> (f64, Result<(), ModelError>) {
 /// 6 kHz mode band.
 fn automotive(youngs_modulus: f64, elements: usize, reference: &str) -> Scene {
     let path = common::fragments::repository().join("scenes/automotive_rod.toml");
-    let text = std::fs::read_to_string(path)
-        .unwrap()
-        .replace("reference = \"simply_supported\"", &format!("reference = \"{reference}\""));
+    let text = std::fs::read_to_string(path).unwrap().replace(
+        "reference = \"simply_supported\"",
+        &format!("reference = \"{reference}\""),
+    );
     let mut s = Scene::from_toml_str(&text, "automotive").unwrap();
     s.rod.youngs_modulus = youngs_modulus;
     s.rod.shear_modulus = Some(youngs_modulus / 2.6);
@@ -182,7 +175,12 @@ fn worst_case_time_per_call() {
         ("FFR, 48 elements, 144 modes", mid, 1e-2, 150.0),
         ("FFR, 128 elements, 192 modes", widest, 1e-2, 150.0),
         ("FFR, 128 elements, 384 modes", largest_ffr(), 1e-2, 150.0),
-        ("FFR, 128 elements, 96 modes, 256 stations", stations, 1e-2, 150.0),
+        (
+            "FFR, 128 elements, 96 modes, 256 stations",
+            stations,
+            1e-2,
+            150.0,
+        ),
         (
             "automotive, E = 2e8 Pa, 24 elements (43 modes in the band, 11 axial)",
             automotive(2e8, 24, "simply_supported"),
@@ -353,6 +351,26 @@ fn limits() {
             "step halvings (`solver.max_halvings`)".to_string(),
             format!("{}", flexrod::mechanism::stepping::MAX_HALVINGS),
             "`mechanism::stepping::MAX_HALVINGS`",
+        ),
+        (
+            "communication points of one run (`flexrod simulate`, `fmu --simulate`), rows of an `--input` table".to_string(),
+            format!("{}", flexrod::limits::MAX_POINTS),
+            "`limits::MAX_POINTS`",
+        ),
+        (
+            "a scene file (the command line, the packager, the FMU's `resources/scene.toml`)".to_string(),
+            format!("{:.0} MiB", mib(flexrod::limits::SCENE_FILE_CAP as f64)),
+            "`limits::SCENE_FILE_CAP`",
+        ),
+        (
+            "an `--input` CSV table, a reference table".to_string(),
+            format!("{:.0} MiB", mib(flexrod::limits::CSV_FILE_CAP as f64)),
+            "`limits::CSV_FILE_CAP`",
+        ),
+        (
+            "input quoted in a message (a TOML or CSV line, a key, a path, a flag value)".to_string(),
+            format!("{} characters, then `... (N bytes)`", flexrod::text::ECHO_CHARS),
+            "`text::ECHO_CHARS`",
         ),
         (
             "lowest retained natural frequency of an FFR rod".to_string(),

@@ -57,6 +57,8 @@ usage: fmu [SCENE.toml] [--out DIR] [--fmi 2|3] [--simulate] [--csv FILE] [--acc
   --csv FILE     with --simulate (implied): write the outputs at the communication points
   --accel A      with --simulate: a constant crank acceleration A, rad/s^2 (finite)
   --steps H1,... with --simulate: cycle through these communication steps, s (each > 0)
+
+A run records at most 10^7 communication points; the scene file is read up to 16 MiB.
   -h, --help     print this help
 
 Exit codes: 0 done, 1 packaging or the run failed, 2 a bad command line.";
@@ -96,7 +98,12 @@ fn parse_args() -> Result<Option<Args>, String> {
             .parse::<f64>()
             .ok()
             .filter(|x| x.is_finite())
-            .ok_or_else(|| format!("{flag}: \"{text}\" is not a finite number"))
+            .ok_or_else(|| {
+                format!(
+                    "{flag}: \"{}\" is not a finite number",
+                    flexrod::text::echo(text)
+                )
+            })
     };
     while let Some(arg) = it.next() {
         match arg.as_str() {
@@ -108,7 +115,8 @@ fn parse_args() -> Result<Option<Args>, String> {
                     "3" => vec![Standard::Fmi3],
                     other => {
                         return Err(format!(
-                    "--fmi: \"{other}\" is not a standard: allowed 2 or 3 (default: both)\n{USAGE}"
+                    "--fmi: \"{}\" is not a standard: allowed 2 or 3 (default: both)\n{USAGE}",
+                    flexrod::text::echo(other)
                 ))
                     }
                 }
@@ -126,12 +134,20 @@ fn parse_args() -> Result<Option<Args>, String> {
                     .map(|h| number(h, "--steps"))
                     .collect::<Result<Vec<_>, _>>()?;
                 if steps.is_empty() || steps.iter().any(|&h| h <= 0.0) {
-                    return Err(format!("--steps: \"{list}\" must be positive steps"));
+                    return Err(format!(
+                        "--steps: \"{}\" must be positive steps",
+                        flexrod::text::echo(&list)
+                    ));
                 }
                 args.steps = Some(steps);
             }
             "-h" | "--help" => return Ok(None),
-            flag if flag.starts_with('-') => return Err(format!("unknown option {flag}\n{USAGE}")),
+            flag if flag.starts_with('-') => {
+                return Err(format!(
+                    "unknown option {}\n{USAGE}",
+                    flexrod::text::echo(flag)
+                ))
+            }
             path => args.scene = PathBuf::from(path),
         }
     }
@@ -144,8 +160,11 @@ fn run() -> Result<(), Failure> {
         return Ok(());
     };
 
-    let scene_text = std::fs::read_to_string(&args.scene)
-        .map_err(|e| format!("cannot read the scene {}: {e}", args.scene.display()))?;
+    let scene_text = flexrod::limits::read_text(
+        &args.scene,
+        flexrod::limits::SCENE_FILE_CAP,
+        "the scene file",
+    )?;
     let scene = Scene::from_toml_str(&scene_text, &args.scene.display().to_string())
         .map_err(|e| e.to_string())?;
     let description = ModelDescription::for_scene(&scene).map_err(|e| {
@@ -154,6 +173,17 @@ fn run() -> Result<(), Failure> {
             args.scene.display()
         )
     })?;
+
+    if args.simulate {
+        let e = &scene.experiment;
+        simulate::check_length(
+            e.start_time,
+            e.stop_time,
+            e.step_size,
+            args.steps.as_deref(),
+        )
+        .map_err(Failure::Usage)?;
+    }
 
     let mut fmu_path = None;
     if args.package {

@@ -14,6 +14,7 @@ use std::time::Instant;
 use flexrod::drive::{self, CrankDrive};
 use flexrod::fmi::variables::OutputGetter;
 use flexrod::fmi::VariableTable;
+use flexrod::text::number;
 use flexrod::{Outputs, Scene, Simulation, StepStats};
 
 /// How the experiment is driven.
@@ -44,10 +45,52 @@ fn isclose(a: f64, b: f64) -> bool {
     a == b || (a - b).abs() <= 1e-9 * a.abs().max(b.abs())
 }
 
+/// Refuse an experiment `start..stop` whose communication points (at the fixed step `dt`, or
+/// cycling through `steps`) would be more than [`flexrod::limits::MAX_POINTS`] (the check
+/// `flexrod simulate` makes too); returns what sets the steps, for messages.
+pub fn check_length(
+    start: f64,
+    stop: f64,
+    dt: f64,
+    steps: Option<&[f64]>,
+) -> Result<String, String> {
+    let span = stop - start;
+    let (what, needed) = match steps {
+        None => (
+            format!("the scene's step_size {} s", number(dt)),
+            (span / dt).ceil() + 1.0,
+        ),
+        Some(steps) => {
+            let list: Vec<String> = steps.iter().map(|&h| number(h)).collect();
+            let cycle: f64 = steps.iter().sum();
+            (
+                format!("--steps {}", flexrod::text::echo(&list.join(","))),
+                (span / cycle).ceil() * steps.len() as f64 + 1.0,
+            )
+        }
+    };
+    flexrod::limits::check_points(
+        &format!(
+            "{what} over the experiment {} .. {} s",
+            number(start),
+            number(stop)
+        ),
+        needed,
+    )?;
+    Ok(what)
+}
+
 /// The communication points of the experiment `start..stop` as FMPy's `simulate_fmu` steps:
 /// `start + (k+1) dt`, the last one shortened to end at `stop`; with `steps`,
-/// `t_{k+1} = t_k + h_(k mod n)`.
-pub fn communication_points(start: f64, stop: f64, dt: f64, steps: Option<&[f64]>) -> Vec<f64> {
+/// `t_{k+1} = t_k + h_(k mod n)`. Refused before anything is allocated where they would be too
+/// many ([`check_length`]), and where a step is too small to advance the time.
+pub fn communication_points(
+    start: f64,
+    stop: f64,
+    dt: f64,
+    steps: Option<&[f64]>,
+) -> Result<Vec<f64>, String> {
+    let what = check_length(start, stop, dt, steps)?;
     let mut times = vec![start];
     let mut time = start;
     let mut n: usize = 0;
@@ -59,11 +102,17 @@ pub fn communication_points(start: f64, stop: f64, dt: f64, steps: Option<&[f64]
         if next > stop && !isclose(next, stop) {
             next = stop;
         }
+        if next <= time {
+            return Err(format!(
+                "{what}: the step at t = {} s does not advance the time (below its resolution there)",
+                flexrod::text::time(time)
+            ));
+        }
         time = next;
         n += 1;
         times.push(time);
     }
-    times
+    Ok(times)
 }
 
 /// Run the default experiment of `scene`: constant crank acceleration `options.accel` from
@@ -75,7 +124,7 @@ pub fn run(scene: &Scene, options: &Options) -> Result<Run, String> {
         e.stop_time,
         e.step_size,
         options.steps.as_deref(),
-    );
+    )?;
     let law = CrankDrive::UniformAcceleration {
         speed: e.crank_speed,
         acceleration: options.accel,
@@ -127,8 +176,8 @@ pub fn print_summary(scene: &Scene, run: &Run, fmu: Option<&Path>) {
     println!(
         "{}: t = {} .. {} s, {} communication steps, crank speed {} rad/s",
         scene.name,
-        e.start_time,
-        e.stop_time,
+        flexrod::text::time(e.start_time),
+        flexrod::text::time(e.stop_time),
         run.times.len() - 1,
         e.crank_speed
     );
@@ -176,8 +225,7 @@ pub fn print_summary(scene: &Scene, run: &Run, fmu: Option<&Path>) {
         );
     }
     for (t, w) in &run.warnings {
-        let t = flexrod::drive::display_time(*t);
-        println!("  warning after t = {t} s: {w}");
+        println!("  warning after t = {} s: {w}", flexrod::text::time(*t));
     }
     println!("  wall time: {:.3} s", run.wall_seconds);
     if let Some(fmu) = fmu {

@@ -53,3 +53,44 @@ fn bad_command_lines_are_refused() {
         assert!(out.stdout.is_empty(), "{args:?}");
     }
 }
+
+/// `--simulate` past the point cap that `flexrod simulate` shares
+/// (`flexrod::limits::MAX_POINTS`) is refused before anything is allocated or built, naming
+/// the flag, the points it would need and the cap; a child past 60 s fails the test.
+#[test]
+fn simulate_past_the_shared_point_cap_is_refused() {
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/benchmark.toml");
+    for steps in ["1e-9", "1e-4,1e-3"] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_fmu"))
+            .args([scene, "--no-package", "--simulate", "--steps", steps])
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .expect("the fmu binary runs");
+        let t0 = std::time::Instant::now();
+        while child.try_wait().expect("the child's status").is_none() {
+            if t0.elapsed() > std::time::Duration::from_secs(60) {
+                let _ = child.kill();
+                let _ = child.wait();
+                panic!("--steps {steps}: the packager ran past 60 s");
+            }
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+        let out = child.wait_with_output().expect("the child's output");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        if steps == "1e-9" {
+            assert_eq!(out.status.code(), Some(2), "{stderr}");
+            for part in [
+                "--steps 1e-9",
+                "83800001 communication points",
+                &format!("at most {}", flexrod::limits::MAX_POINTS),
+            ] {
+                assert!(stderr.contains(part), "'{part}' not in {stderr}");
+            }
+            assert!(out.stdout.is_empty());
+        } else {
+            // 155 points: within the cap, the run completes.
+            assert_eq!(out.status.code(), Some(0), "{stderr}");
+        }
+    }
+}

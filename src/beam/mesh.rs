@@ -71,9 +71,9 @@ impl RodMesh {
         definition.validate()?;
         let section = definition.properties;
         if n_elements == 0 || n_elements > MAX_ELEMENTS {
-            return Err(ModelError::InvalidParameter {
+            return Err(ModelError::InvalidInteger {
                 name: "rod.elements",
-                value: n_elements as f64,
+                value: n_elements as i64,
                 allowed: format!(
                     "an integer in 1..={MAX_ELEMENTS} beam elements (rod.model = \"ffr\"; the preprocessing is dense, its cost grows as the cube of the count)"
                 ),

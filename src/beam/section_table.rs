@@ -97,9 +97,9 @@ pub const MAX_STATIONS: usize = 256;
 /// Refuse a table of more than [`MAX_STATIONS`] stations (before anything is built from it).
 pub fn check_station_count(count: usize) -> Result<(), ModelError> {
     if count > MAX_STATIONS {
-        return Err(ModelError::InvalidParameter {
+        return Err(ModelError::InvalidInteger {
             name: "rod.section",
-            value: count as f64,
+            value: count as i64,
             allowed: format!("at most {MAX_STATIONS} [[rod.section]] stations"),
         });
     }

@@ -264,16 +264,22 @@ fn section_at_half(scene: &Scene) -> (f64, f64, f64) {
 }
 
 /// Read a reference CSV (`#` comments, a header line starting with `t`, 9 columns as
-/// [`EngineRow`]).
+/// [`EngineRow`]), at most [`crate::limits::CSV_FILE_CAP`] bytes.
 pub fn read_reference(path: &std::path::Path) -> Result<Vec<EngineRow>, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let text = crate::limits::read_text(path, crate::limits::CSV_FILE_CAP, "the reference table")?;
     text.lines()
         .filter(|l| !l.starts_with('#') && !l.starts_with('t') && !l.trim().is_empty())
         .map(|l| {
             let v: Result<Vec<f64>, _> = l.split(',').map(|x| x.trim().parse::<f64>()).collect();
-            let v = v.map_err(|e| format!("{}: '{l}': {e}", path.display()))?;
-            v.try_into()
-                .map_err(|_| format!("{}: '{l}': expected 9 columns", path.display()))
+            let v =
+                v.map_err(|e| format!("{}: '{}': {e}", path.display(), crate::text::echo(l)))?;
+            v.try_into().map_err(|_| {
+                format!(
+                    "{}: '{}': expected 9 columns",
+                    path.display(),
+                    crate::text::echo(l)
+                )
+            })
         })
         .collect()
 }

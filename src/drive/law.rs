@@ -89,7 +89,9 @@ impl CrankDrive {
     }
 
     /// A table from CSV text: rows `t, angle, speed` (a header line and comment lines that do
-    /// not start with a number are skipped); at least two rows, times strictly increasing.
+    /// not start with a number are skipped); at least two rows, at most
+    /// [`crate::limits::MAX_POINTS`], times strictly increasing. A line a message quotes is cut
+    /// to [`crate::text::ECHO_CHARS`] characters.
     pub fn table_from_csv(text: &str, origin: &str) -> Result<CrankDrive, ModelError> {
         let bad = |message: String| ModelError::Scene {
             origin: origin.to_string(),
@@ -109,11 +111,18 @@ impl CrankDrive {
                 .split(',')
                 .map(|x| x.trim().parse::<f64>())
                 .collect::<Result<_, _>>()
-                .map_err(|_| bad(format!("line {}: not a number in '{line}'", k + 1)))?;
+                .map_err(|_| {
+                    bad(format!(
+                        "line {}: not a number in '{}'",
+                        k + 1,
+                        crate::text::echo(line)
+                    ))
+                })?;
             if values.len() < 3 || values.iter().any(|x| !x.is_finite()) {
                 return Err(bad(format!(
-                    "line {}: a row needs three finite numbers t, angle, speed: '{line}'",
-                    k + 1
+                    "line {}: a row needs three finite numbers t, angle, speed: '{}'",
+                    k + 1,
+                    crate::text::echo(line)
                 )));
             }
             if let Some(last) = rows.last() {
@@ -121,10 +130,17 @@ impl CrankDrive {
                     return Err(bad(format!(
                         "line {}: time {} does not increase (previous {})",
                         k + 1,
-                        values[0],
-                        last[0]
+                        crate::text::time(values[0]),
+                        crate::text::time(last[0])
                     )));
                 }
+            }
+            if rows.len() == crate::limits::MAX_POINTS {
+                return Err(bad(format!(
+                    "line {}: more than {} rows, the most a table holds (as many as the communication points a run records)",
+                    k + 1,
+                    crate::limits::MAX_POINTS
+                )));
             }
             rows.push([values[0], values[1], values[2]]);
         }

@@ -13,4 +13,4 @@ pub mod law;
 pub mod run;
 
 pub use law::CrankDrive;
-pub use run::{communication_grid, display_time, run, run_constant, Record};
+pub use run::{communication_grid, run, run_constant, Record};

@@ -37,12 +37,6 @@ impl Record {
     }
 }
 
-/// A time for display, s: rounded to 1e-12 s, so that a communication point `k dt` prints as
-/// its decimal value (`0.0034`, not `0.0034000000000000002`).
-pub fn display_time(t: f64) -> f64 {
-    (t * 1e12).round() / 1e12
-}
-
 /// `t0, t0 + dt, ..., t0 + steps dt` (each point computed from `t0`, no accumulation).
 pub fn communication_grid(t0: f64, dt: f64, steps: usize) -> Vec<f64> {
     (0..=steps).map(|k| t0 + k as f64 * dt).collect()

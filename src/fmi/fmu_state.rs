@@ -59,8 +59,8 @@ use super::standard::Standard;
 use super::state_machine::MachineState;
 use super::status::Status;
 use crate::hash::fnv1a_64;
-use crate::model::{Inputs, SavedModel};
 use crate::model::EXPERIMENT_TIME_LIMIT;
+use crate::model::{Inputs, SavedModel};
 
 const MAGIC: &[u8; 8] = b"FLXRFMI2";
 const VERSION: u32 = 3;

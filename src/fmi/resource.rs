@@ -134,8 +134,7 @@ pub fn resource_folder(location: &str, standard: Standard) -> Result<PathBuf, St
 
 fn load_from_resources(uri: &str, standard: Standard) -> Result<LoadedModel, String> {
     let path = resource_folder(uri, standard)?.join(SCENE_FILE);
-    let text = std::fs::read_to_string(&path)
-        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let text = crate::limits::read_text(&path, crate::limits::SCENE_FILE_CAP, "the scene file")?;
     let origin = path.display().to_string();
     let scene = Scene::from_toml_str(&text, &origin).map_err(|e| e.to_string())?;
     let description = ModelDescription::for_standard(&scene, standard)

@@ -219,9 +219,9 @@ pub fn choose(solver: &SolverSpec, facts: &MechanismFacts) -> Result<IntegratorC
             };
             let forced = method == SolverMethod::Exponential;
             if forced && facts.kernel_oscillators.is_none() && !facts.modal_oscillators {
-                return Err(ModelError::InvalidParameter {
+                return Err(ModelError::InvalidInteger {
                     name: "solver.method",
-                    value: modes as f64,
+                    value: modes as i64,
                     allowed: format!(
                         "exponential with an FFR rod of 1 to {} modes (its closed form; this rod has more) or the chain on its modes, or auto, rk43, dopri5",
                         crate::rod::ffr::MAX_MODES
@@ -503,7 +503,7 @@ mod tests {
     /// The refusals name the parameter and say what would be allowed.
     #[test]
     fn refusals_say_why() {
-        let Err(ModelError::InvalidParameter {
+        let Err(ModelError::InvalidInteger {
             name,
             value,
             allowed,
@@ -512,7 +512,7 @@ mod tests {
             panic!("exponential without the closed form accepted")
         };
         assert_eq!(name, "solver.method");
-        assert_eq!(value, (crate::rod::ffr::MAX_MODES + 2) as f64);
+        assert_eq!(value, (crate::rod::ffr::MAX_MODES + 2) as i64);
         assert!(
             allowed.contains("exponential with an FFR rod of 1 to"),
             "{allowed}"

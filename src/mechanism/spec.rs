@@ -235,16 +235,16 @@ impl SolverSpec {
             "",
         )?;
         if !(1..=MAX_NEWTON_ITERATIONS).contains(&self.max_newton_iterations) {
-            return Err(ModelError::InvalidParameter {
+            return Err(ModelError::InvalidInteger {
                 name: "solver.max_newton_iterations",
-                value: self.max_newton_iterations as f64,
+                value: self.max_newton_iterations as i64,
                 allowed: format!("an integer in 1..={MAX_NEWTON_ITERATIONS}"),
             });
         }
         if self.max_halvings > MAX_HALVINGS {
-            return Err(ModelError::InvalidParameter {
+            return Err(ModelError::InvalidInteger {
                 name: "solver.max_halvings",
-                value: self.max_halvings as f64,
+                value: self.max_halvings as i64,
                 allowed: format!(
                     "an integer in 0..={MAX_HALVINGS} (a failed step split into at most 2^{MAX_HALVINGS} pieces)"
                 ),

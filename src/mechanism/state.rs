@@ -3,6 +3,7 @@
 use super::crank::CrankInput;
 use super::outputs::Outputs;
 use crate::integrator::{DaeState, StepAhead};
+use crate::text::time;
 
 /// Counters of the integrator, cumulative since the start.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
@@ -364,7 +365,8 @@ impl MechanismState {
         if d.t != self.time {
             return Err(format!(
                 "the integrator time {} s differs from the time {} s (they are equal in every saved state)",
-                d.t, self.time
+                time(d.t),
+                time(self.time)
             ));
         }
         let a = &self.ahead;
@@ -391,13 +393,16 @@ impl MechanismState {
             if !(a.end.t - a.t0 > 0.0 && a.end.t - a.t0 <= longest) {
                 return Err(format!(
                     "the held internal step [{}, {}] s is not between 0 and {longest} s long",
-                    a.t0, a.end.t
+                    time(a.t0),
+                    time(a.end.t)
                 ));
             }
             if !(a.t0 <= self.time && self.time < a.end.t) {
                 return Err(format!(
                     "the held internal step [{}, {}] s does not contain the time {} s (it starts at or before it and ends after it)",
-                    a.t0, a.end.t, self.time
+                    time(a.t0),
+                    time(a.end.t),
+                    time(self.time)
                 ));
             }
             if a.end.step_hint < 0.0 || a.end.amplitude < 0.0 {
@@ -410,7 +415,8 @@ impl MechanismState {
         if self.input_time > self.time {
             return Err(format!(
                 "the input law starts at {} s, after the time {} s (allowed <= the time)",
-                self.input_time, self.time
+                time(self.input_time),
+                time(self.time)
             ));
         }
         Ok(())

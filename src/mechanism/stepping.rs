@@ -8,6 +8,7 @@ use super::state::{MechanismState, StepStats};
 use crate::error::ModelError;
 use crate::integrator::MAX_ADAPTIVE_STEP;
 use crate::rod::DeflectionPolicy;
+use crate::text::time;
 
 /// |v_mid| / L above which the small-deformation assumption is flagged.
 pub const LARGE_DEFLECTION_WARNING: f64 = 0.05;
@@ -132,7 +133,9 @@ impl Mechanism {
                     time: t_start,
                     step: h,
                     message: format!(
-                        "the error control took {MAX_INTERNAL_STEPS} internal steps and reached only t = {t_fail} s of t = {t_end} s, allowed at most {MAX_INTERNAL_STEPS} per communication step"
+                        "the error control took {MAX_INTERNAL_STEPS} internal steps and reached only t = {} s of t = {} s, allowed at most {MAX_INTERNAL_STEPS} per communication step",
+                        time(t_fail),
+                        time(t_end)
                     ),
                 })
             }
@@ -143,7 +146,9 @@ impl Mechanism {
                     time: t_start,
                     step: h,
                     message: format!(
-                        "it reached only t = {t_fail} s of t = {t_end} s within the work budget of one call ({} evaluations of {cost:.3e} work units each for this model, WORK_BUDGET / cost), allowed at most that much work per communication step",
+                        "it reached only t = {} s of t = {} s within the work budget of one call ({} evaluations of {cost:.3e} work units each for this model, WORK_BUDGET / cost), allowed at most that much work per communication step",
+                        time(t_fail),
+                        time(t_end),
                         evaluations_allowed(cost)
                     ),
                 })
@@ -159,7 +164,8 @@ impl Mechanism {
                     time: t_fail,
                     step: h_fail,
                     reason: format!(
-                        "{reason} ({tries}; the communication step started at t = {t_start} s)"
+                        "{reason} ({tries}; the communication step started at t = {} s)",
+                        time(t_start)
                     ),
                 })
             }
@@ -505,7 +511,7 @@ impl Mechanism {
                     state.large_deflection_warned = true;
                     state.warnings.push(format!(
                         "rod deflection |v_mid/L| = {d:.3e} at t = {} s exceeds rod.deflection_limit = {limit} ({range}); results beyond it are not accurate",
-                        state.time
+                        time(state.time)
                     ));
                 }
                 Ok(())

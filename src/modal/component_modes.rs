@@ -124,9 +124,9 @@ impl ComponentModes {
         let mesh = RodMesh::from_definition(definition, n_elements, x_b)?;
         if let ReferenceConditions::BodyFixed { node } = reference {
             if node > n_elements {
-                return Err(ModelError::InvalidParameter {
+                return Err(ModelError::InvalidInteger {
                     name: "body-fixed node",
-                    value: node as f64,
+                    value: node as i64,
                     allowed: format!("0..={n_elements}"),
                 });
             }
@@ -189,9 +189,9 @@ impl ComponentModes {
         let mut columns = Vec::with_capacity(retained.len());
         for &k in &retained {
             let column = self.retained.iter().position(|&r| r == k).ok_or_else(|| {
-                ModelError::InvalidParameter {
+                ModelError::InvalidInteger {
                     name: "mode index",
-                    value: k as f64,
+                    value: k as i64,
                     allowed: "a mode the set selected from retains".into(),
                 }
             })?;

@@ -118,9 +118,9 @@ impl ReferenceConditions {
             ReferenceKind::Cantilever => ReferenceConditions::BodyFixed { node: 0 },
             ReferenceKind::BodyFixedMid => {
                 if !n_elements.is_multiple_of(2) {
-                    return Err(ModelError::InvalidParameter {
+                    return Err(ModelError::InvalidInteger {
                         name: "rod.elements",
-                        value: n_elements as f64,
+                        value: n_elements as i64,
                         allowed: "an even number with rod.reference = body_fixed_mid (the midpoint must be a node)".into(),
                     });
                 }
@@ -252,9 +252,9 @@ impl ReferenceConditions {
 fn check_constraint_set(mesh: &RodMesh, fixed: &[usize]) -> Result<(), ModelError> {
     let n = mesh.n_coordinates();
     if let Some(&bad) = fixed.iter().find(|&&i| i >= n) {
-        return Err(ModelError::InvalidParameter {
+        return Err(ModelError::InvalidInteger {
             name: "constrained nodal coordinate",
-            value: bad as f64,
+            value: bad as i64,
             allowed: format!("0..={} (3 per node: u, v, slope)", n - 1),
         });
     }

@@ -136,9 +136,9 @@ impl ModeSelection {
                     });
                 }
                 if let Some(&bad) = sorted.iter().find(|&&i| i >= available) {
-                    return Err(ModelError::InvalidParameter {
+                    return Err(ModelError::InvalidInteger {
                         name: "mode index",
-                        value: bad as f64,
+                        value: bad as i64,
                         allowed: format!("0..={}", available.saturating_sub(1)),
                     });
                 }
@@ -176,9 +176,9 @@ fn check_whole_clusters(kept: &[usize], frequencies_hz: &[f64]) -> Result<(), Mo
     for &k in kept {
         let whole = cluster(frequencies_hz, k);
         if let Some(missing) = whole.clone().find(|j| !kept.contains(j)) {
-            return Err(ModelError::InvalidParameter {
+            return Err(ModelError::InvalidInteger {
                 name: "rod.modes",
-                value: kept.len() as f64,
+                value: kept.len() as i64,
                 allowed: format!(
                     "a selection that keeps modes of equal frequency together: modes {} to {} all have {:.6} Hz and mode {} is left out (with rod.reference = body_fixed_mid the two halves of the rod vibrate alike); e.g. rod.modes = {} or {}",
                     whole.start + 1,

@@ -280,6 +280,14 @@ impl<'de> Deserialize<'de> for PhysicsSwitch {
     }
 }
 
+/// With shear deformation in use (`on` or `auto`), the least shear area as a fraction of the
+/// area, `A_s >= A / 100` (shear coefficients of real sections: 0.83 for a rectangle, about 0.5
+/// for a thin tube, the web's share of an I-section 0.2 to 0.4), and the least shear modulus
+/// as a fraction of Young's modulus, `G >= E / 1000` (isotropic: `E / 3` at least; fibre
+/// composites about `E / 30`). Past them the shear stiffness `G A_s` is so small beside the
+/// axial `E A` that double precision no longer resolves the rod's spectrum.
+pub const SHEAR_FRACTIONS: (f64, f64) = (1e-2, 1e-3);
+
 /// Default shear modulus as a fraction of Young's modulus, `G = E / 2.6` (isotropic, Poisson's
 /// ratio 0.3: `G = E / (2 (1 + nu))`).
 pub const DEFAULT_SHEAR_MODULUS_FACTOR: f64 = 1.0 / 2.6;
@@ -364,6 +372,9 @@ impl RodSpec {
             // Checked whether or not shear is in, so that a bad value is refused when set.
             crate::beam::definition::check_shear_modulus(g)?;
         }
+        if self.shear_deformation.is_on() {
+            self.check_shear_windows()?;
+        }
         def.shear_modulus = self.effective_shear_modulus();
         def.uniform_shear_area = self.shear_area;
         def.big_end = self.big_end;
@@ -372,13 +383,60 @@ impl RodSpec {
         Ok(def)
     }
 
+    /// With shear deformation in use: `rod.shear_area` (or each station's `shear_area`) in
+    /// `[A / 100, A]` and `rod.shear_modulus` at least `E / 1000` ([`SHEAR_FRACTIONS`]).
+    fn check_shear_windows(&self) -> Result<(), ModelError> {
+        let (area_fraction, modulus_fraction) = SHEAR_FRACTIONS;
+        let why = "with rod.shear_deformation on or auto";
+        if let (Some(a_s), true) = (self.shear_area, self.section.is_empty()) {
+            let a = self.area;
+            if !(a_s >= area_fraction * a && a_s <= a) {
+                return Err(ModelError::InvalidParameter {
+                    name: "rod.shear_area",
+                    value: a_s,
+                    allowed: format!(
+                        "[rod.area / 100, rod.area] = [{:e}, {a:e}] m2 {why} (a shear coefficient A_s / A of 0.01 to 1)",
+                        area_fraction * a
+                    ),
+                });
+            }
+        }
+        for (i, st) in self.section.iter().enumerate() {
+            if let Some(a_s) = st.shear_area {
+                if !(a_s >= area_fraction * st.area && a_s <= st.area) {
+                    return Err(ModelError::InvalidParameter {
+                        name: "rod.section.shear_area",
+                        value: a_s,
+                        allowed: format!(
+                            "[area / 100, area] = [{:e}, {:e}] m2 {why} (station {i} of [[rod.section]], counted from 0, position {} m)",
+                            area_fraction * st.area,
+                            st.area,
+                            st.position
+                        ),
+                    });
+                }
+            }
+        }
+        if let Some(g) = self.shear_modulus {
+            let least = modulus_fraction * self.youngs_modulus;
+            if !g.is_finite() || g < least {
+                return Err(ModelError::InvalidParameter {
+                    name: "rod.shear_modulus",
+                    value: g,
+                    allowed: format!("at least rod.youngs_modulus / 1000 = {least:e} Pa {why}"),
+                });
+            }
+        }
+        Ok(())
+    }
+
     /// Check the rod's keys (see [`Self::definition`]).
     pub fn validate(&self) -> Result<(), ModelError> {
         if let Some(n) = self.axial_modes {
             if n > MAX_AXIAL_MODES {
-                return Err(ModelError::InvalidParameter {
+                return Err(ModelError::InvalidInteger {
                     name: "rod.axial_modes",
-                    value: n as f64,
+                    value: n as i64,
                     allowed: format!("0..={MAX_AXIAL_MODES}, or absent for automatic"),
                 });
             }

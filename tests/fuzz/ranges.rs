@@ -215,7 +215,10 @@ pub fn run(seq: u64, targets: &[Target; 2], r: &mut Ranges, v: &mut Violations) 
             0,
         );
         if c.is_null() {
-            v.add(format!("sequence {seq}: {} did not instantiate", target.label));
+            v.add(format!(
+                "sequence {seq}: {} did not instantiate",
+                target.label
+            ));
             return;
         }
         let mut rod_length = 0.3;

@@ -22,16 +22,14 @@ use clap::{CommandFactory, Parser, Subcommand};
 mod svg_plot;
 
 use flexrod::drive::{self, communication_grid, CrankDrive};
+use flexrod::limits::{self, CSV_FILE_CAP};
 use flexrod::modal::shape_integrals::point_shape;
 use flexrod::modal::{ComponentModes, ModeSelection, ReferenceConditions};
 use flexrod::rod::ffr::residual::residual_indices;
 use flexrod::rod::ffr_mode_choice;
 use flexrod::scene::{RodModelKind, Scene};
+use flexrod::text::{number, time};
 use flexrod::Simulation;
-
-/// The most communication points one `simulate` run records (each holds the time, the crank
-/// input and the outputs: 10^7 points take about 1.4 GB).
-const MAX_POINTS: f64 = 1e7;
 
 #[derive(Parser)]
 #[command(
@@ -71,18 +69,23 @@ struct ModesArgs {
 #[command(
     allow_negative_numbers = true,
     after_help = "The run starts at the scene's start_time and ends at its stop_time, or after N crank \
-                  revolutions at the --speed (counted from t = 0) with --revolutions; it records at most \
-                  10^7 communication points ((stop - start) / step)."
+                  revolutions at the --speed (counted from t = 0, the --ramp's slower start included) with \
+                  --revolutions; it records at most \
+                  10^7 communication points ((stop - start) / step). With --input the table drives the \
+                  crank: --speed, --revolutions and --ramp are refused with it. Files read: a scene of at \
+                  most 16 MiB, an --input table of at most 256 MiB and 10^7 rows."
 )]
 struct SimulateArgs {
     /// Scene file (TOML); default: the built-in benchmark scene.
     scene: Option<PathBuf>,
     /// Crank speed W, rad/s, any finite value (default: the scene's experiment crank_speed).
-    #[arg(long, value_name = "RAD_PER_S", value_parser = finite)]
+    /// Not with --input, whose table gives the speed.
+    #[arg(long, value_name = "RAD_PER_S", value_parser = finite, conflicts_with = "input")]
     speed: Option<f64>,
     /// Stop after N crank revolutions at the --speed (N > 0, finite; default: the scene's
-    /// stop_time).
-    #[arg(long, value_name = "N", value_parser = positive)]
+    /// stop_time). Not with --input: the run ends at the scene's stop_time, the table
+    /// gives the crank's turns.
+    #[arg(long, value_name = "N", value_parser = positive, conflicts_with = "input")]
     revolutions: Option<f64>,
     /// Start from rest and ramp the crank speed smoothly up to W over SECONDS (> 0, finite):
     /// omega = W (1 - cos(pi t / T)) / 2. Default: constant speed W from the start.
@@ -139,8 +142,23 @@ impl From<String> for Failure {
     }
 }
 
+/// The command line, or exit: help and version to stdout with exit code 0, a bad command line
+/// to stderr with exit code 2, each line of the message cut to a bounded echo (a value
+/// quoted from the command line).
+fn parse() -> Cli {
+    Cli::try_parse().unwrap_or_else(|e| {
+        let text = e.render().to_string();
+        if e.use_stderr() {
+            eprintln!("{}", flexrod::text::echo_lines(text.trim_end()));
+        } else {
+            print!("{text}");
+        }
+        std::process::exit(e.exit_code())
+    })
+}
+
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = parse();
     let (name, result) = match &cli.command {
         Command::Modes(args) => ("modes", modes(args)),
         Command::Simulate(args) => ("simulate", simulate(args)),
@@ -287,13 +305,28 @@ fn modes(args: &ModesArgs) -> Result<(), Failure> {
     Ok(())
 }
 
-/// `x` as short text: plain between 1e-4 and 1e9, else in e-notation.
-fn number(x: f64) -> String {
-    if x == 0.0 || (1e-4..1e9).contains(&x.abs()) {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
+/// The time at which the crank, turning from t = 0 at `speed` (ramped up over `ramp` seconds
+/// where given, as [`CrankDrive::Ramp`]), has turned `revolutions` revolutions: the law's own
+/// angle, so that a ramp's slower start is counted.
+fn revolutions_end(revolutions: f64, speed: f64, ramp: Option<f64>) -> f64 {
+    let angle = 2.0 * std::f64::consts::PI * revolutions;
+    let Some(time) = ramp else {
+        return angle / speed.abs();
+    };
+    let law = CrankDrive::Ramp { speed, time };
+    let turned = |t: f64| (law.at(t).angle - law.at(0.0).angle).abs();
+    // Past the ramp the crank has lost W T / 2 of angle against the constant speed: the end
+    // lies below angle / |W| + T / 2 (and is that where the ramp is over).
+    let (mut low, mut high) = (0.0, angle / speed.abs() + time);
+    for _ in 0..200 {
+        let mid = 0.5 * (low + high);
+        if turned(mid) < angle {
+            low = mid;
+        } else {
+            high = mid;
+        }
     }
+    high
 }
 
 /// The run's stop time and number of communication steps, or why the command line gives none.
@@ -311,17 +344,17 @@ fn run_length(
                     "--revolutions {revolutions} at crank speed 0 rad/s never ends: give --speed W with W != 0"
                 )));
             }
-            2.0 * std::f64::consts::PI * revolutions / speed.abs()
+            revolutions_end(revolutions, speed, args.ramp)
         }
         None => scene.experiment.stop_time,
     };
     let what = match args.revolutions {
-        Some(n) => format!("{} revolutions at {} rad/s", number(n), number(speed)),
+        Some(n) => format!("--revolutions {} at {} rad/s", number(n), number(speed)),
         None => "the scene's stop_time".to_string(),
     };
     if !stop.is_finite() {
         return Err(Failure::Usage(format!(
-            "{what} give no finite stop time ({} s)",
+            "{what}: no finite stop time ({} s)",
             number(stop)
         )));
     }
@@ -333,13 +366,15 @@ fn run_length(
         )));
     }
     let steps = ((stop - t0) / dt).round().max(1.0);
-    if steps > MAX_POINTS {
-        return Err(Failure::Usage(format!(
-            "{what} ({} s) at the step {} s need {steps:.3e} communication points; at most {MAX_POINTS:.0e} are allowed (fewer revolutions or a larger --step)",
-            number(stop - t0),
-            number(dt)
-        )));
-    }
+    let step = match args.step {
+        Some(h) => format!("--step {} s", number(h)),
+        None => format!("the scene's step_size {} s", number(dt)),
+    };
+    limits::check_points(
+        &format!("{what} ({} s) at {step}", number(stop - t0)),
+        steps + 1.0,
+    )
+    .map_err(Failure::Usage)?;
     Ok((stop, steps as usize))
 }
 
@@ -350,29 +385,27 @@ fn simulate(args: &SimulateArgs) -> Result<(), Failure> {
     let (stop, n) = run_length(args, &scene, speed, dt)?;
     let t0 = scene.experiment.start_time;
     let drive = if let Some(path) = &args.input {
-        let failed = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
-        let text = std::fs::read_to_string(path).map_err(|e| failed(&e))?;
-        let drive = CrankDrive::table_from_csv(&text, &path.display().to_string()).map_err(
-            |e| match e {
-                // The table's errors come as scene errors: name the file as the input table.
-                flexrod::ModelError::Scene { origin, message } => {
-                    format!("--input table {origin}: {message}")
-                }
-                other => other.to_string(),
-            },
-        )?;
+        let text = limits::read_text(path, CSV_FILE_CAP, "the --input table")?;
+        let origin = flexrod::text::echo(&path.display().to_string());
+        let drive = CrankDrive::table_from_csv(&text, &origin).map_err(|e| match e {
+            // The table's errors come as scene errors: name the file as the input table.
+            flexrod::ModelError::Scene { origin, message } => {
+                format!("--input table {origin}: {message}")
+            }
+            other => other.to_string(),
+        })?;
         if let CrankDrive::Table(rows) = &drive {
             let (first, last) = (rows[0], rows[rows.len() - 1]);
             if first[0] > t0 {
                 eprintln!(
-                    "warning: the --input table {} starts at t = {} s, after the run's start {t0} s: before it the crank turns at the first row's speed (angle {} rad, speed {} rad/s at the first row); start the table at the run's start to prescribe the motion there",
-                    path.display(), first[0], first[1], first[2]
+                    "warning: the --input table {} starts at t = {} s, after the run's start {} s: before it the crank turns at the first row's speed (angle {} rad, speed {} rad/s at the first row); start the table at the run's start to prescribe the motion there",
+                    path.display(), time(first[0]), time(t0), first[1], first[2]
                 );
             }
             if last[0] < stop {
                 eprintln!(
-                    "warning: the --input table {} ends at t = {} s, before the run's stop time {stop} s: past it the crank turns on at the last row's speed (angle {} rad, speed {} rad/s at the last row); extend the table to the stop time to prescribe the motion there",
-                    path.display(), last[0], last[1], last[2]
+                    "warning: the --input table {} ends at t = {} s, before the run's stop time {} s: past it the crank turns on at the last row's speed (angle {} rad, speed {} rad/s at the last row); extend the table to the stop time to prescribe the motion there",
+                    path.display(), time(last[0]), time(stop), last[1], last[2]
                 );
             }
         }
@@ -394,8 +427,7 @@ fn simulate(args: &SimulateArgs) -> Result<(), Failure> {
         .map_err(|e| e.to_string())?;
     let elapsed = wall.elapsed().as_secs_f64();
     for (t, w) in &record.warnings {
-        let t = drive::display_time(*t);
-        eprintln!("warning after t = {t} s: {w}");
+        eprintln!("warning after t = {} s: {w}", time(*t));
     }
     let stats = record.stats;
     let peak = record.peak_deflection_rel();
@@ -423,7 +455,13 @@ fn simulate(args: &SimulateArgs) -> Result<(), Failure> {
         scene.name, built.model, built.elements, built.modes, built.reference
     );
     let (integrator, counted) = sim.mechanism().integrator_name();
-    println!("simulated {:.4} s ({:.2} revolutions) in {:.2} ms wall with {integrator}: {} steps, {} {counted}, {} halvings", stop - t0, (stop - t0) * speed / (2.0 * std::f64::consts::PI), elapsed * 1e3, stats.steps, stats.newton_iterations, stats.halvings);
+    // The revolutions the crank turned, from the recorded crank angles (whatever drove it).
+    let ran = record.times.last().map_or(0.0, |t| t - t0);
+    let turned = match (record.inputs.first(), record.inputs.last()) {
+        (Some(first), Some(last)) => (last.angle - first.angle).abs(),
+        _ => 0.0,
+    };
+    println!("simulated {} s ({:.2} revolutions of the crank) in {:.2} ms wall with {integrator}: {} steps, {} {counted}, {} halvings", time(ran), turned / (2.0 * std::f64::consts::PI), elapsed * 1e3, stats.steps, stats.newton_iterations, stats.halvings);
     println!("peak |v_mid/L| = {peak:.5e}, peak |F_B| = {peak_b:.2} N, peak |F_C| = {peak_c:.2} N");
     if let Some(path) = &args.out {
         write_csv(path, &record, scene.outputs.stress)?;

@@ -79,6 +79,8 @@ impl ModelDescription {
         table: VariableTable,
         standard: Standard,
     ) -> Result<ModelDescription, ModelError> {
+        // The scene's texts go into attributes: only characters XML 1.0 carries.
+        scene.validate_texts()?;
         let render = match standard {
             Standard::Fmi2 => xml::render,
             Standard::Fmi3 => xml3::render,

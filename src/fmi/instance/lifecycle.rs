@@ -1,6 +1,7 @@
 //! Life cycle: debug logging, `fmi2SetupExperiment`, initialization mode, terminate, reset,
 //! and building and starting the simulation from the instance's parameters.
 
+use crate::text::time;
 use std::borrow::Cow;
 
 use super::{model_error, Instance};
@@ -63,7 +64,8 @@ impl Instance {
         self.last_step = Status::Ok;
         if self.logger.events_on() {
             self.logger.event(&format!(
-                "initialized at t = {t0} s with {}",
+                "initialized at t = {} s with {}",
+                time(t0),
                 self.model.start_summary()
             ));
         }

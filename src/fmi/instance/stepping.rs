@@ -6,6 +6,7 @@ use crate::fmi::state_machine::{Call, MachineState};
 use crate::fmi::status::{FmiError, FmiResult, Status, StatusKind};
 use crate::model::StepError;
 use crate::model::EXPERIMENT_TIME_LIMIT;
+use crate::text::time;
 
 impl Instance {
     /// `fmi2DoStep`: integrate from the FMU time `t` to `t + h`.
@@ -16,12 +17,16 @@ impl Instance {
         let tolerance = TIME_TOLERANCE * now.abs().max(1.0);
         if !(t.is_finite() && (t - now).abs() <= tolerance) {
             return Err(FmiError::rejected(format!(
-                "currentCommunicationPoint = {t} s does not match the FMU time {now} s: allowed {now} +- {tolerance:e} s"
+                "currentCommunicationPoint = {} s does not match the FMU time {} s: allowed {} +- {tolerance:e} s",
+                time(t),
+                time(now),
+                time(now)
             )));
         }
         if !(h.is_finite() && h > 0.0) {
             return Err(FmiError::rejected(format!(
-                "communicationStepSize = {h} s is out of range: allowed a finite value > 0"
+                "communicationStepSize = {} s is out of range: allowed a finite value > 0",
+                time(h)
             )));
         }
         if let Some(stop) = self.experiment.stop_time {
@@ -30,9 +35,13 @@ impl Instance {
             let end = t + h;
             if end > stop + TIME_TOLERANCE * stop.abs().max(1.0) {
                 return Err(FmiError::rejected(format!(
-                    "the step from currentCommunicationPoint = {t} s with communicationStepSize = {h} s would end at {end} s, after stopTime = {stop} s of {}: allowed communicationStepSize <= {} s",
+                    "the step from currentCommunicationPoint = {} s with communicationStepSize = {} s would end at {} s, after stopTime = {} s of {}: allowed communicationStepSize <= {} s",
+                    time(t),
+                    time(h),
+                    time(end),
+                    time(stop),
                     Call::SetupExperiment.name(self.standard),
-                    stop - t
+                    time(stop - t)
                 )));
             }
         }

@@ -129,7 +129,7 @@ impl EnumerationType {
         i32::try_from(self.items().len()).unwrap_or(i32::MAX)
     }
 
-    /// "1 = ffr, 2 = segments", for the description of an Integer twin.
+    /// "1 = ffr, 2 = segments, ...", every item, for the description of an Integer twin.
     pub fn codes_text(&self) -> String {
         let items: Vec<String> = self
             .items()
@@ -148,7 +148,7 @@ impl EnumerationType {
         )
     }
 
-    /// "1 (ffr), 2 (segments)", for messages and descriptions.
+    /// "1 (ffr), 2 (segments), ...", every item, for messages and descriptions.
     pub fn allowed_text(&self) -> String {
         let items: Vec<String> = self
             .items()

@@ -35,7 +35,7 @@ fn kind<K: Kind>(ty: &EnumerationType, value: i32) -> Result<K, String> {
     enumerations::from_code(value).ok_or_else(|| ty.allowed_text())
 }
 
-/// `rod.model`: 1 (ffr), 2 (segments).
+/// `rod.model`: 1 (ffr), 2 (segments), 3 (modal_segments), 4 (auto).
 pub fn set_model(scene: &mut Scene, value: i32) -> Result<(), String> {
     scene.rod.model = kind::<RodModelKind>(&ROD_MODEL, value)?;
     Ok(())

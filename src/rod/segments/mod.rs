@@ -188,9 +188,9 @@ pub fn validate_segments(n: usize) -> Result<(), ModelError> {
     if (lo..=hi).contains(&n) {
         Ok(())
     } else {
-        Err(ModelError::InvalidParameter {
+        Err(ModelError::InvalidInteger {
             name: "rod.elements",
-            value: n as f64,
+            value: n as i64,
             allowed: format!("{lo}..={hi} rigid segments (rod.model = \"segments\")"),
         })
     }
