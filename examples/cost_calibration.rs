@@ -52,6 +52,40 @@ fn main() {
             soft_ffr(128, 384, false),
             1e-2,
         ),
+        (
+            "segments 8, soft, heavy small end".into(),
+            {
+                let mut s = Scene::benchmark();
+                s.rod.model = RodModelKind::Segments;
+                s.rod.density = 4e4;
+                s.rod.damping_ratio = 0.5;
+                s.rod.small_end.inertia = 6e5;
+                s.solver.tolerance = 1e-4;
+                s
+            },
+            1.0,
+        ),
+        (
+            "segments 32".into(),
+            {
+                let mut s = Scene::benchmark();
+                s.rod.model = RodModelKind::Segments;
+                s.rod.elements = 32;
+                s
+            },
+            1.0,
+        ),
+        (
+            "modal segments 32".into(),
+            {
+                let mut s = Scene::benchmark();
+                s.rod.model = RodModelKind::ModalSegments;
+                s.rod.elements = 32;
+                s.solver.tolerance = 1e-8;
+                s
+            },
+            1.0,
+        ),
         ("automotive".into(), automotive(2e11, 8), 0.02),
         ("automotive E 2e9, 24 el".into(), automotive(2e9, 24), 1e-3),
         ("automotive E 2e8, 24 el".into(), automotive(2e8, 24), 1e-3),

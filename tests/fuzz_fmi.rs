@@ -279,7 +279,7 @@ fn parameters_across_their_declared_ranges_take_bounded_time() {
         "{r:?}"
     );
     let figures = format!(
-        "{} sequences (seeds {first} to {}) on the default and the automotive FMU: {} parameters set across their declared ranges, {} initializations completed and {} refused with a message, {} communication steps ({} of them fmi2OK or fmi2Warning); slowest call {:.2} s (sequence {}), every call within the documented worst case of {} s; **contract violations: {}**",
+        "{} sequences (seeds {first} to {}) on the default and the automotive FMU: {} parameters set across their declared ranges, {} initializations completed and {} refused with a message, {} communication steps ({} of them fmi2OK or fmi2Warning, {} ended by the wall-time guard); slowest call {:.2} s (sequence {}: {}), every call within the documented worst case of {} s; **contract violations: {}**",
         r.sequences,
         first + n - 1,
         r.parameters_set,
@@ -287,8 +287,10 @@ fn parameters_across_their_declared_ranges_take_bounded_time() {
         r.refused_at_initialization,
         r.steps,
         r.steps_ok,
+        r.guarded,
         r.slowest_call,
         r.slowest_seed,
+        r.slowest_what,
         fuzz::ranges::WORST_CALL,
         violations.count,
     );

@@ -42,6 +42,9 @@ pub struct Mechanism {
     pub(super) pin_cache: Cell<PinAt>,
     /// The force of `[slider.gas_force]`, preprocessed.
     pub(super) gas: Option<GasForce>,
+    /// When the communication step in progress must end at the latest
+    /// ([`super::stepping::WALL_GUARD_SECONDS`] after it started).
+    pub(super) call_deadline: std::time::Instant,
 }
 
 /// What restores the state's held step ([`StepAhead`]) when a communication step fails: most
@@ -182,6 +185,7 @@ impl Mechanism {
                 .as_ref()
                 .map(GasForce::new)
                 .transpose()?,
+            call_deadline: std::time::Instant::now(),
         })
     }
 

@@ -40,6 +40,8 @@ impl Mechanism {
     pub fn advance(&mut self, state: &mut MechanismState, h: f64) -> Result<(), ModelError> {
         let t_start = state.time;
         self.check_work(t_start, h)?;
+        self.call_deadline =
+            std::time::Instant::now() + std::time::Duration::from_secs_f64(WALL_GUARD_SECONDS);
         self.backup.clone_from(&state.dae);
         self.ahead_backup = if state.ahead.held {
             AheadBackup::Untouched
@@ -146,7 +148,7 @@ impl Mechanism {
                     time: t_start,
                     step: h,
                     message: format!(
-                        "it reached only t = {} s of t = {} s within the work budget of one call ({} evaluations of {cost:.3e} work units each for this model, WORK_BUDGET / cost), allowed at most that much work per communication step",
+                        "it reached only t = {} s of t = {} s within the work budget of one call ({} evaluations of {cost:.3e} work units each for this model, WORK_BUDGET / cost, and at most {WALL_GUARD_SECONDS} s), allowed at most that much work per communication step",
                         time(t_fail),
                         time(t_end),
                         evaluations_allowed(cost)
@@ -376,7 +378,7 @@ impl Mechanism {
             if taken >= MAX_INTERNAL_STEPS {
                 return Err((state.dae.t, t_end - state.dae.t, TOO_MANY_STEPS.to_string()));
             }
-            if over_budget(state, &entry, self.evaluation_cost()) {
+            if self.over_budget(state, &entry) {
                 return Err((state.dae.t, t_end - state.dae.t, OVER_BUDGET.to_string()));
             }
             taken += 1;
@@ -460,7 +462,7 @@ impl Mechanism {
         while len > 0 {
             len -= 1;
             let (target, depth) = pending[len];
-            if over_budget(state, entry, self.evaluation_cost()) {
+            if self.over_budget(state, entry) {
                 return Err((state.dae.t, target - state.dae.t, OVER_BUDGET.to_string()));
             }
             let h = target - state.dae.t;
@@ -535,18 +537,32 @@ pub fn evaluations_allowed(cost: f64) -> u64 {
 
 /// Whether the work since `entry` (the statistics at the start of the communication step)
 /// has used up [`WORK_BUDGET`] for a model whose evaluation costs `cost` work units.
-fn over_budget(state: &MechanismState, entry: &StepStats, cost: f64) -> bool {
+fn over_work_budget(state: &MechanismState, entry: &StepStats, cost: f64) -> bool {
     let evaluations = (state.stats.newton_iterations - entry.newton_iterations)
         + (state.stats.steps - entry.steps)
         + (state.stats.halvings - entry.halvings);
     evaluations > evaluations_allowed(cost)
 }
 
+/// The wall time after which a communication step is refused whatever its counted work, s:
+/// the guard behind the work budget, for a model whose evaluations cost more than the cost
+/// model charges (`rod::cost`). Below [`crate::rod::cost::WORST_CALL_SECONDS`], the bound of
+/// one call; the range generator of the fuzz harness counts the calls it ends (none on the
+/// reference machine is the aim: a call it ends is refused where another machine may finish).
+pub const WALL_GUARD_SECONDS: f64 = 4.0;
+
 impl Mechanism {
     /// The coordinates an evaluation costs like, for the work budget: the rod's
     /// ([`crate::rod::RodBody::work_coordinates`]) and the slider.
     pub fn work_coordinates(&self) -> usize {
         self.rod.work_coordinates() + 1
+    }
+
+    /// Whether the communication step in progress is over its work budget
+    /// ([`over_work_budget`]) or past its wall-time guard ([`WALL_GUARD_SECONDS`]).
+    fn over_budget(&self, state: &MechanismState, entry: &StepStats) -> bool {
+        over_work_budget(state, entry, self.evaluation_cost())
+            || std::time::Instant::now() > self.call_deadline
     }
 
     /// Work units of one evaluation ([`crate::rod::cost`]): the dense terms of

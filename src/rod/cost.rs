@@ -17,9 +17,11 @@
 use crate::error::ModelError;
 
 /// Work units of one evaluation beyond its dense terms (the constraint rows, the crank law,
-/// the bookkeeping of a step): measured about 0.15 us per evaluation of the default scene's
-/// 7 coordinates, whose dense terms are 5.2e3 units.
-pub const EVALUATION_OVERHEAD: f64 = 1.0e4;
+/// the bookkeeping of a step, the segment chain's kinematics per segment): measured up to
+/// about 3.6 us per evaluation of small models (8 segments under generalized-alpha with
+/// failing Newton iterations; the chain on its modes at 2.2 us), whose dense terms are a few
+/// thousand units (`examples/cost_calibration.rs`).
+pub const EVALUATION_OVERHEAD: f64 = 4.0e4;
 
 /// Work units per term of the axial coupling's evaluation (`na n^2 (na + 3)` terms): the
 /// fourth-order tensor is read with a stride of `n^2` per axial mode, one cache line per

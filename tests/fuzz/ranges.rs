@@ -101,6 +101,12 @@ impl Target {
     }
 }
 
+/// Whether `FLEXROD_FUZZ_VERBOSE=1` asks for every parameter a sequence sets (to replay one
+/// with `FLEXROD_FUZZ_FIRST=K FLEXROD_FUZZ_RANGES=1`).
+fn verbose() -> bool {
+    std::env::var_os("FLEXROD_FUZZ_VERBOSE").is_some_and(|v| v == "1")
+}
+
 /// Log-uniform in `[a, b]` (`0 < a < b`).
 fn log_uniform(rng: &mut Rng, a: f64, b: f64) -> f64 {
     (rng.uniform(a.ln(), b.ln())).exp().clamp(a, b)
@@ -141,7 +147,7 @@ fn draw(rng: &mut Rng, p: &Parameter, rod_length: f64, area: f64) -> f64 {
 }
 
 /// Counts of the range generator.
-#[derive(Default, Debug, Clone, Copy)]
+#[derive(Default, Debug, Clone)]
 pub struct Ranges {
     pub sequences: u64,
     pub parameters_set: u64,
@@ -149,8 +155,12 @@ pub struct Ranges {
     pub refused_at_initialization: u64,
     pub steps: u64,
     pub steps_ok: u64,
+    /// Steps refused at the wall-time guard (`WALL_GUARD_SECONDS`) rather than the work budget.
+    pub guarded: u64,
     pub slowest_call: f64,
     pub slowest_seed: u64,
+    /// The slowest call and the FMU it was made on.
+    pub slowest_what: String,
 }
 
 impl Ranges {
@@ -161,9 +171,11 @@ impl Ranges {
         self.refused_at_initialization += o.refused_at_initialization;
         self.steps += o.steps;
         self.steps_ok += o.steps_ok;
+        self.guarded += o.guarded;
         if o.slowest_call > self.slowest_call {
             self.slowest_call = o.slowest_call;
             self.slowest_seed = o.slowest_seed;
+            self.slowest_what.clone_from(&o.slowest_what);
         }
     }
 }
@@ -182,6 +194,7 @@ fn timed(
     if took > r.slowest_call {
         r.slowest_call = took;
         r.slowest_seed = seq;
+        r.slowest_what = what.to_string();
     }
     if took > WORST_CALL {
         v.add(format!(
@@ -242,6 +255,9 @@ pub fn run(seq: u64, targets: &[Target; 2], r: &mut Ranges, v: &mut Violations) 
             }
             r.parameters_set += 1;
             let what = format!("setting {} = {x:e}", p.name);
+            if verbose() {
+                println!("sequence {seq} ({}): {what}", target.label);
+            }
             timed(r, v, seq, &what, || {
                 if p.real {
                     fmi2SetReal(c, &p.vr, 1, &x)
@@ -261,10 +277,17 @@ pub fn run(seq: u64, targets: &[Target; 2], r: &mut Ranges, v: &mut Violations) 
             let mut t = 0.0;
             for _ in 0..3 {
                 let h = log_uniform(&mut rng, 1e-6, 1e-2);
+                let t0 = Instant::now();
                 let s = timed(r, v, seq, &format!("fmi2DoStep(h = {h:e})"), || {
                     fmi2DoStep(c, t, h, 1)
                 });
                 r.steps += 1;
+                if s == ERROR
+                    && t0.elapsed().as_secs_f64()
+                        >= flexrod::mechanism::stepping::WALL_GUARD_SECONDS
+                {
+                    r.guarded += 1;
+                }
                 if s != OK && s != WARNING {
                     break;
                 }
