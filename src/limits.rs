@@ -65,3 +65,7 @@ pub fn read_text(path: &Path, cap: u64, what: &str) -> Result<String, String> {
         )
     })
 }
+
+/// `[experiment]` start and stop time, the experiment of the FMI calls and every time of a
+/// serialized state: within `+-EXPERIMENT_TIME_LIMIT` s.
+pub const EXPERIMENT_TIME_LIMIT: f64 = 1e6;

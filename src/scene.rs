@@ -122,8 +122,7 @@ pub struct ExperimentSpec {
 /// `crank.speed` (`simulation::INPUT_WINDOWS`).
 pub const CRANK_SPEED_WINDOW: f64 = 1e4;
 
-/// `[experiment]` start and stop time: within `+-EXPERIMENT_TIME_LIMIT` s.
-pub const EXPERIMENT_TIME_LIMIT: f64 = 1e6;
+pub use crate::limits::EXPERIMENT_TIME_LIMIT;
 /// `[experiment]` step_size range, s.
 pub const EXPERIMENT_STEP_RANGE: (f64, f64) = (1e-9, 1.0);
 

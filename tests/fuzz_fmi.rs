@@ -227,8 +227,9 @@ const DEFAULT_RANGE_SEQUENCES: u64 = 300;
 const LONG_RANGE_RUN: u64 = 100_000;
 
 /// Every parameter across its whole declared range, on the default and the automotive FMU
-/// (`fuzz::ranges`): every call within the documented worst case of one call, statuses and
-/// values within the contract. `FLEXROD_FUZZ_RANGES=N` sets the number of sequences,
+/// (`fuzz::ranges`): statuses and values within the contract, and every call within the
+/// documented worst case of one call (`rod::cost::WORST_CALL_SECONDS`) in the long mode, which
+/// measures it on an otherwise idle machine (in the suite, within the hang limit). `FLEXROD_FUZZ_RANGES=N` sets the number of sequences,
 /// `FLEXROD_FUZZ_THREADS=T` the threads; the long mode (`FLEXROD_BLESS=1
 /// FLEXROD_FUZZ_RANGES=100000 FLEXROD_FUZZ_THREADS=2 cargo test --release --test fuzz_fmi
 /// ranges -- --nocapture`) writes the fragment `fuzz-ranges-long`.
@@ -237,6 +238,13 @@ fn parameters_across_their_declared_ranges_take_bounded_time() {
     let n = env_u64("FLEXROD_FUZZ_RANGES", DEFAULT_RANGE_SEQUENCES);
     let first = env_u64("FLEXROD_FUZZ_FIRST", 0);
     let threads = env_u64("FLEXROD_FUZZ_THREADS", 1).max(1);
+    // The documented worst case is measured by the long mode; the suite shares its machine
+    // with other tests and checks for hangs only.
+    let limit = if n >= LONG_RANGE_RUN {
+        fuzz::ranges::WORST_CALL
+    } else {
+        fuzz::extended::WALL_LIMIT
+    };
     let root = std::env::temp_dir().join(format!("flexrod-ranges-{}", std::process::id()));
     let targets = fuzz::ranges::Target::shipped(&root);
     let t0 = Instant::now();
@@ -246,7 +254,10 @@ fn parameters_across_their_declared_ranges_take_bounded_time() {
                 let (a, b) = (first + n * k / threads, first + n * (k + 1) / threads);
                 let targets = &targets;
                 s.spawn(move || {
-                    let mut r = fuzz::ranges::Ranges::default();
+                    let mut r = fuzz::ranges::Ranges {
+                        limit,
+                        ..Default::default()
+                    };
                     let mut v = Violations::default();
                     for seq in a..b {
                         fuzz::ranges::run(seq, targets, &mut r, &mut v);
@@ -279,7 +290,7 @@ fn parameters_across_their_declared_ranges_take_bounded_time() {
         "{r:?}"
     );
     let figures = format!(
-        "{} sequences (seeds {first} to {}) on the default and the automotive FMU: {} parameters set across their declared ranges, {} initializations completed and {} refused with a message, {} communication steps ({} of them fmi2OK or fmi2Warning, {} ended by the wall-time guard); slowest call {:.2} s (sequence {}: {}), every call within the documented worst case of {} s; **contract violations: {}**",
+        "{} sequences (seeds {first} to {}) on the default and the automotive FMU: {} parameters set across their declared ranges, {} initializations completed and {} refused with a message, {} communication steps ({} of them fmi2OK or fmi2Warning, {} ended by the wall-time guard); slowest call {:.2} s (sequence {}: {}), every call within {} s; **contract violations: {}**",
         r.sequences,
         first + n - 1,
         r.parameters_set,
@@ -291,7 +302,7 @@ fn parameters_across_their_declared_ranges_take_bounded_time() {
         r.slowest_call,
         r.slowest_seed,
         r.slowest_what,
-        fuzz::ranges::WORST_CALL,
+        limit,
         violations.count,
     );
     if n >= LONG_RANGE_RUN && common::fragments::blessing() {

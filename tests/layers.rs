@@ -1,22 +1,25 @@
 //! The library's layers are one-way: each top-level module of `src/` uses only modules of a
 //! lower layer (and itself). The layers, bottom up:
 //!
-//! 0. `error`, `hash`, `trig`: typed errors, FNV hashes, `sin_cos` of the hot path;
-//! 1. `beam` (the element and the mesh), `integrator` (one-step methods on any `DaeSystem`);
-//! 2. `modal`: reference conditions, eigenproblem, mode selection, shape integrals;
-//! 3. `rod`: the `RodBody` trait, the FFR rod, the segment chain;
-//! 4. `mechanism`: the slider-crank DAE, its start, stepping and outputs;
-//! 5. `scene`: the TOML scene, composed of the layers' own spec types;
-//! 6. `simulation`: the facade (a mechanism built from a scene, its state, snapshots);
-//! 7. `drive` (crank laws and the run loop) and `model` (the model's self-description: the
+//! 0. `text`: how messages print numbers and quote input;
+//! 1. `error`, `hash`, `limits`, `trig`: typed errors, FNV hashes, the size caps of files and
+//!    runs, `sin_cos` of the hot path;
+//! 2. `beam` (the element and the mesh), `integrator` (one-step methods on any `DaeSystem`);
+//! 3. `modal`: reference conditions, eigenproblem, mode selection, shape integrals;
+//! 4. `rod`: the `RodBody` trait, the FFR rod, the segment chain, their cost model;
+//! 5. `mechanism`: the slider-crank DAE, its start, stepping and outputs;
+//! 6. `scene`: the TOML scene, composed of the layers' own spec types;
+//! 7. `simulation`: the facade (a mechanism built from a scene, its state, snapshots);
+//! 8. `drive` (crank laws and the run loop) and `model` (the model's self-description: the
 //!    variable table, the input law between communication points, the instance hooks), side
 //!    by side;
-//! 8. `fmi`: the FMU's C ABI, a generic FMI 2.0 / FMI 3.0 shell over `model`.
+//! 9. `fmi`: the FMU's C ABI, a generic FMI 2.0 / FMI 3.0 shell over `model`.
 //!
 //! The test reads every `.rs` file under `src/` (the binaries in `src/bin` excluded: they are
 //! users of the library), collects each `crate::<module>` path (in `use` declarations and in
 //! code), and fails on any use of a module in the same or a higher layer. On top of the order,
-//! the FMI layer knows nothing of the mechanism: `fmi` uses only `model`, `error` and `hash`
+//! the FMI layer knows nothing of the mechanism: `fmi` uses only `model` and the utilities
+//! `error`, `hash`, `limits` and `text`
 //! (none of `mechanism`, `rod`, `modal`, `beam`, `integrator`, nor `scene` or `simulation`
 //! except through `model`).
 
@@ -24,23 +27,25 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 const LAYERS: &[(&str, usize)] = &[
-    ("error", 0),
-    ("hash", 0),
-    ("trig", 0),
-    ("beam", 1),
-    ("integrator", 1),
-    ("modal", 2),
-    ("rod", 3),
-    ("mechanism", 4),
-    ("scene", 5),
-    ("simulation", 6),
-    ("drive", 7),
-    ("model", 7),
-    ("fmi", 8),
+    ("text", 0),
+    ("error", 1),
+    ("hash", 1),
+    ("limits", 1),
+    ("trig", 1),
+    ("beam", 2),
+    ("integrator", 2),
+    ("modal", 3),
+    ("rod", 4),
+    ("mechanism", 5),
+    ("scene", 6),
+    ("simulation", 7),
+    ("drive", 8),
+    ("model", 8),
+    ("fmi", 9),
 ];
 
 /// The modules `fmi` may use: the model's self-description and layer 0.
-const FMI_USES: &[&str] = &["model", "error", "hash"];
+const FMI_USES: &[&str] = &["model", "error", "hash", "limits", "text"];
 
 /// The mechanism's modules, which `fmi` must not use.
 const MECHANISM: &[&str] = &["mechanism", "rod", "modal", "beam", "integrator"];

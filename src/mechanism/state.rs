@@ -319,7 +319,7 @@ impl MechanismState {
             ));
         }
         // The times within the experiment's range (`[experiment]`, the FMI experiment).
-        let limit = crate::scene::EXPERIMENT_TIME_LIMIT * (1.0 + 1e-9);
+        let limit = crate::limits::EXPERIMENT_TIME_LIMIT * (1.0 + 1e-9);
         for (name, t) in [
             ("the time", self.time),
             ("the input time", self.input_time),
@@ -328,7 +328,7 @@ impl MechanismState {
             if t.abs() > limit {
                 return Err(format!(
                     "{name} is {t:e} s, allowed within +-{:e} s (the experiment's range)",
-                    crate::scene::EXPERIMENT_TIME_LIMIT
+                    crate::limits::EXPERIMENT_TIME_LIMIT
                 ));
             }
         }

@@ -18,14 +18,7 @@ pub const LARGE_DEFLECTION_WARNING: f64 = 0.05;
 /// A longer communication step is refused with the state kept (`ModelError::TooMuchWork`).
 pub const MAX_INTERNAL_STEPS: u64 = 100_000;
 
-/// The work one communication step may do, in work units ([`crate::rod::cost`]): each counted
-/// evaluation (a Newton iteration or a right-hand-side evaluation, accepted or not, plus one
-/// per internal step and one per halving) costs [`Mechanism::evaluation_cost`], the dense terms
-/// of its coordinates and what the rod adds (the FFR rod's axial coupling). The budget so
-/// bounds the time of one call about equally at every model size (docs/fmu.md, "Time per
-/// call", gives the measured worst case). A communication step that would need more is
-/// refused with the state kept.
-pub const WORK_BUDGET: f64 = 2.5e10;
+pub use crate::rod::cost::WORK_BUDGET;
 
 /// Largest `solver.max_halvings` (checked by the scene validation): a failed step is split
 /// into at most `2^20` pieces, the smallest `1e-6` of it.

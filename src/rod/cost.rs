@@ -16,6 +16,15 @@
 
 use crate::error::ModelError;
 
+/// The work one communication step may do, in work units (this module's): each counted
+/// evaluation (a Newton iteration or a right-hand-side evaluation, accepted or not, plus one
+/// per internal step and one per halving) costs `Mechanism::evaluation_cost`, the dense terms
+/// of its coordinates and what the rod adds (the FFR rod's axial coupling). The budget so
+/// bounds the time of one call about equally at every model size (docs/fmu.md, "Time per
+/// call", gives the measured worst case). A communication step that would need more is
+/// refused with the state kept.
+pub const WORK_BUDGET: f64 = 2.5e10;
+
 /// Work units of one evaluation beyond its dense terms (the constraint rows, the crank law,
 /// the bookkeeping of a step, the segment chain's kinematics per segment): measured up to
 /// about 3.6 us per evaluation of small models (8 segments under generalized-alpha with
@@ -95,7 +104,7 @@ pub fn check_ffr(n: usize, na: usize, elements: usize, stations: usize) -> Resul
     let build = axial_coupling_build(n, na, elements);
     let bytes = axial_coupling_bytes(n, na) + section_sampling_bytes(n, elements, stations);
     let evaluation = axial_coupling_evaluation(n, na) + dense_evaluation(n + 4);
-    let per_call = crate::mechanism::stepping::WORK_BUDGET / MIN_EVALUATIONS_PER_CALL;
+    let per_call = WORK_BUDGET / MIN_EVALUATIONS_PER_CALL;
     let what = if build > BUILD_BUDGET {
         format!(
             "building its axial coupling (na^2 n^2 terms) takes {build:.2e} work units, more than the {BUILD_BUDGET:.1e} allowed (about 2 s)"

@@ -7,8 +7,10 @@
 //! log-uniform where they span decades: soft and stiff rods, light and heavy ones, every
 //! element count, mode counts and mode bands, the tightest tolerance, every enumeration item),
 //! initializes, and takes communication steps of 1e-6 to 1e-2 s. Oracle: every call ends within
-//! [`WORST_CALL`] seconds (the documented worst case of one call), answers a status of
-//! fmi2OK to fmi2Error, and no value read with fmi2OK is non-finite or beyond 1e12.
+//! the wall-time limit it is given ([`WORST_CALL`], the documented worst case of one call, in
+//! the long mode, which measures it; a hang detector in the suite, whose machine is shared),
+//! answers a status of fmi2OK to fmi2Error, and no value read with fmi2OK is non-finite or
+//! beyond 1e12.
 
 use std::ffi::CString;
 use std::time::Instant;
@@ -146,9 +148,10 @@ fn draw(rng: &mut Rng, p: &Parameter, rod_length: f64, area: f64) -> f64 {
     }
 }
 
-/// Counts of the range generator.
+/// Counts of the range generator, and its wall-time limit per call, s.
 #[derive(Default, Debug, Clone)]
 pub struct Ranges {
+    pub limit: f64,
     pub sequences: u64,
     pub parameters_set: u64,
     pub initialized: u64,
@@ -180,7 +183,7 @@ impl Ranges {
     }
 }
 
-/// Time `call`; a call past [`WORST_CALL`] is a violation.
+/// Time `call`; a call past `r.limit` seconds is a violation.
 fn timed(
     r: &mut Ranges,
     v: &mut Violations,
@@ -196,9 +199,10 @@ fn timed(
         r.slowest_seed = seq;
         r.slowest_what = what.to_string();
     }
-    if took > WORST_CALL {
+    if took > r.limit {
         v.add(format!(
-            "sequence {seq}: {what} took {took:.2} s, past the documented worst case {WORST_CALL} s"
+            "sequence {seq}: {what} took {took:.2} s, past the limit of {} s",
+            r.limit
         ));
     }
     if !(OK..=ERROR).contains(&status) {
