@@ -542,17 +542,7 @@ fn large_models_inside_the_declared_ranges_take_bounded_time_per_step() {
                 }
                 Err(e) => panic!("{label}: {e}"),
             };
-            sim.start(
-                0.0,
-                CrankInput {
-                    angle: 0.0,
-                    speed: 150.0,
-                    acceleration: 0.0,
-                    jerk: 0.0,
-                },
-                0.0,
-            )
-            .unwrap();
+            start_at(&mut sim, 150.0);
             let t0 = Instant::now();
             let r = sim.advance(h);
             let took = t0.elapsed().as_secs_f64();
@@ -607,13 +597,13 @@ fn automotive(elements: usize, reference: &str, youngs_modulus: f64) -> Scene {
     s
 }
 
-/// Start `sim` at 628.3 rad/s (the automotive scene's 6000 rpm).
-fn start_automotive(sim: &mut Simulation) {
+/// Start `sim` at constant crank speed `speed`, rad/s, from angle 0.
+fn start_at(sim: &mut Simulation, speed: f64) {
     sim.start(
         0.0,
         CrankInput {
             angle: 0.0,
-            speed: 628.3,
+            speed,
             acceleration: 0.0,
             jerk: 0.0,
         },
@@ -665,7 +655,7 @@ fn a_soft_rod_at_a_tight_tolerance_ends_its_step_within_the_budget() {
             Ok(sim) => sim,
             Err(e) => panic!("in range and affordable: {e}"),
         };
-        start_automotive(&mut sim);
+        start_at(&mut sim, 628.3);
         let cost = sim.mechanism().evaluation_cost();
         assert!(cost > flexrod::rod::cost::dense_evaluation(sim.mechanism().work_coordinates()));
         let allowed = evaluations_allowed(cost);
@@ -700,17 +690,7 @@ fn a_soft_rod_at_a_tight_tolerance_ends_its_step_within_the_budget() {
 fn a_refused_step_of_a_small_model_ends_in_bounded_time() {
     if is_child("small-refused") {
         let mut sim = Simulation::new(&Scene::benchmark()).unwrap();
-        sim.start(
-            0.0,
-            CrankInput {
-                angle: 0.0,
-                speed: 150.0,
-                acceleration: 0.0,
-                jerk: 0.0,
-            },
-            0.0,
-        )
-        .unwrap();
+        start_at(&mut sim, 150.0);
         let t0 = Instant::now();
         let e = sim.advance(1000.0).expect_err("refused");
         println!("refused after {:.2} s: {e}", t0.elapsed().as_secs_f64());
