@@ -10,7 +10,7 @@
 //! reads as numbers and still pins every bit. The test compares within 1e-12 of each output's
 //! peak over the case (CPU-dependent SIMD paths in the linear algebra may change the last bits
 //! across machines) and the counters exactly; `FLEXROD_GOLDEN_EXACT=1` demands bit-identical
-//! outputs (for refactorings on one machine), `FLEXROD_GOLDEN_BLESS=1` rewrites the file (after
+//! outputs (for refactorings on one machine), `FLEXROD_BLESS=1` (the bless variable of every generated file) rewrites the file (after
 //! a change that is meant to alter results: say why in the commit), `FLEXROD_GOLDEN_REPORT=1`
 //! prints the changes and the counts without failing.
 
@@ -225,7 +225,7 @@ fn parse(text: &str) -> Vec<Block<'_>> {
 #[test]
 fn reference_runs_are_unchanged() {
     let blocks: Vec<String> = cases().iter().map(run).collect();
-    if std::env::var_os("FLEXROD_GOLDEN_BLESS").is_some() {
+    if std::env::var_os("FLEXROD_BLESS").is_some_and(|v| v == "1") {
         std::fs::write(DATA, PREAMBLE.to_string() + &blocks.concat()).unwrap();
         return;
     }

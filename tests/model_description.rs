@@ -1,6 +1,6 @@
 //! The golden copy `modelDescription/modelDescription.xml` is what the code generates for
 //! `scenes/benchmark.toml` now. After an intended change, regenerate it with
-//! `UPDATE_GOLDEN=1 cargo test --release --test model_description` and review the diff.
+//! `FLEXROD_BLESS=1 cargo test --release --test model_description` and review the diff.
 
 use std::path::Path;
 
@@ -16,7 +16,7 @@ fn golden_model_description_is_current() {
         .expect("the default scene builds")
         .xml;
     let golden_path = root.join("modelDescription/modelDescription.xml");
-    if std::env::var_os("UPDATE_GOLDEN").is_some() {
+    if std::env::var_os("FLEXROD_BLESS").is_some_and(|v| v == "1") {
         std::fs::write(&golden_path, &generated).expect("write the golden copy");
     }
     let golden = std::fs::read_to_string(&golden_path).expect("read the golden copy");
@@ -29,7 +29,7 @@ fn golden_model_description_is_current() {
             .map(|(i, (a, b))| format!("line {}:\n  golden:    {a}\n  generated: {b}", i + 1))
             .unwrap_or_else(|| "the files differ in length".to_string());
         panic!(
-            "{} is out of date ({first_difference}); regenerate with UPDATE_GOLDEN=1 cargo test --release --test model_description",
+            "{} is out of date ({first_difference}); regenerate with FLEXROD_BLESS=1 cargo test --release --test model_description",
             golden_path.display()
         );
     }

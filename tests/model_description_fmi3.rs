@@ -1,7 +1,7 @@
 //! The FMI 3.0 description: the golden copy
 //! `modelDescription/modelDescription-fmi3.xml` is what the code generates for
 //! `scenes/benchmark.toml` now (regenerate with
-//! `UPDATE_GOLDEN=1 cargo test --release --test model_description_fmi3` and review the diff),
+//! `FLEXROD_BLESS=1 cargo test --release --test model_description_fmi3` and review the diff),
 //! and its content follows from the one variable table: the FMI 2.0 variables under the same
 //! names and value references, the frequencies as one array, the FMI 3.0 additions at value
 //! references 150..199, and the FMI 2.0 description unchanged by the FMI 3.0 one.
@@ -21,7 +21,7 @@ fn golden_fmi3_model_description_is_current() {
         .expect("the default scene builds")
         .xml;
     let golden_path = root.join("modelDescription/modelDescription-fmi3.xml");
-    if std::env::var_os("UPDATE_GOLDEN").is_some() {
+    if std::env::var_os("FLEXROD_BLESS").is_some_and(|v| v == "1") {
         std::fs::write(&golden_path, &generated).expect("write the golden copy");
     }
     let golden = std::fs::read_to_string(&golden_path).expect("read the golden copy");
@@ -34,7 +34,7 @@ fn golden_fmi3_model_description_is_current() {
             .map(|(i, (a, b))| format!("line {}:\n  golden:    {a}\n  generated: {b}", i + 1))
             .unwrap_or_else(|| "the files differ in length".to_string());
         panic!(
-            "{} is out of date ({first_difference}); regenerate with UPDATE_GOLDEN=1 cargo test --release --test model_description_fmi3",
+            "{} is out of date ({first_difference}); regenerate with FLEXROD_BLESS=1 cargo test --release --test model_description_fmi3",
             golden_path.display()
         );
     }
