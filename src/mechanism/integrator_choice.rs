@@ -59,7 +59,7 @@ pub const LOCAL_TOLERANCE_FACTOR_RK4: f64 = 0.03;
 /// tolerance of a step `h` is at most `solver.tolerance c h / T` with `T` one crank
 /// revolution. Without it (error per step alone) a rod whose accuracy needs many small steps
 /// per revolution (an undamped stiff fourth mode: 1160 steps in one revolution) collected
-/// 6.8 times the stated tolerance (tests/error_control.rs, `explore_case` with CASE=19).
+/// 6.8 times the stated tolerance (`cargo run --release --example error_control_case -- 19`).
 pub const ERROR_PER_UNIT_STEP_RK4: f64 = 2.5;
 
 /// The same for the adaptive generalized-alpha method (second order: its global error goes
