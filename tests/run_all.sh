@@ -3,9 +3,10 @@
 # libcosim and a C master, and the sweep tool on Dask.
 #
 # Python: creates .venv with python3 (3.11 or newer) on first use and installs into it fmpy,
-# pytest, numpy, libcosimpy, dask[distributed], tqdm, matplotlib and setuptools (the build
-# backend of python/) from PyPI, and the sweep tool python/ editable, every package (transitive
-# ones included) at its version in tests/python/constraints.txt. It installs again whenever
+# pytest, numpy, libcosimpy, dask[distributed], tqdm, matplotlib, setuptools (the build
+# backend of python/) and ruff (the Python linter and formatter .ci/run calls) from PyPI, and
+# the sweep tool python/ editable, every package (transitive ones included) at its version in
+# tests/python/constraints.txt. It installs again whenever
 # constraints.txt, python/pyproject.toml or the list below change (their hash is kept in
 # .venv/flexrod-install.sha256). The C master of tests/c_master is compiled with gcc by the
 # Python tests.
@@ -17,8 +18,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 constraints=tests/python/constraints.txt
-packages=(fmpy pytest numpy libcosimpy "dask[distributed]" tqdm matplotlib setuptools)
-imports="import fmpy, pytest, numpy, libcosimpy, dask.distributed, tqdm, matplotlib, flexrod_sweep"
+packages=(fmpy pytest numpy libcosimpy "dask[distributed]" tqdm matplotlib setuptools ruff)
+imports="import fmpy, pytest, numpy, libcosimpy, dask.distributed, tqdm, matplotlib, ruff, flexrod_sweep"
 
 if ! python3 -c 'import sys; sys.exit(sys.version_info < (3, 11))'; then
     echo "tests/run_all.sh: python3 is $(python3 --version 2>&1); the Python tests need 3.11 or newer" >&2

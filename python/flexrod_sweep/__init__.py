@@ -1,4 +1,5 @@
 """Parameter sweeps of the flexrod FMU on Dask."""
+
 from .spec import Spec, SpecError, load, run_id
 from .sweep import load_series, regenerate, run_sweep
 

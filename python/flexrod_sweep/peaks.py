@@ -29,7 +29,11 @@ def p_cr(fmu_spec_dir):
 
     spec = load(Path(fmu_spec_dir) / "spec.toml")
     md = read_model_description(str(Path(fmu_spec_dir) / "modelDescription.xml"))
-    start = {v.name: float(v.start) for v in md.modelVariables if v.type == "Real" and v.start is not None}
+    start = {
+        v.name: float(v.start)
+        for v in md.modelVariables
+        if v.type == "Real" and v.start is not None
+    }
     ei = start["rod.youngs_modulus"] * start["rod.area_moment"]
     return math.pi**2 * ei / start["rod.length"] ** 2, spec
 
@@ -59,14 +63,23 @@ def analyse(out, metric="max_abs(rod.deflection_rel)", harmonics=(2, 3, 4, 5, 6)
                 continue
             i = max(idx, key=lambda j: y[j])
             # parabola through (w[i-1], w[i], w[i+1])
-            a, b, _ = np.polyfit(w[i - 1:i + 2], y[i - 1:i + 2], 2)
+            a, b, _ = np.polyfit(w[i - 1 : i + 2], y[i - 1 : i + 2], 2)
             peak = -b / (2 * a) if a < 0 else w[i]
             shifted = None
             if c is not None:
                 cc = float(np.interp(peak, w, c))
                 shifted = w1 / math.sqrt(k * k - w1 * w1 * cc / pcr)
-            table.append((key, k, target, peak, shifted, float(np.interp(peak, w, y * w**2)),
-                          cc * peak**2 if c is not None else None))
+            table.append(
+                (
+                    key,
+                    k,
+                    target,
+                    peak,
+                    shifted,
+                    float(np.interp(peak, w, y * w**2)),
+                    cc * peak**2 if c is not None else None,
+                )
+            )
     return others, w1, pcr, table
 
 
@@ -77,10 +90,14 @@ def main(argv=None):
     p.add_argument("--harmonics", type=int, nargs="+", default=[2, 3, 4, 5, 6])
     a = p.parse_args(argv)
     others, w1, pcr, table = analyse(a.out, a.metric, a.harmonics)
-    print(f"omega_1 = {w1:.2f} rad/s (median of rod.frequency[1]), P_cr = {pcr:.1f} N; peaks of {a.metric} / Omega^2")
+    print(
+        f"omega_1 = {w1:.2f} rad/s (median of rod.frequency[1]), P_cr = {pcr:.1f} N; peaks of {a.metric} / Omega^2"
+    )
     print()
-    print(f"| {', '.join(others) or 'series'} | k | omega_1/k (rad/s) | peak (rad/s) | peak - omega_1/k | "
-          "mean axial force at peak (N) | predicted with axial load (rad/s) | peak - predicted | peak value |")
+    print(
+        f"| {', '.join(others) or 'series'} | k | omega_1/k (rad/s) | peak (rad/s) | peak - omega_1/k | "
+        "mean axial force at peak (N) | predicted with axial load (rad/s) | peak - predicted | peak value |"
+    )
     print("|---|---|---|---|---|---|---|---|---|")
     for key, k, target, peak, shifted, val, n in table:
         name = ", ".join(key) or "all"
@@ -88,11 +105,15 @@ def main(argv=None):
             print(f"| {name} | {k} | {target:.1f} | no local maximum within 8 % | | | | | |")
             continue
         if shifted is None:
-            print(f"| {name} | {k} | {target:.1f} | {peak:.1f} | {100 * (peak / target - 1):+.2f} % | "
-                  f"(no {AXIAL} metric) | | | {val:.4g} |")
+            print(
+                f"| {name} | {k} | {target:.1f} | {peak:.1f} | {100 * (peak / target - 1):+.2f} % | "
+                f"(no {AXIAL} metric) | | | {val:.4g} |"
+            )
             continue
-        print(f"| {name} | {k} | {target:.1f} | {peak:.1f} | {100 * (peak / target - 1):+.2f} % | "
-              f"{n:.1f} | {shifted:.1f} | {100 * (peak / shifted - 1):+.2f} % | {val:.4g} |")
+        print(
+            f"| {name} | {k} | {target:.1f} | {peak:.1f} | {100 * (peak / target - 1):+.2f} % | "
+            f"{n:.1f} | {shifted:.1f} | {100 * (peak / shifted - 1):+.2f} % | {val:.4g} |"
+        )
 
 
 if __name__ == "__main__":

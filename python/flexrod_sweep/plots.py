@@ -14,7 +14,14 @@ from collections import defaultdict
 import numpy as np
 
 OK = ("ok", "warning")
-FAIL_MARKS = {"diverged": "x", "discard": "v", "error": "D", "timeout": "P", "exception": "*", "fatal": "D"}
+FAIL_MARKS = {
+    "diverged": "x",
+    "discard": "v",
+    "error": "D",
+    "timeout": "P",
+    "exception": "*",
+    "fatal": "D",
+}
 
 
 def _num(s):
@@ -87,8 +94,17 @@ def _fail_strip(ax, xs, statuses, color):
     handles = []
     for st in sorted(set(statuses)):
         sel = [x for x, s in zip(xs, statuses) if s == st]
-        h = ax.plot(sel, [0.025] * len(sel), FAIL_MARKS.get(st, "x"), color=color, ms=6, mfc="none",
-                    transform=tr, clip_on=False, label=f"{st} ({len(sel)})")[0]
+        h = ax.plot(
+            sel,
+            [0.025] * len(sel),
+            FAIL_MARKS.get(st, "x"),
+            color=color,
+            ms=6,
+            mfc="none",
+            transform=tr,
+            clip_on=False,
+            label=f"{st} ({len(sel)})",
+        )[0]
         handles.append(h)
     return handles
 
@@ -104,14 +120,32 @@ def resonance_chart(spec, rows, out, cfg, units=None):
     others = _varying(spec, rows, {x})
     cont = [n for n in others if _continuous(rows, n)]
     if cont:  # a second continuous parameter: a map, not one series per value
-        return heatmaps(spec, rows, out, {"x": x, "y": cont[0], "metric": metric,
-                                          "file": cfg.get("file", "resonance.svg"),
-                                          "title": cfg.get("title"), "frequency": freq,
-                                          "harmonics": harmonics, "log": cfg.get("log", False)}, units)
+        return heatmaps(
+            spec,
+            rows,
+            out,
+            {
+                "x": x,
+                "y": cont[0],
+                "metric": metric,
+                "file": cfg.get("file", "resonance.svg"),
+                "title": cfg.get("title"),
+                "frequency": freq,
+                "harmonics": harmonics,
+                "log": cfg.get("log", False),
+            },
+            units,
+        )
     groups = _series(spec, rows, {x})
     n_panels = 2 if normalized else 1
-    fig, axes = plt.subplots(n_panels, 1, figsize=(9, 3.9 * n_panels + 1.2), sharex=True, squeeze=False,
-                             layout="constrained")
+    fig, axes = plt.subplots(
+        n_panels,
+        1,
+        figsize=(9, 3.9 * n_panels + 1.2),
+        sharex=True,
+        squeeze=False,
+        layout="constrained",
+    )
     axes = axes[:, 0]
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     xmin, xmax = math.inf, -math.inf
@@ -130,8 +164,16 @@ def resonance_chart(spec, rows, out, cfg, units=None):
             yy = np.where(ok, yy, np.nan)  # the line breaks at failed runs
             ax.plot(xs, yy, "-o", ms=2.5, lw=1.2, color=c, label=name if p == 0 else None)
             if warn.any():
-                ax.plot(xs[warn], yy[warn], "s", mfc="none", ms=6, color=c, alpha=0.6,
-                        label=f"{name}: FMU warning (large deflection)" if p == 0 else None)
+                ax.plot(
+                    xs[warn],
+                    yy[warn],
+                    "s",
+                    mfc="none",
+                    ms=6,
+                    color=c,
+                    alpha=0.6,
+                    label=f"{name}: FMU warning (large deflection)" if p == 0 else None,
+                )
             if (~ok).any():
                 hs = _fail_strip(ax, xs[~ok], [s for s, o in zip(status, ok) if not o], c)
                 if p == 0:
@@ -156,9 +198,17 @@ def resonance_chart(spec, rows, out, cfg, units=None):
                 continue
             for ax in axes:
                 ax.axvline(w, color=col, ls=":", lw=1)
-            axes[0].annotate(f"$\\omega_1/{k}$", (w, 1.0), xycoords=("data", "axes fraction"),
-                             color=col, fontsize=8, ha="center", va="bottom",
-                             xytext=(0, 2 + 10 * j), textcoords="offset points")
+            axes[0].annotate(
+                f"$\\omega_1/{k}$",
+                (w, 1.0),
+                xycoords=("data", "axes fraction"),
+                color=col,
+                fontsize=8,
+                ha="center",
+                va="bottom",
+                xytext=(0, 2 + 10 * j),
+                textcoords="offset points",
+            )
     axes[0].set_ylabel(_lab(metric, units))
     if normalized:
         u = (units or {}).get(metric, "")
@@ -173,8 +223,11 @@ def resonance_chart(spec, rows, out, cfg, units=None):
     fig.legend(loc="outside lower center", ncol=2, fontsize=8, frameon=False)
     title = cfg.get("title", f"{spec.name}: {metric} against {x}")
     if distinct:
-        title += "\n" + ", ".join(f"$\\omega_1$ = {w:.1f} rad/s" for w, _, _ in distinct) + \
-            " (dotted: $\\omega_1/k$)"
+        title += (
+            "\n"
+            + ", ".join(f"$\\omega_1$ = {w:.1f} rad/s" for w, _, _ in distinct)
+            + " (dotted: $\\omega_1/k$)"
+        )
     fig.suptitle(title, fontsize=10)
     path = out / cfg.get("file", "resonance.svg")
     fig.savefig(path)
@@ -216,27 +269,43 @@ def heatmaps(spec, rows, out, cfg, units=None):
             from matplotlib.colors import Normalize
 
             norm = Normalize(vmin=vmin, vmax=vmax) if vmin is not None or vmax is not None else None
-        extend = ("both" if vmin is not None and vmax is not None else "min" if vmin is not None
-                  else "max" if vmax is not None else "neither")
+        extend = (
+            "both"
+            if vmin is not None and vmax is not None
+            else "min"
+            if vmin is not None
+            else "max"
+            if vmax is not None
+            else "neither"
+        )
         contours = cfg.get("contour")
-        contours = [] if contours is None else sorted(contours if isinstance(contours, list) else [contours])
+        contours = (
+            []
+            if contours is None
+            else sorted(contours if isinstance(contours, list) else [contours])
+        )
         cmap = cfg.get("cmap", "viridis")
         handles = []
         if gridded:
             # Unevenly spaced (or categorical) y values: equal rows, labelled with the values.
             # (A few uneven values, e.g. damping ratios 0, 0.25, 0.5, 1 %; many values keep their
             # true positions.)
-            cat_y = cat_names is not None or (2 < len(ys) <= 8 and np.ptp(np.diff(ys)) > 1e-9 * max(abs(ys[-1]), 1))
+            cat_y = cat_names is not None or (
+                2 < len(ys) <= 8 and np.ptp(np.diff(ys)) > 1e-9 * max(abs(ys[-1]), 1)
+            )
             ypos = {v: (j if cat_y else v) for j, v in enumerate(ys)}
             z = np.full((len(ys), len(xs)), np.nan)
             for a, b, c in zip(xv, yv, zv):
                 z[ys.index(b), xs.index(a)] = c
             py = np.array([ypos[v] for v in yv])
             ycoords = [ypos[v] for v in ys]
-            mesh = ax.pcolormesh(_edges(xs), _edges(ycoords), z, shading="flat", cmap=cmap, norm=norm)
+            mesh = ax.pcolormesh(
+                _edges(xs), _edges(ycoords), z, shading="flat", cmap=cmap, norm=norm
+            )
             if contours and np.isfinite(z).sum() > 3:
-                cs = ax.contour(xs, ycoords, z, levels=contours, colors="w", linewidths=1.5,
-                                path_effects=stroke)
+                cs = ax.contour(
+                    xs, ycoords, z, levels=contours, colors="w", linewidths=1.5, path_effects=stroke
+                )
                 if len(contours) > 1:
                     ax.clabel(cs, fmt="%g", fontsize=8, colors="k")
             if cat_y:
@@ -253,41 +322,99 @@ def heatmaps(spec, rows, out, cfg, units=None):
                 levels = np.geomspace(pos.min(), pos.max(), 12) if norm is not None else 12
                 mesh = ax.tricontourf(tri, zv[good], levels=levels, cmap=cmap, norm=norm)
                 if contours:
-                    ax.tricontour(tri, zv[good], levels=contours, colors="w", linewidths=1.5,
-                                  path_effects=stroke)
+                    ax.tricontour(
+                        tri,
+                        zv[good],
+                        levels=contours,
+                        colors="w",
+                        linewidths=1.5,
+                        path_effects=stroke,
+                    )
             else:
                 mesh = ax.scatter(xv, yv, c=zv, cmap=cmap, norm=norm)
             ax.plot(xv[good], yv[good], ".", color="k", ms=2)
-            handles.append(Line2D([], [], ls="none", marker=".", color="k", ms=4,
-                                  label=f"run ({good.sum()} finished)"))
+            handles.append(
+                Line2D(
+                    [],
+                    [],
+                    ls="none",
+                    marker=".",
+                    color="k",
+                    ms=4,
+                    label=f"run ({good.sum()} finished)",
+                )
+            )
         fig.colorbar(mesh, ax=ax, label=_lab(metric, units), extend=extend)
         if contours:
-            handles.append(Line2D([], [], color="w", lw=1.5, path_effects=stroke,
-                                  label=f"contour: {metric} = {', '.join(f'{c:g}' for c in contours)}"))
+            handles.append(
+                Line2D(
+                    [],
+                    [],
+                    color="w",
+                    lw=1.5,
+                    path_effects=stroke,
+                    label=f"contour: {metric} = {', '.join(f'{c:g}' for c in contours)}",
+                )
+            )
         warn = [(a, b) for a, b, s in zip(xv, py, status) if s == "warning"]
         if warn:
             ax.plot(*zip(*warn), ".", color="orange", ms=3)
-            handles.append(Line2D([], [], ls="none", marker=".", color="orange",
-                                  label=f"FMU warning: large deflection ({len(warn)})"))
+            handles.append(
+                Line2D(
+                    [],
+                    [],
+                    ls="none",
+                    marker=".",
+                    color="orange",
+                    label=f"FMU warning: large deflection ({len(warn)})",
+                )
+            )
         for st in sorted({s for s in status if s not in OK}):
             pts = [(a, b) for a, b, s in zip(xv, py, status) if s == st]
             ax.plot(*zip(*pts), FAIL_MARKS.get(st, "x"), color="red", ms=6, mfc="none")
-            handles.append(Line2D([], [], ls="none", marker=FAIL_MARKS.get(st, "x"), color="red", mfc="none",
-                                  label=f"{st} ({len(pts)}): no value"))
+            handles.append(
+                Line2D(
+                    [],
+                    [],
+                    ls="none",
+                    marker=FAIL_MARKS.get(st, "x"),
+                    color="red",
+                    mfc="none",
+                    label=f"{st} ({len(pts)}): no value",
+                )
+            )
         if "frequency" in cfg and x == "crank.speed":
             _, marks = omega_marks(rs, cfg["frequency"], cfg.get("harmonics", [2, 3, 4]))
             for k, w in marks:
                 if xs[0] <= w <= xs[-1]:
                     ax.axvline(w, color="w", ls=":", lw=1)
-                    ax.annotate(f"$\\omega_1/{k}$", (w, 0.98), xycoords=("data", "axes fraction"),
-                                ha="center", va="top", fontsize=8, color="w", path_effects=stroke)
+                    ax.annotate(
+                        f"$\\omega_1/{k}$",
+                        (w, 0.98),
+                        xycoords=("data", "axes fraction"),
+                        ha="center",
+                        va="top",
+                        fontsize=8,
+                        color="w",
+                        path_effects=stroke,
+                    )
             if marks:
-                handles.append(Line2D([], [], color="0.5", ls=":", lw=1,
-                                      label="$\\omega_1/k$: crank speeds where the k-th harmonic meets the first bending mode"))
+                handles.append(
+                    Line2D(
+                        [],
+                        [],
+                        color="0.5",
+                        ls=":",
+                        lw=1,
+                        label="$\\omega_1/k$: crank speeds where the k-th harmonic meets the first bending mode",
+                    )
+                )
         ax.set_xlabel(_lab(x, units))
         ax.set_ylabel(_lab(y, units))
         if handles:
-            fig.legend(handles=handles, loc="outside lower center", ncol=2, fontsize=8, frameon=False)
+            fig.legend(
+                handles=handles, loc="outside lower center", ncol=2, fontsize=8, frameon=False
+            )
         title = cfg.get("title") or f"{spec.name}: {metric}"
         ax.set_title(title + (f"\n{_label(key)}" if key else ""), fontsize=10)
         stem = cfg.get("file", "heatmap.svg").rsplit(".", 1)
@@ -302,6 +429,10 @@ def heatmaps(spec, rows, out, cfg, units=None):
 def _edges(v):
     v = np.asarray(v, dtype=float)
     if len(v) == 1:
-        return np.array([v[0] - 0.5, v[0] + 0.5]) if v[0] == 0 else np.array([v[0] * 0.95, v[0] * 1.05])
+        return (
+            np.array([v[0] - 0.5, v[0] + 0.5])
+            if v[0] == 0
+            else np.array([v[0] * 0.95, v[0] * 1.05])
+        )
     mid = (v[1:] + v[:-1]) / 2
     return np.concatenate([[v[0] - (mid[0] - v[0])], mid, [v[-1] + (v[-1] - mid[-1])]])

@@ -57,7 +57,7 @@ def remove_stale_folders(tmp=None):
     """Remove extraction folders of processes that no longer exist; returns how many."""
     n = 0
     for d in glob.glob(os.path.join(tmp or tempfile.gettempdir(), TMP_PREFIX + "*")):
-        parts = os.path.basename(d)[len(TMP_PREFIX):].split("_")
+        parts = os.path.basename(d)[len(TMP_PREFIX) :].split("_")
         if not parts or not parts[0].isdigit():
             continue
         if int(parts[0]) != os.getpid() and not _alive(int(parts[0])):
@@ -137,8 +137,9 @@ class Runner:
         self.busy = threading.Lock()  # held while a chunk runs (release waits for it)
         self.md = read_model_description(unzipdir)
         self.vars = {v.name: v for v in self.md.modelVariables}
-        self.all_outputs = [v.name for v in self.md.modelVariables
-                            if v.causality == "output" and v.type == "Real"]
+        self.all_outputs = [
+            v.name for v in self.md.modelVariables if v.causality == "output" and v.type == "Real"
+        ]
         self.messages = []
 
         def log(env, instance_name, status, category, message):
@@ -176,8 +177,15 @@ class Runner:
         self._set_boolean = raw("fmi2SetBoolean", vp, uip, sz, ip)
         self._set_deriv = raw("fmi2SetRealInputDerivatives", vp, uip, sz, ip, dp)
         self._do_step = raw("fmi2DoStep", vp, ctypes.c_double, ctypes.c_double, ctypes.c_int)
-        self._setup = raw("fmi2SetupExperiment", vp, ctypes.c_int, ctypes.c_double,
-                          ctypes.c_double, ctypes.c_int, ctypes.c_double)
+        self._setup = raw(
+            "fmi2SetupExperiment",
+            vp,
+            ctypes.c_int,
+            ctypes.c_double,
+            ctypes.c_double,
+            ctypes.c_int,
+            ctypes.c_double,
+        )
         self._enter = raw("fmi2EnterInitializationMode", vp)
         self._exit = raw("fmi2ExitInitializationMode", vp)
         self._reset = raw("fmi2Reset", vp)
@@ -206,7 +214,9 @@ class Runner:
         if v.type == "Real":
             return self._set_real(self.fmu.component, vr, 1, (ctypes.c_double * 1)(float(value)))
         if v.type == "Boolean":
-            return self._set_boolean(self.fmu.component, vr, 1, (ctypes.c_int * 1)(int(bool(value))))
+            return self._set_boolean(
+                self.fmu.component, vr, 1, (ctypes.c_int * 1)(int(bool(value)))
+            )
         return self._set_integer(self.fmu.component, vr, 1, (ctypes.c_int * 1)(int(value)))
 
     def get(self, names):
@@ -254,8 +264,9 @@ class Runner:
                 continue
             worst = self._check(self._set_value(name, value), f"set {name}", worst)
         worst = self._check(self._enter(comp), "fmi2EnterInitializationMode", worst)
-        vr_in = (ctypes.c_uint * 2)(self.vars["crank.angle"].valueReference,
-                                    self.vars["crank.speed"].valueReference)
+        vr_in = (ctypes.c_uint * 2)(
+            self.vars["crank.angle"].valueReference, self.vars["crank.speed"].valueReference
+        )
         vr_speed = (ctypes.c_uint * 1)(self.vars["crank.speed"].valueReference)
         vr_force = (ctypes.c_uint * 1)(self.vars["slider.force"].valueReference) if gas else None
         fval = (ctypes.c_double * 1)()
@@ -272,7 +283,9 @@ class Runner:
             worst = self._check(self._set_real(comp, vr_force, 1, fval), "set slider.force", worst)
         if al0 != 0.0:
             acc[0] = al0
-            worst = self._check(self._set_deriv(comp, vr_speed, 1, order, acc), "set crank acceleration", worst)
+            worst = self._check(
+                self._set_deriv(comp, vr_speed, 1, order, acc), "set crank acceleration", worst
+            )
         worst = self._check(self._exit(comp), "fmi2ExitInitializationMode", worst)
         rec = dict(zip(record, self.get(record))) if record else {}
         self._rec = rec
@@ -304,27 +317,42 @@ class Runner:
                 if k:
                     angle, w, al = law(t)
                     inp[0], inp[1] = angle, w
-                    worst = self._check(self._set_real(comp, vr_in, 2, inp), "set crank inputs", worst)
+                    worst = self._check(
+                        self._set_real(comp, vr_in, 2, inp), "set crank inputs", worst
+                    )
                     if al != 0.0:
                         acc[0] = al
-                        worst = self._check(self._set_deriv(comp, vr_speed, 1, order, acc),
-                                            "set crank acceleration", worst)
+                        worst = self._check(
+                            self._set_deriv(comp, vr_speed, 1, order, acc),
+                            "set crank acceleration",
+                            worst,
+                        )
                     if gas:
                         fval[0] = gas(law(t + 0.5 * dt)[0])
-                        worst = self._check(self._set_real(comp, vr_force, 1, fval), "set slider.force", worst)
+                        worst = self._check(
+                            self._set_real(comp, vr_force, 1, fval), "set slider.force", worst
+                        )
                 # A single fmi2DoStep is bounded in time (a fixed communication step); the time
                 # limit is checked between steps.
                 if time.perf_counter() > deadline:
-                    raise RunFailed("timeout", f"stopped at t = {t:.6g} s of {t_stop:.6g} s: past the "
-                                    f"run's time limit of {timeout:g} s ([run] timeout)")
-                worst = self._check(self._do_step(comp, t, dt, 1), f"fmi2DoStep at t = {t:.6g} s", worst)
+                    raise RunFailed(
+                        "timeout",
+                        f"stopped at t = {t:.6g} s of {t_stop:.6g} s: past the "
+                        f"run's time limit of {timeout:g} s ([run] timeout)",
+                    )
+                worst = self._check(
+                    self._do_step(comp, t, dt, 1), f"fmi2DoStep at t = {t:.6g} s", worst
+                )
                 j = k + 1 - first
                 if j >= 0 or abort_idx:
                     self._check(self._get_real(comp, vr_out, n_out, row), "fmi2GetReal", 0)
                     for i, limit in abort_idx:
                         x = row[i]
                         if not math.isfinite(x) or abs(x) > limit:
-                            raise RunFailed("diverged", f"|{outputs[i]}| = {x:.4g} > {limit:g} at t = {(k + 1) * dt:.6g} s")
+                            raise RunFailed(
+                                "diverged",
+                                f"|{outputs[i]}| = {x:.4g} > {limit:g} at t = {(k + 1) * dt:.6g} s",
+                            )
                     if j >= 0:
                         data[j] = row
                         filled = j + 1
@@ -332,13 +360,15 @@ class Runner:
                             force_hist[j] = fval[0]
         except RunFailed as e:
             if want_series:
-                self.series = self._series(law, dt, first, outputs, data[:filled], force_hist, filled)
+                self.series = self._series(
+                    law, dt, first, outputs, data[:filled], force_hist, filled
+                )
             return e.status, e.message, {}, rec
         if want_series:
             self.series = self._series(law, dt, first, outputs, data, force_hist, len(data))
-            data = data[n_start_measure - first:]
+            data = data[n_start_measure - first :]
             if force_hist is not None:
-                force_hist = force_hist[n_start_measure - first:]
+                force_hist = force_hist[n_start_measure - first :]
         if not np.all(np.isfinite(data)):
             return "diverged", "non-finite output", {}, rec
         if worst == 1:
@@ -432,7 +462,9 @@ class CrankLaw:
             n_start = round(self.ts / dt)
             self.ts = n_start * dt  # the start ends on a communication point
             self.a = self.w / self.ts if self.ts > 0 else 0.0
-            trans = max(self.drive["transient_revolutions"] * period, self.drive["min_transient_time"])
+            trans = max(
+                self.drive["transient_revolutions"] * period, self.drive["min_transient_time"]
+            )
             n_meas0 = n_start + math.ceil(trans / dt - 1e-9)
             n_rev = self.drive["measure_revolutions"]
             n_total = n_meas0 + math.ceil(n_rev * period / dt - 1e-9)
@@ -448,8 +480,14 @@ class CrankLaw:
 DERIVED = {
     # Axial force of the rod (tension > 0), the mean of its two ends along the chord B -> C:
     # N = (F_B . e - F_C . e) / 2, F the force of the rod on the pin, e the unit chord.
-    "rod.axial_force": ["pinB.force_x", "pinB.force_y", "pinC.force_x", "pinC.force_y",
-                        "crank.angle", "slider.position"],
+    "rod.axial_force": [
+        "pinB.force_x",
+        "pinB.force_y",
+        "pinC.force_x",
+        "pinC.force_y",
+        "crank.angle",
+        "slider.position",
+    ],
     # Normal stress at the two outer fibres of the rod's midpoint section ([section] area,
     # area_moment, fibre_distance of that section): N/A + M c/I (the fibre on the +v side) and
     # N/A - M c/I. Two columns: metrics report the governing fibre (see compute_metrics).
@@ -458,10 +496,17 @@ DERIVED = {
     "section.axial_stress": ["rod.axial_force_mid"],
 }
 # What each derived output needs from the spec's [section] table.
-DERIVED_PROPS = {"section.stress": ["area", "area_moment", "fibre_distance"],
-                 "section.axial_stress": ["area"]}
-DERIVED_UNITS = {"rod.axial_force": "N", "section.stress": "Pa", "section.axial_stress": "Pa",
-                 "slider.force": "N", "crank.angle": "rad"}
+DERIVED_PROPS = {
+    "section.stress": ["area", "area_moment", "fibre_distance"],
+    "section.axial_stress": ["area"],
+}
+DERIVED_UNITS = {
+    "rod.axial_force": "N",
+    "section.stress": "Pa",
+    "section.axial_stress": "Pa",
+    "slider.force": "N",
+    "crank.angle": "rad",
+}
 
 
 def derived(s, r, props):
@@ -484,8 +529,21 @@ def derived(s, r, props):
     return out
 
 
-METRIC_KINDS = ("max_abs", "max", "min", "mean", "range", "rms", "growth", "amplitude",
-                "midrange", "goodman", "buckling_margin", "at", "order")
+METRIC_KINDS = (
+    "max_abs",
+    "max",
+    "min",
+    "mean",
+    "range",
+    "rms",
+    "growth",
+    "amplitude",
+    "midrange",
+    "goodman",
+    "buckling_margin",
+    "at",
+    "order",
+)
 # Kinds that take a number after the output: at(X, crank angle in degrees), order(X, k).
 ARG_KINDS = ("at", "order")
 DIMENSIONLESS_KINDS = ("growth", "goodman", "buckling_margin")
@@ -537,8 +595,13 @@ def _one(kind, x, marks, arg, theta, props):
     if kind == "midrange":  # sigma_m = (max + min) / 2
         return float(np.max(x) + np.min(x)) / 2
     if kind == "goodman":
-        return float(goodman(float(np.max(x) - np.min(x)) / 2, float(np.max(x) + np.min(x)) / 2,
-                             props["material"]))
+        return float(
+            goodman(
+                float(np.max(x) - np.min(x)) / 2,
+                float(np.max(x) + np.min(x)) / 2,
+                props["material"],
+            )
+        )
     if kind == "buckling_margin":  # critical load over the peak compression (tension > 0)
         c = -float(np.min(x))
         return critical_load(props) / c if c > 0 else math.inf
@@ -552,8 +615,8 @@ def _one(kind, x, marks, arg, theta, props):
         xs, th = x[lo:hi], theta[lo:hi]
         return float(2.0 / len(xs) * abs(np.sum(xs * np.exp(-1j * arg * th))))
     # growth: peak of the last measured revolution over the first's
-    a = np.max(np.abs(x[marks[0]:marks[1] + 1]))
-    b = np.max(np.abs(x[marks[-2]:marks[-1] + 1]))
+    a = np.max(np.abs(x[marks[0] : marks[1] + 1]))
+    b = np.max(np.abs(x[marks[-2] : marks[-1] + 1]))
     return float(b / a) if a > 0 else float("nan")
 
 
@@ -578,11 +641,19 @@ def compute_metrics(metrics, series, marks, props=None):
             out[m] = min(vals)
         else:
             if "material" in props:
-                key = [_one("goodman", x[:, j], marks, None, theta, props) for j in range(x.shape[1])]
+                key = [
+                    _one("goodman", x[:, j], marks, None, theta, props) for j in range(x.shape[1])
+                ]
                 j = int(np.argmin(key))
             else:
-                j = int(np.argmax([_one("amplitude", x[:, j], marks, None, theta, props)
-                                   for j in range(x.shape[1])]))
+                j = int(
+                    np.argmax(
+                        [
+                            _one("amplitude", x[:, j], marks, None, theta, props)
+                            for j in range(x.shape[1])
+                        ]
+                    )
+                )
             out[m] = vals[j]
     return {k: float(v) for k, v in out.items()}
 
@@ -591,17 +662,23 @@ def parse_metric(text):
     """`kind(output)` or `kind(output, number)`: (kind, output, number or None)."""
     text = text.strip()
     if "(" not in text or not text.endswith(")"):
-        raise ValueError(f"metric {text!r}: expected kind(output), kind one of {', '.join(METRIC_KINDS)}")
+        raise ValueError(
+            f"metric {text!r}: expected kind(output), kind one of {', '.join(METRIC_KINDS)}"
+        )
     kind, inner = text[:-1].split("(", 1)
     kind = kind.strip()
     parts = [p.strip() for p in inner.split(",")]
     if kind not in METRIC_KINDS:
-        raise ValueError(f"metric {text!r}: unknown kind {kind!r}; one of {', '.join(METRIC_KINDS)}")
+        raise ValueError(
+            f"metric {text!r}: unknown kind {kind!r}; one of {', '.join(METRIC_KINDS)}"
+        )
     arg = None
     if kind in ARG_KINDS:
         if len(parts) != 2:
-            raise ValueError(f"metric {text!r}: {kind} takes an output and a number: "
-                             + ("at(X, crank angle in degrees)" if kind == "at" else "order(X, k)"))
+            raise ValueError(
+                f"metric {text!r}: {kind} takes an output and a number: "
+                + ("at(X, crank angle in degrees)" if kind == "at" else "order(X, k)")
+            )
         try:
             arg = float(parts[1])
         except ValueError:

@@ -91,8 +91,19 @@ DRIVE_DEFAULTS = {
 
 
 GAS_KEYS = ("peak", "angle", "width", "cycle")
-TABLES = {"fmu", "parameters", "sampling", "drive", "metrics", "plots", "name", "run", "section",
-          "material", "buckling"}
+TABLES = {
+    "fmu",
+    "parameters",
+    "sampling",
+    "drive",
+    "metrics",
+    "plots",
+    "name",
+    "run",
+    "section",
+    "material",
+    "buckling",
+}
 
 
 def run_id(shown):
@@ -139,23 +150,27 @@ class Spec:
             raise SpecError(f"unknown table(s) {sorted(unknown)}; allowed: {sorted(known)}")
         fmu = raw.get("fmu", {})
         if ("path" in fmu) == ("scene" in fmu):
-            raise SpecError("[fmu] needs exactly one of path = \"X.fmu\" or scene = \"S.toml\"")
+            raise SpecError('[fmu] needs exactly one of path = "X.fmu" or scene = "S.toml"')
         self.fmu_path = (base / fmu["path"]).resolve() if "path" in fmu else None
         self.scene = (base / fmu["scene"]).resolve() if "scene" in fmu else None
         self.scene_overrides = fmu.get("scene_overrides", {})
         self.name = raw.get("name", "sweep")
 
         drive = dict(DRIVE_DEFAULTS)
-        extra = set(raw.get("drive", {})) - set(DRIVE_DEFAULTS) - {"speed_from", "speed_to", "duration", "gas"}
+        extra = (
+            set(raw.get("drive", {}))
+            - set(DRIVE_DEFAULTS)
+            - {"speed_from", "speed_to", "duration", "gas"}
+        )
         if extra:
             raise SpecError(f"[drive]: unknown key(s) {sorted(extra)}")
         drive.update(raw.get("drive", {}))
         if drive["kind"] not in ("constant", "ramp"):
-            raise SpecError(f"[drive] kind = {drive['kind']!r}: one of \"constant\", \"ramp\"")
+            raise SpecError(f'[drive] kind = {drive["kind"]!r}: one of "constant", "ramp"')
         if drive["kind"] == "ramp":
             for k in ("speed_from", "speed_to", "duration"):
                 if k not in drive:
-                    raise SpecError(f"[drive] kind = \"ramp\" needs {k}")
+                    raise SpecError(f'[drive] kind = "ramp" needs {k}')
             if not drive["duration"] > 0:
                 raise SpecError("[drive] duration must be > 0")
         for k in ("step",):
@@ -164,29 +179,41 @@ class Spec:
         for k in ("start_time", "min_transient_time", "transient_revolutions"):
             if not (isinstance(drive[k], (int, float)) and drive[k] >= 0):
                 raise SpecError(f"[drive] {k} = {drive[k]!r} must be >= 0")
-        if not (isinstance(drive["measure_revolutions"], int) and drive["measure_revolutions"] >= 1):
+        if not (
+            isinstance(drive["measure_revolutions"], int) and drive["measure_revolutions"] >= 1
+        ):
             raise SpecError("[drive] measure_revolutions must be an integer >= 1")
         self.gas = drive.pop("gas", None)
         if self.gas is not None:
             bad = set(self.gas) - set(GAS_KEYS)
             if bad or "peak" not in self.gas and "gas.peak" not in raw.get("parameters", {}):
-                raise SpecError(f"[drive] gas = {self.gas!r}: keys {', '.join(GAS_KEYS)} (peak required)")
+                raise SpecError(
+                    f"[drive] gas = {self.gas!r}: keys {', '.join(GAS_KEYS)} (peak required)"
+                )
         self.drive = drive
         run = raw.get("run", {})
         if set(run) - {"timeout"}:
-            raise SpecError(f"[run]: unknown key(s) {sorted(set(run) - {'timeout'})}; allowed: timeout")
+            raise SpecError(
+                f"[run]: unknown key(s) {sorted(set(run) - {'timeout'})}; allowed: timeout"
+            )
         self.timeout = run.get("timeout")
-        if self.timeout is not None and not (isinstance(self.timeout, (int, float)) and self.timeout > 0):
+        if self.timeout is not None and not (
+            isinstance(self.timeout, (int, float)) and self.timeout > 0
+        ):
             raise SpecError(f"[run] timeout = {self.timeout!r}: seconds of wall time per run, > 0")
         self.section = dict(raw.get("section", {}))
         self.material = dict(raw.get("material", {}))
         self.buckling = dict(raw.get("buckling", {}))
-        for table, keys in (("section", {"area", "area_moment", "fibre_distance"}),
-                            ("material", {"endurance_strength", "ultimate_strength", "yield_strength"}),
-                            ("buckling", {"area", "area_moment", "length", "youngs_modulus", "end_factor"})):
+        for table, keys in (
+            ("section", {"area", "area_moment", "fibre_distance"}),
+            ("material", {"endurance_strength", "ultimate_strength", "yield_strength"}),
+            ("buckling", {"area", "area_moment", "length", "youngs_modulus", "end_factor"}),
+        ):
             d = getattr(self, table)
             if set(d) - keys:
-                raise SpecError(f"[{table}]: unknown key(s) {sorted(set(d) - keys)}; allowed: {sorted(keys)}")
+                raise SpecError(
+                    f"[{table}]: unknown key(s) {sorted(set(d) - keys)}; allowed: {sorted(keys)}"
+                )
             for k, v in d.items():
                 if not (isinstance(v, (int, float)) and not isinstance(v, bool) and v > 0):
                     raise SpecError(f"[{table}] {k} = {v!r}: must be a number > 0")
@@ -219,12 +246,16 @@ class Spec:
                 if keys == {"linspace"}:
                     a, b, n = spec["linspace"]
                     if int(n) < 1:
-                        raise SpecError(f"parameter {name!r}: empty grid (linspace with {n} points)")
+                        raise SpecError(
+                            f"parameter {name!r}: empty grid (linspace with {n} points)"
+                        )
                     grid[name] = [float(x) for x in np.linspace(float(a), float(b), int(n))]
                 elif keys == {"logspace"}:
                     a, b, n = spec["logspace"]
                     if int(n) < 1:
-                        raise SpecError(f"parameter {name!r}: empty grid (logspace with {n} points)")
+                        raise SpecError(
+                            f"parameter {name!r}: empty grid (logspace with {n} points)"
+                        )
                     if not (a > 0 and b > 0):
                         raise SpecError(f"parameter {name!r}: logspace bounds must be > 0")
                     grid[name] = [float(x) for x in np.geomspace(float(a), float(b), int(n))]
@@ -234,8 +265,10 @@ class Spec:
                         raise SpecError(f"parameter {name!r}: empty range [{lo}, {hi}]")
                     ranges[name] = (float(lo), float(hi))
                 else:
-                    raise SpecError(f"parameter {name!r}: expected a value, a list, "
-                                    f"{{linspace = [a, b, n]}}, {{logspace = [a, b, n]}} or {{range = [lo, hi]}}; got {spec!r}")
+                    raise SpecError(
+                        f"parameter {name!r}: expected a value, a list, "
+                        f"{{linspace = [a, b, n]}}, {{logspace = [a, b, n]}} or {{range = [lo, hi]}}; got {spec!r}"
+                    )
             elif isinstance(spec, list):
                 if not spec:
                     raise SpecError(f"parameter {name!r}: empty grid (empty list)")
@@ -243,7 +276,9 @@ class Spec:
             else:
                 grid[name] = [spec]
         if ranges and int(self.sampling.get("samples", 0)) < 1:
-            raise SpecError(f"{sorted(ranges)} given as {{range = ...}}: [sampling] samples must be >= 1 (empty Latin hypercube)")
+            raise SpecError(
+                f"{sorted(ranges)} given as {{range = ...}}: [sampling] samples must be >= 1 (empty Latin hypercube)"
+            )
         if self.sampling and not ranges:
             raise SpecError("[sampling] given but no parameter is a {range = [lo, hi]}")
         return grid, ranges
@@ -274,8 +309,12 @@ class Spec:
     def definition_hash(self):
         """Hash of what determines a run's result besides its values: drive, metrics and their
         section, material and column properties (the FMU is recorded apart)."""
-        d = {"drive": self.drive, "metrics": self.metrics, "record": self.record,
-             "abort": self.abort}
+        d = {
+            "drive": self.drive,
+            "metrics": self.metrics,
+            "record": self.record,
+            "abort": self.abort,
+        }
         for k in ("gas", "section", "material", "buckling"):
             if getattr(self, k):
                 d[k] = getattr(self, k)
@@ -293,20 +332,32 @@ class Spec:
         for name in self.params:
             if name.startswith("gas."):
                 if self.gas is None:
-                    raise SpecError(f"parameter {name!r}: needs [drive] gas = {{...}} (the gas-force pulse)")
+                    raise SpecError(
+                        f"parameter {name!r}: needs [drive] gas = {{...}} (the gas-force pulse)"
+                    )
                 if name[4:] not in GAS_KEYS:
-                    raise SpecError(f"parameter {name!r}: gas keys are {', '.join('gas.' + k for k in GAS_KEYS)}")
+                    raise SpecError(
+                        f"parameter {name!r}: gas keys are {', '.join('gas.' + k for k in GAS_KEYS)}"
+                    )
                 for value in grid.get(name, list(ranges.get(name, ()))):
-                    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+                    if (
+                        isinstance(value, bool)
+                        or not isinstance(value, (int, float))
+                        or not math.isfinite(value)
+                    ):
                         raise SpecError(f"{name} = {value!r}: expected a number")
                 continue
             if name not in variables:
                 close = [n for n in variables if name.split(".")[-1] in n]
                 hint = f"; did you mean {', '.join(close[:4])}?" if close else ""
-                raise SpecError(f"unknown variable {name!r}: not in the FMU's modelDescription{hint}")
+                raise SpecError(
+                    f"unknown variable {name!r}: not in the FMU's modelDescription{hint}"
+                )
             v = variables[name]
             if v.causality not in ("parameter", "input"):
-                raise SpecError(f"{name!r} is a {v.causality} ({v.variability}): only parameters and inputs can be swept")
+                raise SpecError(
+                    f"{name!r} is a {v.causality} ({v.variability}): only parameters and inputs can be swept"
+                )
             if name in ("crank.angle",):
                 raise SpecError("crank.angle is driven by [drive]; sweep crank.speed instead")
             if name == "slider.force" and self.gas is not None:
@@ -315,7 +366,9 @@ class Spec:
             for value in values:
                 self._check_value(v, types, value)
         if self.gas is not None and "slider.force" not in variables:
-            raise SpecError("[drive] gas: the FMU has no slider.force input (scene [outputs] slider_force)")
+            raise SpecError(
+                "[drive] gas: the FMU has no slider.force input (scene [outputs] slider_force)"
+            )
         start = {v.name: _num(v.start) for v in md.modelVariables if v.type == "Real"}
         self.props = {}
         if self.section:
@@ -325,16 +378,24 @@ class Spec:
         for m in self.metrics:
             kind, out, _ = parse_metric(m)
             if kind == "goodman":
-                missing = [k for k in ("endurance_strength", "ultimate_strength") if k not in self.material]
+                missing = [
+                    k for k in ("endurance_strength", "ultimate_strength") if k not in self.material
+                ]
                 if missing:
                     raise SpecError(f"metric {m!r}: [material] needs {', '.join(missing)} (Pa)")
             if kind == "buckling_margin":
                 b = dict(self.buckling)
-                for key, var in (("area", "rod.area"), ("area_moment", "rod.area_moment"),
-                                 ("length", "rod.length"), ("youngs_modulus", "rod.youngs_modulus")):
+                for key, var in (
+                    ("area", "rod.area"),
+                    ("area_moment", "rod.area_moment"),
+                    ("length", "rod.length"),
+                    ("youngs_modulus", "rod.youngs_modulus"),
+                ):
                     if key not in b:
                         if start.get(var) is None:
-                            raise SpecError(f"metric {m!r}: [buckling] {key} not given and the FMU has no {var}")
+                            raise SpecError(
+                                f"metric {m!r}: [buckling] {key} not given and the FMU has no {var}"
+                            )
                         b[key] = start[var]
                 b.setdefault("end_factor", 1.0)
                 self.props["buckling"] = b
@@ -350,7 +411,9 @@ class Spec:
                 continue
             if out not in variables or variables[out].causality != "output":
                 outs = [n for n, v in variables.items() if v.causality == "output"] + list(DERIVED)
-                raise SpecError(f"metric {m!r}: {out!r} is not an output of the FMU; outputs: {', '.join(outs)}")
+                raise SpecError(
+                    f"metric {m!r}: {out!r} is not an output of the FMU; outputs: {', '.join(outs)}"
+                )
         for r in self.record:
             if r not in variables:
                 raise SpecError(f"[metrics] record: unknown variable {r!r}")
@@ -363,11 +426,15 @@ class Spec:
                 raise SpecError(f"[metrics] abort: limit for {out!r} must be > 0")
         if self.drive["kind"] == "constant" and "crank.speed" not in self.params:
             if self.drive["speed"] == 0:
-                raise SpecError("[drive] speed = 0 with kind = \"constant\": no revolution to measure")
+                raise SpecError(
+                    '[drive] speed = 0 with kind = "constant": no revolution to measure'
+                )
         out = []
         for run in self.runs():
-            fmu_values = {n: (float(x) if n.startswith("gas.") else self._convert(variables[n], types, x))
-                          for n, x in run.items()}
+            fmu_values = {
+                n: (float(x) if n.startswith("gas.") else self._convert(variables[n], types, x))
+                for n, x in run.items()
+            }
             out.append((fmu_values, run))
         if self.drive["kind"] == "constant":
             for fmu_values, run in out:
@@ -392,10 +459,19 @@ class Spec:
 
     def job(self):
         """What a worker needs to run and measure a run (after validate)."""
-        return {"drive": self.drive, "metrics": self.metrics, "record": self.record,
-                "outputs": self.outputs(), "abort": self.abort, "timeout": self.timeout,
-                "gas": self.gas,
-                "props": {**getattr(self, "props", {}), "cycle": float(self.gas.get("cycle", 2)) if self.gas else 1.0}}
+        return {
+            "drive": self.drive,
+            "metrics": self.metrics,
+            "record": self.record,
+            "outputs": self.outputs(),
+            "abort": self.abort,
+            "timeout": self.timeout,
+            "gas": self.gas,
+            "props": {
+                **getattr(self, "props", {}),
+                "cycle": float(self.gas.get("cycle", 2)) if self.gas else 1.0,
+            },
+        }
 
     @staticmethod
     def _enum_items(v, types):
@@ -408,7 +484,9 @@ class Spec:
             items = self._enum_items(v, types)
             if isinstance(value, str):
                 if value not in items:
-                    raise SpecError(f"{name} = {value!r}: not an item of {v.declaredType.name}; allowed: {', '.join(items)}")
+                    raise SpecError(
+                        f"{name} = {value!r}: not an item of {v.declaredType.name}; allowed: {', '.join(items)}"
+                    )
                 return
             if not isinstance(value, int) or value not in items.values():
                 raise SpecError(f"{name} = {value!r}: allowed items {items}")
@@ -423,11 +501,21 @@ class Spec:
             raise SpecError(f"{name} = {value!r}: not finite")
         if v.type == "Integer" and value != int(value):
             raise SpecError(f"{name} = {value!r}: expected an integer")
-        lo = _num(v.min if v.min is not None else (v.declaredType.min if v.declaredType is not None else None))
-        hi = _num(v.max if v.max is not None else (v.declaredType.max if v.declaredType is not None else None))
+        lo = _num(
+            v.min
+            if v.min is not None
+            else (v.declaredType.min if v.declaredType is not None else None)
+        )
+        hi = _num(
+            v.max
+            if v.max is not None
+            else (v.declaredType.max if v.declaredType is not None else None)
+        )
         if lo is not None and value < lo or hi is not None and value > hi:
-            raise SpecError(f"{name} = {value!r}: outside its range [{lo if lo is not None else '-inf'}, "
-                            f"{hi if hi is not None else 'inf'}] declared by the FMU")
+            raise SpecError(
+                f"{name} = {value!r}: outside its range [{lo if lo is not None else '-inf'}, "
+                f"{hi if hi is not None else 'inf'}] declared by the FMU"
+            )
 
     def _convert(self, v, types, value):
         if v.type == "Enumeration" and isinstance(value, str):

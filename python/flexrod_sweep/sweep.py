@@ -22,8 +22,15 @@ META = "sweep.json"
 # Statuses of the infrastructure, not of the model: a resumed sweep runs them again.
 RERUN = ("exception",)
 # Files of a study that `regenerate` makes anew.
-PRODUCTS = ("results.csv", "results.parquet", META, "last_run.json", "spec.toml", "spec.json",
-            "modelDescription.xml")
+PRODUCTS = (
+    "results.csv",
+    "results.parquet",
+    META,
+    "last_run.json",
+    "spec.toml",
+    "spec.json",
+    "modelDescription.xml",
+)
 
 
 def find_root(start):
@@ -46,11 +53,21 @@ def export_scene(spec):
         text = scene.read_text()
         for key, value in spec.scene_overrides.items():
             table, k = key.rsplit(".", 1)
-            val = json.dumps(value) if isinstance(value, str) else repr(value).lower() if isinstance(value, bool) else repr(value)
-            pat = re.compile(rf"(\[{re.escape(table)}\][^\[]*?^{re.escape(k)}\s*=\s*)[^\n#]*", re.M | re.S)
+            val = (
+                json.dumps(value)
+                if isinstance(value, str)
+                else repr(value).lower()
+                if isinstance(value, bool)
+                else repr(value)
+            )
+            pat = re.compile(
+                rf"(\[{re.escape(table)}\][^\[]*?^{re.escape(k)}\s*=\s*)[^\n#]*", re.M | re.S
+            )
             text, n = pat.subn(lambda m: m.group(1) + val, text, count=1)
             if n == 0:
-                raise SpecError(f"[fmu] scene_overrides: no key {k!r} in table [{table}] of {scene}")
+                raise SpecError(
+                    f"[fmu] scene_overrides: no key {k!r} in table [{table}] of {scene}"
+                )
         scene = fmu_dir / "scene.toml"
         scene.write_text(text)
     cmd = ["cargo", "run", "--release", "-q", "-p", "fmu", "--", str(scene), "--out", str(fmu_dir)]
@@ -69,7 +86,9 @@ def model_digest(fmu_path):
     h = hashlib.sha256()
     with zipfile.ZipFile(fmu_path) as z:
         for name in sorted(z.namelist()):
-            if name.endswith("/") or not name.startswith(("modelDescription.xml", "resources/", "binaries/")):
+            if name.endswith("/") or not name.startswith(
+                ("modelDescription.xml", "resources/", "binaries/")
+            ):
                 continue
             h.update(name.encode() + b"\0")
             h.update(hashlib.sha256(z.read(name)).digest())
@@ -77,8 +96,16 @@ def model_digest(fmu_path):
 
 
 def columns(spec):
-    return ["run", "index", *spec.swept_names(), *spec.metrics, *spec.record, "status", "message",
-            "wall_time"]
+    return [
+        "run",
+        "index",
+        *spec.swept_names(),
+        *spec.metrics,
+        *spec.record,
+        "status",
+        "message",
+        "wall_time",
+    ]
 
 
 def fmt(x):
@@ -107,7 +134,9 @@ def units_of(md, spec):
 
     unit = {}
     for v in md.modelVariables:
-        u = v.unit or (getattr(v.declaredType, "unit", None) if v.declaredType is not None else None)
+        u = v.unit or (
+            getattr(v.declaredType, "unit", None) if v.declaredType is not None else None
+        )
         # A Real without a unit is a ratio ("1"); integers and enumerations have none.
         unit[v.name] = u or ("1" if v.type == "Real" else "")
     unit.update(DERIVED_UNITS)
@@ -146,8 +175,19 @@ def to_frame(rows, spec, info):
     return df
 
 
-def run_sweep(spec, out, scheduler=None, workers=None, chunks_per_worker=4, progress=True,
-              plots=True, retry_failed=False, series=None, only=None, fmu=None):
+def run_sweep(
+    spec,
+    out,
+    scheduler=None,
+    workers=None,
+    chunks_per_worker=4,
+    progress=True,
+    plots=True,
+    retry_failed=False,
+    series=None,
+    only=None,
+    fmu=None,
+):
     """Run (or resume) a sweep; returns the results as a pandas DataFrame.
 
     spec: a TOML path, a dict of the same structure (relative paths against the current
@@ -172,7 +212,9 @@ def run_sweep(spec, out, scheduler=None, workers=None, chunks_per_worker=4, prog
     else:
         fmu_path = export_scene(spec_obj)
     if not Path(fmu_path).exists():
-        raise SpecError(f"[fmu] path {fmu_path} does not exist (build it: cargo run --release -p fmu)")
+        raise SpecError(
+            f"[fmu] path {fmu_path} does not exist (build it: cargo run --release -p fmu)"
+        )
     md = read_model_description(str(fmu_path))
     runs = spec_obj.validate(md)  # every check before any run
     out.mkdir(parents=True, exist_ok=True)
@@ -180,17 +222,27 @@ def run_sweep(spec, out, scheduler=None, workers=None, chunks_per_worker=4, prog
     digest = _runner.fmu_digest(fmu_bytes)
 
     meta_path = out / META
-    meta = {"definition": spec_obj.definition_hash(), "fmu_model_digest": model_digest(fmu_path),
-            "columns": columns(spec_obj)}
+    meta = {
+        "definition": spec_obj.definition_hash(),
+        "fmu_model_digest": model_digest(fmu_path),
+        "columns": columns(spec_obj),
+    }
     results_path = out / "results.csv"
     if meta_path.exists() and results_path.exists():
         old = json.loads(meta_path.read_text())
         old_cmp = {k: old.get(k) for k in meta}
         if old_cmp != meta:
-            raise SpecError(f"{out} holds results of another FMU, drive, metric set or columns "
-                            f"({old_cmp} vs {meta}); choose another --out or delete it")
-    meta.update(fmu_guid=md.guid, fmu_file=os.path.relpath(Path(fmu_path).resolve(), out.resolve()), fmu_sha256=digest,
-                model=md.modelName, name=spec_obj.name)
+            raise SpecError(
+                f"{out} holds results of another FMU, drive, metric set or columns "
+                f"({old_cmp} vs {meta}); choose another --out or delete it"
+            )
+    meta.update(
+        fmu_guid=md.guid,
+        fmu_file=os.path.relpath(Path(fmu_path).resolve(), out.resolve()),
+        fmu_sha256=digest,
+        model=md.modelName,
+        name=spec_obj.name,
+    )
     if spec_obj.path is not None:
         meta["spec"] = os.path.relpath(spec_obj.path, out.resolve())
         shutil.copyfile(spec_obj.path, out / "spec.toml")
@@ -204,8 +256,11 @@ def run_sweep(spec, out, scheduler=None, workers=None, chunks_per_worker=4, prog
     existing = {}
     for row in read_results(results_path):
         existing[row["run"]] = row
-    keep = {rid: r for rid, r in existing.items()
-            if r["status"] not in RERUN and (not retry_failed or r["status"] in ("ok", "warning"))}
+    keep = {
+        rid: r
+        for rid, r in existing.items()
+        if r["status"] not in RERUN and (not retry_failed or r["status"] in ("ok", "warning"))
+    }
     ids = []
     todo = []
     wanted = set(only) if only is not None else None
@@ -224,8 +279,13 @@ def run_sweep(spec, out, scheduler=None, workers=None, chunks_per_worker=4, prog
     _write(results_path, cols, keep.values(), order)
 
     job = spec_obj.job()
-    info = {"runs": len(runs), "skipped": len(runs) - len(todo), "ran": len(todo),
-            "fmu_guid": md.guid, "fmu_model_digest": meta["fmu_model_digest"]}
+    info = {
+        "runs": len(runs),
+        "skipped": len(runs) - len(todo),
+        "ran": len(todo),
+        "fmu_guid": md.guid,
+        "fmu_model_digest": meta["fmu_model_digest"],
+    }
     t0 = time.perf_counter()
     interrupted = False
     try:
@@ -233,8 +293,18 @@ def run_sweep(spec, out, scheduler=None, workers=None, chunks_per_worker=4, prog
             if workers == 0 and scheduler is None:
                 _serial(fmu_bytes, todo, job, results_path, cols, progress)
             else:
-                _dask(fmu_bytes, todo, job, results_path, cols, progress, scheduler, workers,
-                      chunks_per_worker, info)
+                _dask(
+                    fmu_bytes,
+                    todo,
+                    job,
+                    results_path,
+                    cols,
+                    progress,
+                    scheduler,
+                    workers,
+                    chunks_per_worker,
+                    info,
+                )
     except KeyboardInterrupt:
         interrupted = True
         raise
@@ -256,8 +326,9 @@ def run_sweep(spec, out, scheduler=None, workers=None, chunks_per_worker=4, prog
 
         info["plots"] = [str(p) for p in make_plots(spec_obj, rows, out, info["units"])]
         df.attrs["plots"] = info["plots"]
-    (out / "last_run.json").write_text(json.dumps({k: v for k, v in info.items() if k != "units"},
-                                                  indent=1, default=str) + "\n")
+    (out / "last_run.json").write_text(
+        json.dumps({k: v for k, v in info.items() if k != "units"}, indent=1, default=str) + "\n"
+    )
     return df
 
 
@@ -299,8 +370,11 @@ def write_series(fmu_bytes, spec, runs, ids, selectors, out):
                 raise SpecError(f"series: no run {sel!r} in the spec")
             chosen.append(ids.index(sel))
             continue
-        match = [i for i, (_, shown) in enumerate(runs)
-                 if all(_same(shown.get(k), v) for k, v in sel.items())]
+        match = [
+            i
+            for i, (_, shown) in enumerate(runs)
+            if all(_same(shown.get(k), v) for k, v in sel.items())
+        ]
         if not match:
             raise SpecError(f"series: no run of the spec has {sel}")
         chosen += match
@@ -314,8 +388,9 @@ def write_series(fmu_bytes, spec, runs, ids, selectors, out):
             values, shown = runs[i]
             status, message, _, _, cols = runner.run(values, job, series=True)
             df = pd.DataFrame(cols)
-            df.attrs.update(run=ids[i], status=status, message=message,
-                            parameters=json.loads(json.dumps(shown)))
+            df.attrs.update(
+                run=ids[i], status=status, message=message, parameters=json.loads(json.dumps(shown))
+            )
             path = folder / f"{ids[i]}.parquet"
             df.to_parquet(path, index=False)
             written[ids[i]] = str(path)
@@ -376,8 +451,13 @@ def _ignore_sigint():
         pass
 
 
-DISTRIBUTED_LOGGERS = ("distributed", "distributed.worker", "distributed.nanny",
-                       "distributed.scheduler", "distributed.core")
+DISTRIBUTED_LOGGERS = (
+    "distributed",
+    "distributed.worker",
+    "distributed.nanny",
+    "distributed.scheduler",
+    "distributed.core",
+)
 
 
 def _quiet_distributed_logs():
@@ -399,8 +479,13 @@ def _dask(fmu_bytes, todo, job, results_path, cols, progress, scheduler, workers
     t_up = time.perf_counter()
     if scheduler is None:
         n = workers or os.cpu_count() or 1
-        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                               dashboard_address="127.0.0.1:0", host="127.0.0.1")
+        cluster = LocalCluster(
+            n_workers=n,
+            threads_per_worker=1,
+            processes=True,
+            dashboard_address="127.0.0.1:0",
+            host="127.0.0.1",
+        )
         client = Client(cluster)
     else:
         client = Client(scheduler)
@@ -418,8 +503,12 @@ def _dask(fmu_bytes, todo, job, results_path, cols, progress, scheduler, workers
             note = ""
         except ImportError:
             note = " (its charts need the bokeh package: pip install bokeh)"
-        print(f"Dask dashboard: {link}{note}" if link else "Dask dashboard: not served by the scheduler",
-              file=sys.stderr)
+        print(
+            f"Dask dashboard: {link}{note}"
+            if link
+            else "Dask dashboard: not served by the scheduler",
+            file=sys.stderr,
+        )
         n_workers = max(1, len(client.scheduler_info()["workers"]))
         info["workers"] = n_workers
         # The FMU goes to every worker once (works across machines: no shared file system).
@@ -428,17 +517,25 @@ def _dask(fmu_bytes, todo, job, results_path, cols, progress, scheduler, workers
         # Chunks of about 10 runs keep the progress bar moving; the FMU still loads once per
         # worker (the instance is cached in the worker process).
         chunks = make_chunks(todo, max(n_workers * cpw, math.ceil(len(todo) / 10)))
-        futures = [client.submit(_runner.run_chunk, fmu_future, chunk, job, pure=False)
-                   for chunk in chunks]
+        futures = [
+            client.submit(_runner.run_chunk, fmu_future, chunk, job, pure=False) for chunk in chunks
+        ]
         index = {f.key: i for i, f in enumerate(futures)}
         with _bar(len(todo), progress) as bar:
             for fut in as_completed(futures):
                 try:
                     rows = fut.result()
                 except Exception as e:  # a lost worker or chunk: its runs become rows too
-                    rows = [{"run": rid, **shown, "status": "exception",
-                             "message": f"chunk failed: {type(e).__name__}: {e}", "wall_time": float("nan")}
-                            for rid, _, shown in chunks[index[fut.key]]]
+                    rows = [
+                        {
+                            "run": rid,
+                            **shown,
+                            "status": "exception",
+                            "message": f"chunk failed: {type(e).__name__}: {e}",
+                            "wall_time": float("nan"),
+                        }
+                        for rid, _, shown in chunks[index[fut.key]]
+                    ]
                 _append(results_path, cols, rows)
                 bar.update(len(rows))
     finally:
@@ -466,7 +563,9 @@ def regenerate(folder, workers=None, scheduler=None, progress=True):
     path recorded in sweep.json), or every study in the subfolders of `folder`. Returns the
     list of (folder, DataFrame)."""
     folder = Path(folder)
-    studies = [folder] if (folder / META).exists() else sorted(p.parent for p in folder.glob(f"*/{META}"))
+    studies = (
+        [folder] if (folder / META).exists() else sorted(p.parent for p in folder.glob(f"*/{META}"))
+    )
     if not studies:
         raise SpecError(f"{folder}: no study (no {META} in it or in its subfolders)")
     done = []

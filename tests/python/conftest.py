@@ -6,9 +6,7 @@ import subprocess
 
 import pytest
 from fmpy import extract
-
 from helpers import ROOT, build_fmu, reference
-
 
 # Every FMU test runs on both rod models (the segments FMU passes the same tests).
 MODELS = ["ffr", "segments"]
@@ -99,8 +97,19 @@ def c_master(tmp_path_factory):
     time in fmi2SetupExperiment (see the file's header for its arguments)."""
     source = ROOT / "tests" / "c_master" / "master.c"
     binary = tmp_path_factory.mktemp("c_master") / "master"
-    command = ["gcc", "-std=c99", "-O1", "-Wall", "-Wextra", "-Werror", "-o", str(binary),
-               str(source), "-ldl", "-lm"]
+    command = [
+        "gcc",
+        "-std=c99",
+        "-O1",
+        "-Wall",
+        "-Wextra",
+        "-Werror",
+        "-o",
+        str(binary),
+        str(source),
+        "-ldl",
+        "-lm",
+    ]
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:
         raise RuntimeError(f"{' '.join(command)} failed:\n{result.stdout}\n{result.stderr}")

@@ -41,13 +41,9 @@ OUTPUTS = [
 
 def cargo(*args):
     """Run cargo in the workspace; raise with its output on failure."""
-    result = subprocess.run(
-        ["cargo", *args], cwd=ROOT, capture_output=True, text=True
-    )
+    result = subprocess.run(["cargo", *args], cwd=ROOT, capture_output=True, text=True)
     if result.returncode != 0:
-        raise RuntimeError(
-            f"cargo {' '.join(args)} failed:\n{result.stdout}\n{result.stderr}"
-        )
+        raise RuntimeError(f"cargo {' '.join(args)} failed:\n{result.stdout}\n{result.stderr}")
     return result.stdout
 
 
@@ -231,6 +227,7 @@ def unexpected_warnings(slave):
     150 rad/s: the estimate passes the default tolerance, docs/fmu.md, "Model class and error
     estimate")."""
     return [
-        m for status, _, m in slave.log.messages
+        m
+        for status, _, m in slave.log.messages
         if status > 0 and not (status == 1 and m.startswith("rod.error_estimate"))
     ]

@@ -78,8 +78,11 @@ def drive(rod, t, start_angle=0.0):
     big_t = rod["t_ramp"]
     if t < big_t:
         x = math.pi * t / big_t
-        return (0.5 * w * (t - big_t / math.pi * math.sin(x)), 0.5 * w * (1.0 - math.cos(x)),
-                0.5 * w * math.pi / big_t * math.sin(x))
+        return (
+            0.5 * w * (t - big_t / math.pi * math.sin(x)),
+            0.5 * w * (1.0 - math.cos(x)),
+            0.5 * w * math.pi / big_t * math.sin(x),
+        )
     return 0.5 * w * big_t + w * (t - big_t), w, 0.0
 
 
@@ -114,8 +117,17 @@ def simulate(unzipdir, rod, extra=None, start_angle=0.0):
     s.exitInitializationMode()
     dt = rod["dt_comm"]
     n = int(round(rod["t_stop"] / dt))
-    outs = [vr[k] for k in ("rod.deflection_rel", "pinB.force_x", "pinB.force_y",
-                            "pinC.force_x", "pinC.force_y", "rod.error_estimate")]
+    outs = [
+        vr[k]
+        for k in (
+            "rod.deflection_rel",
+            "pinB.force_x",
+            "pinB.force_y",
+            "pinC.force_x",
+            "pinC.force_y",
+            "rod.error_estimate",
+        )
+    ]
     rows = [(0.0, *s.getReal(outs))]
     for k in range(n):
         t = k * dt
@@ -128,8 +140,13 @@ def simulate(unzipdir, rod, extra=None, start_angle=0.0):
     s.terminate()
     s.freeInstance()
     a = np.array(rows)
-    return Run(t=a[:, 0], v=a[:, 1], pins=a[:, 2:6], estimate=float(a[-1, 6]),
-               log=[m for _, _, m in slave.log.messages])
+    return Run(
+        t=a[:, 0],
+        v=a[:, 1],
+        pins=a[:, 2:6],
+        estimate=float(a[-1, 6]),
+        log=[m for _, _, m in slave.log.messages],
+    )
 
 
 def ringing_frequency(t, v, crank_hz):
@@ -159,8 +176,10 @@ def spectrum(t, x):
     scaled so that a sinusoid of amplitude a gives a)."""
     window = np.hanning(len(x))
     pad = 16 * len(x)
-    return (np.fft.rfftfreq(pad, t[1] - t[0]),
-            np.abs(np.fft.rfft(x * window, pad)) * 2.0 / window.sum())
+    return (
+        np.fft.rfftfreq(pad, t[1] - t[0]),
+        np.abs(np.fft.rfft(x * window, pad)) * 2.0 / window.sum(),
+    )
 
 
 def spectral_peaks(f, spec, f_min, share):
@@ -173,7 +192,7 @@ def spectral_peaks(f, spec, f_min, share):
     top = spec[maxima].max()
     out = []
     for i in maxima[spec[maxima] >= share * top]:
-        a, b, c = np.log(spec[i - 1:i + 2])
+        a, b, c = np.log(spec[i - 1 : i + 2])
         shift = 0.5 * (a - c) / (a - 2 * b + c)
         out.append((f[i] + shift * (f[1] - f[0]), math.exp(b - 0.25 * (a - c) * shift)))
     return out
@@ -252,10 +271,13 @@ def compare(rod, run, ref):
     amp_ref = half_revolution_peaks(t, v, w)
     f_ref = ringing_frequency(t, v, w / (2 * math.pi))
     peaks = free_vibration_peaks(t, run.v, v, w, f_ref, peak)
-    out = {"forced": np.abs(forced(t, run.v, w, f_ref) - forced(t, v, w, f_ref)).max() / peak,
-           "ringing": max(p[3] for p in peaks),
-           "frequency": max(p[2] for p in peaks),
-           "amplitude": np.abs(amp_run - amp_ref).max() / peak,
-           "ringing_hz": f_ref, "peaks": peaks}
+    out = {
+        "forced": np.abs(forced(t, run.v, w, f_ref) - forced(t, v, w, f_ref)).max() / peak,
+        "ringing": max(p[3] for p in peaks),
+        "frequency": max(p[2] for p in peaks),
+        "amplitude": np.abs(amp_run - amp_ref).max() / peak,
+        "ringing_hz": f_ref,
+        "peaks": peaks,
+    }
     out["measured"] = max(out["forced"], out["ringing"])
     return out

@@ -9,7 +9,6 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-
 from helpers import ROOT
 
 sys.path.insert(0, str(ROOT / "examples" / "engine"))
@@ -58,10 +57,12 @@ def test_energy_consistency(bank, engine):
             # up to the same zero-order-hold defect
             quad = np.abs(eb["rods_master"] - eb["rods_fmu"]).max()
             kind = "rigid" if rigid else "flexible"
-            print(f"{kind:8s} dt = {dt:.0e}: W_drive {eb['drive'][-1]:+.5f} J, dKE_shaft {eb['shaft_ke'][-1]:+.5f} J, "
-                  f"to rods {eb['rods_master'][-1]:+.5f} J, gas {eb['gas'][-1]:+.5f} J; balance residual {resid:.2e} J "
-                  f"(of {exchanged:.2f} J exchanged); master vs trapezoid of sum tau_i omega {quad:.3e} J (bound {bound:.3e} J); "
-                  f"rods' energy beyond rigid KE: max {np.abs(ex).max():.4f} J, end {ex[-1]:+.4f} J")
+            print(
+                f"{kind:8s} dt = {dt:.0e}: W_drive {eb['drive'][-1]:+.5f} J, dKE_shaft {eb['shaft_ke'][-1]:+.5f} J, "
+                f"to rods {eb['rods_master'][-1]:+.5f} J, gas {eb['gas'][-1]:+.5f} J; balance residual {resid:.2e} J "
+                f"(of {exchanged:.2f} J exchanged); master vs trapezoid of sum tau_i omega {quad:.3e} J (bound {bound:.3e} J); "
+                f"rods' energy beyond rigid KE: max {np.abs(ex).max():.4f} J, end {ex[-1]:+.4f} J"
+            )
             assert resid < 1e-10 * exchanged
             assert quad < bound
             excess[(rigid, dt)] = (run, ex, bound)
@@ -70,8 +71,10 @@ def test_energy_consistency(bank, engine):
     # to the coupling's defect, which is first order in dt
     e1, e2 = (np.abs(excess[(True, dt)][1]).max() for dt in (1e-4, 5e-5))
     b1 = excess[(True, 1e-4)][2]
-    print(f"rigid rods: energy defect {e1:.4f} J (dt 1e-4), {e2:.4f} J (dt 5e-5), ratio {e1 / e2:.2f} "
-          f"(first order: 2); bound {b1:.4f} J; {e1 / exchanged:.1e} of the gas work")
+    print(
+        f"rigid rods: energy defect {e1:.4f} J (dt 1e-4), {e2:.4f} J (dt 5e-5), ratio {e1 / e2:.2f} "
+        f"(first order: 2); bound {b1:.4f} J; {e1 / exchanged:.1e} of the gas work"
+    )
     assert e1 < b1
     assert 1.6 < e1 / e2 < 2.4
 
@@ -84,8 +87,10 @@ def test_energy_consistency(bank, engine):
     k_mid = math.pi**4 * 2.068e11 * 7.981e-11 / (4 * L**3)  # strain energy / v_mid^2, first mode
     strain = (k_mid * (run.defl * L) ** 2).sum(axis=1).max()
     diff = np.abs(ex - ex2[::2][: len(ex)]).max()
-    print(f"flexible rods: deformation energy max {np.abs(ex).max():.4f} J, end {ex[-1]:+.4f} J; "
-          f"peak first-mode strain energy of the four rods {strain:.4f} J; dt 1e-4 vs 5e-5: {diff:.4f} J (bound {bound:.4f} J)")
+    print(
+        f"flexible rods: deformation energy max {np.abs(ex).max():.4f} J, end {ex[-1]:+.4f} J; "
+        f"peak first-mode strain energy of the four rods {strain:.4f} J; dt 1e-4 vs 5e-5: {diff:.4f} J (bound {bound:.4f} J)"
+    )
     assert np.abs(ex).max() < 5 * strain
     assert diff < bound
 
@@ -99,7 +104,11 @@ def test_rigid_limit(bank, engine):
     fluct = np.ptp(times[1e-5][1])
     errs = {}
     for label, rigid, stiff in (("rod.modes = 0", True, 1.0), ("E x 1e2", False, 1e2)):
-        e = replace(engine, extra={"rod.youngs_modulus": 2.068e11 * stiff}) if stiff != 1.0 else engine
+        e = (
+            replace(engine, extra={"rod.youngs_modulus": 2.068e11 * stiff})
+            if stiff != 1.0
+            else engine
+        )
         for scheme in ("jacobi", "gauss-seidel"):
             for dt in (1e-4, 1e-5):
                 if dt == 1e-5 and not rigid:
@@ -108,8 +117,10 @@ def test_rigid_limit(bank, engine):
                 assert run.stable, run.reason
                 err = np.abs(run.omega - times[dt][1]).max()
                 errs[(label, scheme, dt)] = err
-                print(f"{label:14s} {scheme:12s} dt = {dt:.0e}: max |omega - omega_rigid| = {err:.3e} rad/s "
-                      f"= {err / fluct:.2e} of the fluctuation {fluct:.3f} rad/s ({run.seconds:.1f} s)")
+                print(
+                    f"{label:14s} {scheme:12s} dt = {dt:.0e}: max |omega - omega_rigid| = {err:.3e} rad/s "
+                    f"= {err / fluct:.2e} of the fluctuation {fluct:.3f} rad/s ({run.seconds:.1f} s)"
+                )
     for scheme in ("jacobi", "gauss-seidel"):
         e4, e5 = errs[("rod.modes = 0", scheme, 1e-4)], errs[("rod.modes = 0", scheme, 1e-5)]
         # first-order coupling: the rods' torque at t_k carries the previous step's acceleration

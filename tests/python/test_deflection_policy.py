@@ -3,7 +3,6 @@ fmpy, on both rod models. A refused step keeps the state from before it."""
 
 import pytest
 from fmpy.fmi1 import FMICallException
-
 from helpers import Slave
 
 OK, WARNING, DISCARD, ERROR = 0, 1, 2, 3

@@ -8,7 +8,6 @@ from pathlib import Path
 import pytest
 from fmpy import extract
 from fmpy.fmi1 import FMICallException
-
 from helpers import ROOT, Slave, build_fmu, run_loop, schedule
 
 OK, WARNING, DISCARD, ERROR = 0, 1, 2, 3
@@ -68,19 +67,28 @@ def test_unknown_value_reference(running):
 
 def test_fixed_parameter_after_initialization(running):
     expect_error(running, lambda: running.set(rod__length=0.4), "rod.length", "fixed parameter")
-    expect_error(running, lambda: running.fmu.setInteger([running.vr["rod.elements"]], [4]),
-                 "rod.elements", "fixed parameter")
+    expect_error(
+        running,
+        lambda: running.fmu.setInteger([running.vr["rod.elements"]], [4]),
+        "rod.elements",
+        "fixed parameter",
+    )
     assert running.get("rod.length") == [0.3048]
 
 
 def test_outputs_cannot_be_set(running):
     expect_error(running, lambda: running.set(rod__deflection=0.0), "rod.deflection", "output")
-    expect_error(running, lambda: running.fmu.setReal([running.vr["rod.frequency[1]"]], [1.0]),
-                 "rod.frequency[1]")
+    expect_error(
+        running,
+        lambda: running.fmu.setReal([running.vr["rod.frequency[1]"]], [1.0]),
+        "rod.frequency[1]",
+    )
 
 
 def test_wrong_call_order(slave):
-    expect_error(slave, lambda: slave.fmu.doStep(0.0, 1e-4), "fmi2DoStep", "Instantiated", "StepComplete")
+    expect_error(
+        slave, lambda: slave.fmu.doStep(0.0, 1e-4), "fmi2DoStep", "Instantiated", "StepComplete"
+    )
     expect_error(slave, lambda: slave.fmu.exitInitializationMode(), "fmi2ExitInitializationMode")
     expect_error(slave, lambda: slave.fmu.getReal([slave.vr["rod.deflection"]]), "fmi2GetReal")
     expect_error(slave, lambda: slave.fmu.terminate(), "fmi2Terminate")
@@ -123,8 +131,13 @@ def test_crank_longer_than_rod_fails_initialization_then_reset(slave):
     slave.fmu.setupExperiment(startTime=0.0)
     slave.set(crank__length=0.4)
     slave.fmu.enterInitializationMode()
-    expect_error(slave, slave.fmu.exitInitializationMode, "crank.length = 0.4", "rod.length = 0.3048",
-                 "allowed")
+    expect_error(
+        slave,
+        slave.fmu.exitInitializationMode,
+        "crank.length = 0.4",
+        "rod.length = 0.3048",
+        "allowed",
+    )
     # The instance still answers (parameters) and fails cleanly (outputs), and can be reset.
     assert slave.get("crank.length") == [0.4]
     expect_error(slave, lambda: slave.get("rod.deflection"), "not available", "crank.length")
@@ -149,13 +162,16 @@ def test_failed_initialization_leaves_no_stale_outputs(slave):
     expect_error(slave, lambda: slave.fmu.getRealStatus(2), "fmi2GetRealStatus", "Error")
 
 
-@pytest.mark.parametrize("name,value", [
-    ("rod.youngs_modulus", -1.0),
-    ("rod.density", 0.0),
-    ("rod.area", -3e-5),
-    ("rod.area_moment", 0.0),
-    ("rod.length", 0.0),
-])
+@pytest.mark.parametrize(
+    "name,value",
+    [
+        ("rod.youngs_modulus", -1.0),
+        ("rod.density", 0.0),
+        ("rod.area", -3e-5),
+        ("rod.area_moment", 0.0),
+        ("rod.length", 0.0),
+    ],
+)
 def test_impossible_parameters_name_the_parameter(slave, name, value):
     slave.fmu.setupExperiment(startTime=0.0)
     slave.fmu.setReal([slave.vr[name]], [value])
@@ -173,30 +189,53 @@ def test_too_many_modes(slave, model):
 
 
 def test_enumeration_out_of_range(slave):
-    expect_error(slave, lambda: slave.fmu.setInteger([slave.vr["rod.model"]], [7]),
-                 "rod.model = 7", "1 (ffr), 2 (segments)")
+    expect_error(
+        slave,
+        lambda: slave.fmu.setInteger([slave.vr["rod.model"]], [7]),
+        "rod.model = 7",
+        "1 (ffr), 2 (segments)",
+    )
     for bad in [-2, 0, 4097]:
-        expect_error(slave, lambda: slave.fmu.setInteger([slave.vr["rod.elements"]], [bad]),
-                     f"rod.elements = {bad}", "..=128", "declared range")
-    expect_error(slave, lambda: slave.fmu.setInteger([slave.vr["rod.modes"]], [-1]),
-                 "rod.modes = -1", ">= 0")
+        expect_error(
+            slave,
+            lambda: slave.fmu.setInteger([slave.vr["rod.elements"]], [bad]),
+            f"rod.elements = {bad}",
+            "..=128",
+            "declared range",
+        )
+    expect_error(
+        slave, lambda: slave.fmu.setInteger([slave.vr["rod.modes"]], [-1]), "rod.modes = -1", ">= 0"
+    )
 
 
 def set_derivatives(slave, vrs, orders, values):
     """fmi2SetRealInputDerivatives through ctypes: the status, also for fmi2Warning."""
     n = len(vrs)
-    f = slave.raw("fmi2SetRealInputDerivatives", ctypes.c_void_p, ctypes.c_void_p, ctypes.c_size_t,
-                  ctypes.c_void_p, ctypes.c_void_p)
+    f = slave.raw(
+        "fmi2SetRealInputDerivatives",
+        ctypes.c_void_p,
+        ctypes.c_void_p,
+        ctypes.c_size_t,
+        ctypes.c_void_p,
+        ctypes.c_void_p,
+    )
     slave.log.clear()
-    return f(slave.fmu.component, (ctypes.c_uint * n)(*vrs), n, (ctypes.c_int * n)(*orders),
-             (ctypes.c_double * n)(*values))
+    return f(
+        slave.fmu.component,
+        (ctypes.c_uint * n)(*vrs),
+        n,
+        (ctypes.c_int * n)(*orders),
+        (ctypes.c_double * n)(*values),
+    )
 
 
 def test_input_derivatives_errors(running):
     vr = running.vr
     for order in [0, -1]:
         assert set_derivatives(running, [vr["crank.speed"]], [order], [1.0]) == ERROR
-        assert f"order {order}" in running.log.text() and "allowed an order >= 1" in running.log.text()
+        assert (
+            f"order {order}" in running.log.text() and "allowed an order >= 1" in running.log.text()
+        )
     assert set_derivatives(running, [vr["rod.length"]], [1], [1.0]) == ERROR
     assert "rod.length" in running.log.text() and "parameter" in running.log.text()
     assert set_derivatives(running, [vr["rod.deflection"]], [1], [1.0]) == ERROR
@@ -206,13 +245,23 @@ def test_input_derivatives_errors(running):
         assert set_derivatives(running, [vr["crank.speed"]], [1], [bad]) == ERROR
         assert "finite" in running.log.text()
     # An error anywhere in the array: nothing is set (the good first entry neither).
-    assert set_derivatives(running, [vr["crank.speed"], vr["crank.speed"]], [1, 0], [5.0, 1.0]) == ERROR
+    assert (
+        set_derivatives(running, [vr["crank.speed"], vr["crank.speed"]], [1, 0], [5.0, 1.0])
+        == ERROR
+    )
 
 
-@pytest.mark.parametrize("name,order", [
-    ("slider.force", 1), ("slider.force", 2), ("crank.speed", 3), ("crank.speed", 4),
-    ("crank.angle", 4), ("crank.angle", 5),
-])
+@pytest.mark.parametrize(
+    "name,order",
+    [
+        ("slider.force", 1),
+        ("slider.force", 2),
+        ("crank.speed", 3),
+        ("crank.speed", 4),
+        ("crank.angle", 4),
+        ("crank.angle", 5),
+    ],
+)
 def test_unusable_input_derivatives_are_ignored_with_a_warning(running, name, order):
     vr = running.vr[name]
     assert set_derivatives(running, [vr], [order], [5.0]) == WARNING
@@ -259,8 +308,11 @@ def test_crank_acceleration_from_angle_and_speed(running):
 
 
 def test_unsupported_functions(running):
-    expect_error(running, lambda: running.fmu.getRealOutputDerivatives([running.vr["rod.deflection"]], [1]),
-                 "maxOutputDerivativeOrder")
+    expect_error(
+        running,
+        lambda: running.fmu.getRealOutputDerivatives([running.vr["rod.deflection"]], [1]),
+        "maxOutputDerivativeOrder",
+    )
     # Status kinds the FMU cannot provide: fmi2Discard (FMI 2.0, 4.2.3), logged.
     for call, needle in [
         (lambda: running.fmu.getIntegerStatus(0), "fmi2GetIntegerStatus"),
@@ -283,12 +335,25 @@ def test_unsupported_functions(running):
 def test_truncated_and_foreign_serialized_state(running):
     state = running.fmu.getFMUstate()
     blob = running.fmu.serializeFMUstate(state)
-    expect_error(running, lambda: running.fmu.deSerializeFMUstate(blob[: len(blob) // 2]), "truncated")
-    expect_error(running, lambda: running.fmu.deSerializeFMUstate(b"not an FMU state at all"), "foreign")
+    expect_error(
+        running, lambda: running.fmu.deSerializeFMUstate(blob[: len(blob) // 2]), "truncated"
+    )
+    expect_error(
+        running, lambda: running.fmu.deSerializeFMUstate(b"not an FMU state at all"), "foreign"
+    )
     expect_error(running, lambda: running.fmu.deSerializeFMUstate(blob + b"\0"), "checksum")
     # Any corrupted byte is rejected (a checksum covers the bytes): header, format version,
     # GUID, flags, the scene, the core's doubles, the checksum itself.
-    for at in [0, 8, 14, len(blob) // 3, len(blob) // 2, len(blob) - 40, len(blob) - 5, len(blob) - 1]:
+    for at in [
+        0,
+        8,
+        14,
+        len(blob) // 3,
+        len(blob) // 2,
+        len(blob) - 40,
+        len(blob) - 5,
+        len(blob) - 1,
+    ]:
         corrupted = bytearray(blob)
         corrupted[at] ^= 0x01
         expect_error(running, lambda: running.fmu.deSerializeFMUstate(bytes(corrupted)), "rejected")
@@ -321,8 +386,16 @@ def test_null_arrays_with_zero_length(running):
     c = running.fmu.component
     p, n = ctypes.c_void_p, ctypes.c_size_t
     running.log.clear()
-    for name in ["fmi2SetReal", "fmi2SetInteger", "fmi2SetBoolean", "fmi2SetString",
-                 "fmi2GetReal", "fmi2GetInteger", "fmi2GetBoolean", "fmi2GetString"]:
+    for name in [
+        "fmi2SetReal",
+        "fmi2SetInteger",
+        "fmi2SetBoolean",
+        "fmi2SetString",
+        "fmi2GetReal",
+        "fmi2GetInteger",
+        "fmi2GetBoolean",
+        "fmi2GetString",
+    ]:
         assert running.raw(name, p, p, n, p)(c, None, 0, None) == OK, name
     assert running.raw("fmi2SetRealInputDerivatives", p, p, n, p, p)(c, None, 0, None, None) == OK
     assert running.raw("fmi2SetDebugLogging", p, ctypes.c_int, n, p)(c, 1, 0, None) == OK
@@ -331,7 +404,9 @@ def test_null_arrays_with_zero_length(running):
     assert running.raw("fmi2SetReal", p, p, n, p)(c, None, 1, None) == ERROR
     assert running.raw("fmi2SetDebugLogging", p, ctypes.c_int, n, p)(c, 1, 2, None) == ERROR
     assert "categories[] is NULL" in running.log.text()
-    assert running.raw("fmi2SetRealInputDerivatives", p, p, n, p, p)(c, None, 3, None, None) == ERROR
+    assert (
+        running.raw("fmi2SetRealInputDerivatives", p, p, n, p, p)(c, None, 3, None, None) == ERROR
+    )
     assert "vr[] is NULL" in running.log.text()
     t = running.fmu.getRealStatus(2)
     running.fmu.doStep(t, 1e-4)
@@ -350,8 +425,16 @@ def test_logger_gets_environment_and_instance_name(unzipdir):
 def test_instance_names(unzipdir):
     s = Slave(unzipdir)
     lib = s.fmu.dll
-    instantiate = s.raw("fmi2Instantiate", ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p,
-                        ctypes.c_void_p, ctypes.c_int, ctypes.c_int)
+    instantiate = s.raw(
+        "fmi2Instantiate",
+        ctypes.c_char_p,
+        ctypes.c_int,
+        ctypes.c_char_p,
+        ctypes.c_char_p,
+        ctypes.c_void_p,
+        ctypes.c_int,
+        ctypes.c_int,
+    )
     instantiate.restype = ctypes.c_void_p
     free_instance = lib["fmi2FreeInstance"]
     free_instance.argtypes = [ctypes.c_void_p]
@@ -363,9 +446,13 @@ def test_instance_names(unzipdir):
     assert "instanceName is empty" in s.log.text()
     # A name that is not UTF-8 is accepted (shown with replacement characters).
     s.log.clear()
-    c = instantiate(b"caf\xe9", 1, s.md.guid.encode(), location, ctypes.byref(s.log.callbacks), 0, 1)
+    c = instantiate(
+        b"caf\xe9", 1, s.md.guid.encode(), location, ctypes.byref(s.log.callbacks), 0, 1
+    )
     assert c is not None, s.log.text()
-    get_real = s.raw("fmi2GetReal", ctypes.c_void_p, ctypes.c_void_p, ctypes.c_size_t, ctypes.c_void_p)
+    get_real = s.raw(
+        "fmi2GetReal", ctypes.c_void_p, ctypes.c_void_p, ctypes.c_size_t, ctypes.c_void_p
+    )
     assert get_real(c, (ctypes.c_uint * 1)(9999), 1, (ctypes.c_double * 1)()) == ERROR
     assert s.log.callers[-1][1] == "caf\ufffd".encode()
     free_instance(c)
@@ -398,7 +485,9 @@ def test_reentrant_call_from_the_logger_is_refused(running):
     """A logger that calls back into the instance it is logging for gets fmi2Error for that
     nested call (no aliasing of the running call's state), reported through the logger."""
     c = running.fmu.component
-    get_real = running.raw("fmi2GetReal", ctypes.c_void_p, ctypes.c_void_p, ctypes.c_size_t, ctypes.c_void_p)
+    get_real = running.raw(
+        "fmi2GetReal", ctypes.c_void_p, ctypes.c_void_p, ctypes.c_size_t, ctypes.c_void_p
+    )
     free_instance = running.fmu.dll["fmi2FreeInstance"]
     free_instance.argtypes = [ctypes.c_void_p]
     free_instance.restype = None
@@ -414,8 +503,12 @@ def test_reentrant_call_from_the_logger_is_refused(running):
         nested.append(value[0])
 
     running.log.hook = hook
-    expect_error(running, lambda: running.fmu.getReal([9999]), "unknown value reference 9999",
-                 "illegal call while another call on this instance is in progress")
+    expect_error(
+        running,
+        lambda: running.fmu.getReal([9999]),
+        "unknown value reference 9999",
+        "illegal call while another call on this instance is in progress",
+    )
     running.log.hook = None
     assert nested == [ERROR, 0.0]
     assert "fmi2GetReal: illegal call" in running.log.text()
@@ -462,14 +555,25 @@ def test_guid_mismatch_and_model_exchange(unzipdir):
     s = Slave(unzipdir)
     lib = s.fmu.dll
     lib.fmi2Instantiate.restype = ctypes.c_void_p
-    lib.fmi2Instantiate.argtypes = [ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p,
-                                    ctypes.c_void_p, ctypes.c_int, ctypes.c_int]
+    lib.fmi2Instantiate.argtypes = [
+        ctypes.c_char_p,
+        ctypes.c_int,
+        ctypes.c_char_p,
+        ctypes.c_char_p,
+        ctypes.c_void_p,
+        ctypes.c_int,
+        ctypes.c_int,
+    ]
     s.log.clear()
-    c = lib.fmi2Instantiate(b"me", 0, s.md.guid.encode(), b"file:///nowhere", ctypes.byref(s.log.callbacks), 0, 0)
+    c = lib.fmi2Instantiate(
+        b"me", 0, s.md.guid.encode(), b"file:///nowhere", ctypes.byref(s.log.callbacks), 0, 0
+    )
     assert c is None
     assert "fmuType = 0" in s.log.text()
     s.log.clear()
-    c = lib.fmi2Instantiate(b"x", 1, b"{bad}", b"file:///nowhere", ctypes.byref(s.log.callbacks), 0, 0)
+    c = lib.fmi2Instantiate(
+        b"x", 1, b"{bad}", b"file:///nowhere", ctypes.byref(s.log.callbacks), 0, 0
+    )
     assert c is None and "{bad}" in s.log.text()
     s.free()
 
@@ -517,8 +621,13 @@ def test_discard_keeps_the_state(fmu_path, tmp_path):
         s.init()
         state = s.fmu.getFMUstate()
         before = s.outputs()
-        text = expect_error(s, lambda: s.fmu.doStep(0.0, 1e-3), "failed", "smaller communication step",
-                            status=DISCARD)
+        text = expect_error(
+            s,
+            lambda: s.fmu.doStep(0.0, 1e-3),
+            "failed",
+            "smaller communication step",
+            status=DISCARD,
+        )
         assert s.log.messages[-1][1] == "logStatusDiscard", text
         assert s.fmu.getStatus(0) == DISCARD
         assert s.fmu.getRealStatus(2) == 0.0

@@ -14,7 +14,6 @@ from fmpy import extract, read_model_description, simulate_fmu
 from fmpy.fmi1 import FMICallException
 from fmpy.fmi3 import FMU3Slave
 from fmpy.validation import validate_fmu
-
 from helpers import DT, OUTPUTS, STOP, Slave, crank_input, run_loop, schedule
 
 OK, WARNING, DISCARD, ERROR = 0, 1, 2, 3
@@ -40,8 +39,10 @@ class Slave3:
     def __init__(self, unzipdir, name="instance", logging_on=False, token=None):
         self.md = read_model_description(str(unzipdir))
         self.vr = {v.name: v.valueReference for v in self.md.modelVariables}
-        self.size = {v.name: (int(v.dimensions[0].start) if v.dimensions else 1)
-                     for v in self.md.modelVariables}
+        self.size = {
+            v.name: (int(v.dimensions[0].start) if v.dimensions else 1)
+            for v in self.md.modelVariables
+        }
         self.messages = []
         self.hook = None
 
@@ -168,17 +169,29 @@ def test_description(fmu3_path, fmu_path):
         assert v3[name].causality == v.causality, name
     assert v3["time"].causality == "independent" and v3["time"].valueReference == 150
     acc = v3["crank.acceleration"]
-    assert (acc.causality, acc.type, acc.unit, acc.valueReference) == ("input", "Float64", "rad/s2", 151)
+    assert (acc.causality, acc.type, acc.unit, acc.valueReference) == (
+        "input",
+        "Float64",
+        "rad/s2",
+        151,
+    )
     shape = v3["rod.shape"]
     assert (shape.causality, shape.type, shape.unit) == ("output", "Float64", "m")
     assert [int(d.start) for d in shape.dimensions] == [11]
     freq = v3["rod.frequency"]
     k = sum(1 for n in v2 if n.startswith("rod.frequency["))
-    assert freq.causality == "calculatedParameter" and [int(d.start) for d in freq.dimensions] == [k]
+    assert freq.causality == "calculatedParameter" and [int(d.start) for d in freq.dimensions] == [
+        k
+    ]
     assert v3["rod.model"].type == "Enumeration" and v3["rod.model_index"].type == "Int32"
     assert v3["rod.elements"].type == "Int32"
     jerk = v3["crank.jerk"]
-    assert (jerk.causality, jerk.type, jerk.unit, jerk.valueReference) == ("input", "Float64", "rad/s3", 154)
+    assert (jerk.causality, jerk.type, jerk.unit, jerk.valueReference) == (
+        "input",
+        "Float64",
+        "rad/s3",
+        154,
+    )
     for name in ["crank.acceleration", "crank.jerk", "rod.shape", "rod.frequency", "time"]:
         assert 150 <= v3[name].valueReference <= 199, name
     assert md3.coSimulation.canGetAndSetFMUstate and md3.coSimulation.canSerializeFMUstate
@@ -191,8 +204,9 @@ def test_description(fmu3_path, fmu_path):
 def test_simulate_fmi3_equals_fmi2(fmu_path, fmu3_path, values):
     """fmpy.simulate_fmu of both FMUs: the outputs agree to 1e-12 of their peak (in fact bit
     for bit: the same instance code runs both), for the scene's rod and with rod.model set."""
-    kwargs = dict(start_values=values, step_size=DT, output_interval=DT, stop_time=STOP,
-                  output=OUTPUTS)
+    kwargs = dict(
+        start_values=values, step_size=DT, output_interval=DT, stop_time=STOP, output=OUTPUTS
+    )
     r2 = simulate_fmu(str(fmu_path), **kwargs)
     r3 = simulate_fmu(str(fmu3_path), **kwargs)
     assert len(r2) == len(r3) == round(STOP / DT) + 1
@@ -296,8 +310,9 @@ def test_shape_and_frequency_arrays(running3, unzipdir):
     # first-mode-like shape after 1 ms).
     assert np.sign(shape[4]) == np.sign(shape[5]) == np.sign(shape[6])
     # Mixed with scalars in one call: the values follow one another.
-    mixed = s.fmu.getFloat64([s.vr["crank.speed"], s.vr["rod.shape"], s.vr["rod.deflection"]],
-                             nValues=13)
+    mixed = s.fmu.getFloat64(
+        [s.vr["crank.speed"], s.vr["rod.shape"], s.vr["rod.deflection"]], nValues=13
+    )
     assert mixed[0] == 150.0 and mixed[1:12] == shape and mixed[12] == shape[5]
     # The frequencies are those of the FMI 2.0 FMU, in one array.
     freq = s.array("rod.frequency")
@@ -311,8 +326,12 @@ def test_shape_and_frequency_arrays(running3, unzipdir):
 
 def test_wrong_number_of_values(running3):
     s = running3
-    expect_error(s, lambda: s.fmu.getFloat64([s.vr["rod.shape"]], nValues=1), "nValues = 1",
-                 "allowed nValues = 11")
+    expect_error(
+        s,
+        lambda: s.fmu.getFloat64([s.vr["rod.shape"]], nValues=1),
+        "nValues = 1",
+        "allowed nValues = 11",
+    )
     expect_error(s, lambda: s.fmu.setFloat64([s.vr["crank.speed"]], [1.0, 2.0]), "nValues = 2")
     assert s.get("crank.speed") == [150.0]
 
@@ -352,8 +371,12 @@ def test_fmi2_state_bytes_are_refused(unzipdir, running3):
     s2.init()
     blob = s2.fmu.serializeFMUstate(s2.fmu.getFMUstate())
     s2.free()
-    text = expect_error(running3, lambda: running3.fmu.deserializeFMUState(blob),
-                        "fmi3DeserializeFMUState", "instantiationToken")
+    text = expect_error(
+        running3,
+        lambda: running3.fmu.deserializeFMUState(blob),
+        "fmi3DeserializeFMUState",
+        "instantiationToken",
+    )
     # FMI 3.0 messages name FMI 3.0 functions and terms only.
     assert "fmi2" not in text and "GUID" not in text, text
 
@@ -394,18 +417,28 @@ def test_unknown_value_reference_and_wrong_type(running3):
     # FMI 3.0 reads Enumerations with fmi3GetInt64; their Int32 twins with fmi3GetInt32.
     expect_error(s, lambda: s.fmu.getInt32([s.vr["rod.model"]]), "fmi3GetInt64")
     assert s.fmu.getInt64([s.vr["rod.model"], s.vr["rod.reference"]]) == s.fmu.getInt32(
-        [s.vr["rod.model_index"], s.vr["rod.reference_index"]])
+        [s.vr["rod.model_index"], s.vr["rod.reference_index"]]
+    )
     assert s.get("crank.speed") == [150.0]
 
 
 def test_parameters_and_enumerations(slave3):
     s = slave3
-    expect_error(s, lambda: s.fmu.setInt64([s.vr["rod.model"]], [7]), "rod.model = 7",
-                 "1 (ffr), 2 (segments)")
+    expect_error(
+        s,
+        lambda: s.fmu.setInt64([s.vr["rod.model"]], [7]),
+        "rod.model = 7",
+        "1 (ffr), 2 (segments)",
+    )
     expect_error(s, lambda: s.fmu.setInt64([s.vr["rod.model"]], [2**40]), "32-bit")
     for bad in [-2, 0, 4097]:
-        expect_error(s, lambda: s.fmu.setInt32([s.vr["rod.elements"]], [bad]),
-                     f"rod.elements = {bad}", "..=128", "declared range")
+        expect_error(
+            s,
+            lambda: s.fmu.setInt32([s.vr["rod.elements"]], [bad]),
+            f"rod.elements = {bad}",
+            "..=128",
+            "declared range",
+        )
     expect_error(s, lambda: s.set(rod__length=math.nan), "rod.length", "finite")
     s.fmu.enterInitializationMode(startTime=0.0)
     s.fmu.setInt64([s.vr["rod.model"]], [2])
@@ -415,8 +448,12 @@ def test_parameters_and_enumerations(slave3):
     s.fmu.exitInitializationMode()
     expect_error(s, lambda: s.set(rod__length=0.4), "rod.length", "fixed parameter")
     expect_error(s, lambda: s.set(rod__deflection=0.0), "rod.deflection", "output")
-    expect_error(s, lambda: s.fmu.setFloat64([s.vr["rod.frequency"]], [1.0] * s.size["rod.frequency"]),
-                 "rod.frequency", "calculatedParameter")
+    expect_error(
+        s,
+        lambda: s.fmu.setFloat64([s.vr["rod.frequency"]], [1.0] * s.size["rod.frequency"]),
+        "rod.frequency",
+        "calculatedParameter",
+    )
     expect_error(s, lambda: s.set(time=1.0), "time", "independent")
     assert s.get("rod.length") == [0.3048]
 
@@ -469,18 +506,31 @@ def test_crank_longer_than_rod_fails_initialization_then_reset(slave3):
 def test_unsupported_functions(running3):
     s = running3
     p, n = ctypes.c_void_p, ctypes.c_size_t
-    for name in ["fmi3EnterEventMode", "fmi3EnterStepMode", "fmi3EnterConfigurationMode",
-                 "fmi3EvaluateDiscreteStates", "fmi3EnterContinuousTimeMode"]:
+    for name in [
+        "fmi3EnterEventMode",
+        "fmi3EnterStepMode",
+        "fmi3EnterConfigurationMode",
+        "fmi3EvaluateDiscreteStates",
+        "fmi3EnterContinuousTimeMode",
+    ]:
         s.messages.clear()
         assert s.raw(name, ctypes.c_int, p)(s.c) == ERROR, name
         assert f"{name}: not provided" in s.text(), s.text()
     s.messages.clear()
-    assert s.raw("fmi3GetOutputDerivatives", ctypes.c_int, p, p, n, p, p, n)(
-        s.c, None, 0, None, None, 0) == ERROR
+    assert (
+        s.raw("fmi3GetOutputDerivatives", ctypes.c_int, p, p, n, p, p, n)(
+            s.c, None, 0, None, None, 0
+        )
+        == ERROR
+    )
     assert "maxOutputDerivativeOrder" in s.text()
     s.messages.clear()
-    assert s.raw("fmi3GetDirectionalDerivative", ctypes.c_int, p, p, n, p, n, p, n, p, n)(
-        s.c, None, 0, None, 0, None, 0, None, 0) == ERROR
+    assert (
+        s.raw("fmi3GetDirectionalDerivative", ctypes.c_int, p, p, n, p, n, p, n, p, n)(
+            s.c, None, 0, None, 0, None, 0, None, 0
+        )
+        == ERROR
+    )
     expect_error(s, lambda: s.fmu.setDebugLogging(True, ["logNonsense"]), "logNonsense")
     s.fmu.setDebugLogging(True, ["logEvents"])
     s.step(s.get("time")[0], 1e-4)
@@ -511,24 +561,71 @@ def test_instantiation_token_and_other_interfaces(unzipdir3):
         Slave3(unzipdir3, token="{00000000-0000-0000-0000-000000000000}")
     s = Slave3(unzipdir3)
     p, b = ctypes.c_void_p, ctypes.c_bool
-    me = s.raw("fmi3InstantiateModelExchange", ctypes.c_void_p, ctypes.c_char_p, ctypes.c_char_p,
-               ctypes.c_char_p, b, b, p, p)
+    me = s.raw(
+        "fmi3InstantiateModelExchange",
+        ctypes.c_void_p,
+        ctypes.c_char_p,
+        ctypes.c_char_p,
+        ctypes.c_char_p,
+        b,
+        b,
+        p,
+        p,
+    )
     assert me(b"me", s.md.guid.encode(), b"/nowhere/", False, False, None, None) is None
-    cs = s.raw("fmi3InstantiateCoSimulation", ctypes.c_void_p, ctypes.c_char_p, ctypes.c_char_p,
-               ctypes.c_char_p, b, b, b, b, p, ctypes.c_size_t, p, p, p)
+    cs = s.raw(
+        "fmi3InstantiateCoSimulation",
+        ctypes.c_void_p,
+        ctypes.c_char_p,
+        ctypes.c_char_p,
+        ctypes.c_char_p,
+        b,
+        b,
+        b,
+        b,
+        p,
+        ctypes.c_size_t,
+        p,
+        p,
+        p,
+    )
     # Event mode is not offered: refused.
-    assert cs(b"x", s.md.guid.encode(), b"/nowhere/", False, False, True, False, None, 0,
-              None, None, None) is None
+    assert (
+        cs(
+            b"x",
+            s.md.guid.encode(),
+            b"/nowhere/",
+            False,
+            False,
+            True,
+            False,
+            None,
+            0,
+            None,
+            None,
+            None,
+        )
+        is None
+    )
     # A wrong token with the default scene's fallback: refused too.
-    assert cs(b"x", b"{bad}", b"/nowhere/", False, False, False, False, None, 0,
-              None, None, None) is None
+    assert (
+        cs(b"x", b"{bad}", b"/nowhere/", False, False, False, False, None, 0, None, None, None)
+        is None
+    )
     s.free()
 
 
 def test_reentrant_call_from_the_logger_is_refused(running3):
     s = running3
-    get = s.raw("fmi3GetFloat64", ctypes.c_int, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_size_t,
-                ctypes.c_void_p, ctypes.c_size_t)
+    get = s.raw(
+        "fmi3GetFloat64",
+        ctypes.c_int,
+        ctypes.c_void_p,
+        ctypes.c_void_p,
+        ctypes.c_size_t,
+        ctypes.c_void_p,
+        ctypes.c_size_t,
+    )
     nested, entered = [], []
 
     def hook(status, text):
@@ -539,8 +636,12 @@ def test_reentrant_call_from_the_logger_is_refused(running3):
         nested.append(get(s.c, (ctypes.c_uint * 1)(s.vr["crank.speed"]), 1, value, 1))
 
     s.hook = hook
-    expect_error(s, lambda: s.fmu.getFloat64([9999]), "unknown value reference 9999",
-                 "fmi3GetFloat64: illegal call while another call")
+    expect_error(
+        s,
+        lambda: s.fmu.getFloat64([9999]),
+        "unknown value reference 9999",
+        "fmi3GetFloat64: illegal call while another call",
+    )
     s.hook = None
     assert nested == [ERROR]
     assert s.get("crank.speed") == [150.0]
@@ -553,12 +654,22 @@ def test_messages_read_as_text(fmu3_path, unzipdir3):
     def logger(env, status, category, message):
         messages.append(message.decode("utf-8", "replace"))
 
-    simulate_fmu(str(fmu3_path), step_size=DT, output_interval=DT, stop_time=STOP,
-                 debug_logging=True, logger=logger, output=["rod.deflection"])
+    simulate_fmu(
+        str(fmu3_path),
+        step_size=DT,
+        output_interval=DT,
+        stop_time=STOP,
+        debug_logging=True,
+        logger=logger,
+        output=["rod.deflection"],
+    )
     assert any("initialized at t = 0" in m for m in messages), messages
     s = Slave3(unzipdir3, logging_on=True)
-    for call in [lambda: s.get("rod.deflection"), lambda: s.fmu.setFloat64([9999], [1.0]),
-                 lambda: s.fmu.setInt32([s.vr["rod.model_index"]], [7])]:
+    for call in [
+        lambda: s.get("rod.deflection"),
+        lambda: s.fmu.setFloat64([9999], [1.0]),
+        lambda: s.fmu.setInt32([s.vr["rod.model_index"]], [7]),
+    ]:
         with pytest.raises(FMICallException):
             call()
     s.init(stop=0.001)
@@ -621,14 +732,41 @@ def test_logger_gets_the_instance_environment(unzipdir3):
     def log(env, status, category, message):
         seen.append((env, message.decode()))
 
-    callback = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_int, ctypes.c_char_p,
-                                ctypes.c_char_p)(log)
+    callback = ctypes.CFUNCTYPE(
+        None, ctypes.c_void_p, ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p
+    )(log)
     p, b = ctypes.c_void_p, ctypes.c_bool
-    cs = s.raw("fmi3InstantiateCoSimulation", ctypes.c_void_p, ctypes.c_char_p, ctypes.c_char_p,
-               ctypes.c_char_p, b, b, b, b, p, ctypes.c_size_t, p, p, p)
+    cs = s.raw(
+        "fmi3InstantiateCoSimulation",
+        ctypes.c_void_p,
+        ctypes.c_char_p,
+        ctypes.c_char_p,
+        ctypes.c_char_p,
+        b,
+        b,
+        b,
+        b,
+        p,
+        ctypes.c_size_t,
+        p,
+        p,
+        p,
+    )
     resources = (str(unzipdir3) + "/resources/").encode()
-    c = cs(b"env-test", s.md.guid.encode(), resources, False, True, False, False, None, 0,
-           0xC0FFEE, callback, None)
+    c = cs(
+        b"env-test",
+        s.md.guid.encode(),
+        resources,
+        False,
+        True,
+        False,
+        False,
+        None,
+        0,
+        0xC0FFEE,
+        callback,
+        None,
+    )
     assert c
     set_debug = s.raw("fmi3SetDebugLogging", ctypes.c_int, p, b, ctypes.c_size_t, p)
     categories = (ctypes.c_char_p * 1)(b"log%Nonsense")

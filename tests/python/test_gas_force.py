@@ -9,7 +9,6 @@ import numpy as np
 import pytest
 from fmpy import extract, read_model_description
 from fmpy.fmi1 import FMICallException
-
 from helpers import ROOT, Slave, build_fmu
 
 SCENE = ROOT / "scenes" / "automotive_rod.toml"
@@ -84,14 +83,19 @@ def test_fmi3_declares_the_scale_too(gas_fmu, tmp_path):
     # The FMI 3.0 FMU written beside it, driven through fmpy's FMU3Slave: the same parameter,
     # and the pulse acting (the pin force at C reaches the gas force's order).
     from fmpy.fmi3 import FMU3Slave
+
     unzipped = extract(str(gas_fmu.with_name(gas_fmu.stem + "-fmi3.fmu")), str(tmp_path))
     md = read_model_description(unzipped)
     v = {v.name: v for v in md.modelVariables}
     scale = v["slider.gas_force_scale"]
     assert scale.valueReference == 108 and scale.causality == "parameter"
     assert float(scale.start) == 1.0 and float(scale.min) == 0.0 and float(scale.max) == 100.0
-    s = FMU3Slave(guid=md.guid, unzipDirectory=unzipped,
-                  modelIdentifier=md.coSimulation.modelIdentifier, instanceName="gas3")
+    s = FMU3Slave(
+        guid=md.guid,
+        unzipDirectory=unzipped,
+        modelIdentifier=md.coSimulation.modelIdentifier,
+        instanceName="gas3",
+    )
     s.instantiate()
     s.enterInitializationMode(startTime=0.0)
     s.setFloat64([v["crank.speed"].valueReference], [SPEED])
@@ -99,8 +103,10 @@ def test_fmi3_declares_the_scale_too(gas_fmu, tmp_path):
     dt, pin_c = 2e-5, v["pinC.force_x"].valueReference
     largest = 0.0
     for k in range(int(round(STOP / dt))):
-        s.setFloat64([v["crank.angle"].valueReference, v["crank.speed"].valueReference],
-                     [SPEED * k * dt, SPEED])
+        s.setFloat64(
+            [v["crank.angle"].valueReference, v["crank.speed"].valueReference],
+            [SPEED * k * dt, SPEED],
+        )
         s.doStep(currentCommunicationPoint=k * dt, communicationStepSize=dt)
         largest = max(largest, abs(s.getFloat64([pin_c])[0]))
     s.terminate()

@@ -11,7 +11,6 @@ import numpy as np
 import pytest
 from fmpy import extract
 from fmpy.fmi1 import FMICallException
-
 from helpers import ROOT, Slave
 
 W = 300.0

@@ -14,12 +14,11 @@ import subprocess
 import numpy as np
 import pytest
 from fmpy import read_model_description, simulate_fmu
+from helpers import DT, OUTPUTS, STOP
 from libcosimpy.CosimExecution import CosimExecution
 from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
 from libcosimpy.CosimObserver import CosimObserver
 from libcosimpy.CosimSlave import CosimLocalSlave
-
-from helpers import DT, OUTPUTS, STOP
 
 # Parameter sets, by the names fmpy and libcosim use. `other` is the rod model the FMU was
 # not exported with; the reference conditions apply to the FFR rod, so those cases set it.

@@ -1,13 +1,11 @@
 """Independent instances, saved and serialized states."""
 
 import json
-import math
 import subprocess
 import sys
 import threading
 
 import numpy as np
-
 from helpers import DT, OUTPUTS, STOP, Slave, assert_close, crank_input, run_loop, schedule
 
 
@@ -108,8 +106,17 @@ def test_serialized_state_continues_identically_in_another_process(unzipdir):
     s.free()
     helpers_dir = str(__import__("pathlib").Path(__file__).parent)
     proc = subprocess.run(
-        [sys.executable, "-c", RESUME, helpers_dir, str(unzipdir), blob.hex(), json.dumps(times[299:500])],
-        capture_output=True, text=True,
+        [
+            sys.executable,
+            "-c",
+            RESUME,
+            helpers_dir,
+            str(unzipdir),
+            blob.hex(),
+            json.dumps(times[299:500]),
+        ],
+        capture_output=True,
+        text=True,
     )
     assert proc.returncode == 0, proc.stderr
     there = np.array([[float.fromhex(x) for x in row] for row in json.loads(proc.stdout)])

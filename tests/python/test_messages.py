@@ -7,7 +7,6 @@ import math
 import pytest
 from fmpy import simulate_fmu
 from fmpy.fmi1 import FMICallException
-
 from helpers import DT, STOP, Slave, restore_fmpy_default_logger, run_loop, schedule
 
 LEAKS = ("Some(", "None")

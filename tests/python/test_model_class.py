@@ -24,14 +24,20 @@ def run(s, steps, dt=1e-4):
 
 
 def estimate_warnings(s):
-    return [m for status, _, m in s.log.messages if status == WARNING and m.startswith("rod.error_estimate")]
+    return [
+        m
+        for status, _, m in s.log.messages
+        if status == WARNING and m.startswith("rod.error_estimate")
+    ]
 
 
 def test_auto_chooses_and_says_why(default_unzipdir):
     s = started(default_unzipdir)
     text = s.log.text()
     # The benchmark rod (L/h 55): shear effect 2.2e-3 > the default tolerance 1e-3.
-    assert "shear deformation and rotary inertia on (auto: estimated effect on v_mid/L 2.2e-3" in text
+    assert (
+        "shear deformation and rotary inertia on (auto: estimated effect on v_mid/L 2.2e-3" in text
+    )
     assert "axial dynamics off (auto: slider-rod axial mode 4214 Hz" in text
     run(s, 10)
     (early,) = s.get("rod.error_estimate")
@@ -72,7 +78,9 @@ def test_switches_and_twins(default_unzipdir):
     assert off.fmu.getInteger([off.vr["rod.shear_deformation"]]) == [3]
     f_off = off.get("rod.frequency[1]")[0]
     off.free()
-    on = started(default_unzipdir, integers={"rod.shear_deformation": 2, "rod.axial_dynamics_index": 2})
+    on = started(
+        default_unzipdir, integers={"rod.shear_deformation": 2, "rod.axial_dynamics_index": 2}
+    )
     text = on.log.text()
     assert "shear deformation and rotary inertia on (set on)" in text
     assert "axial dynamics on (set on)" in text

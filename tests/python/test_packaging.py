@@ -5,10 +5,9 @@ import re
 import subprocess
 import sys
 import zipfile
-
-import pytest
 from pathlib import Path
 
+import pytest
 from fmpy import read_model_description
 from fmpy.validation import validate_fmu
 
@@ -41,12 +40,14 @@ IDENTIFIERS = {"ffr": "FlexibleSliderCrank", "segments": "FlexibleSliderCrankSeg
 def test_archive_layout(fmu_path, model):
     with zipfile.ZipFile(fmu_path) as z:
         names = sorted(i.filename for i in z.infolist())
-        assert names == sorted([
-            "modelDescription.xml",
-            f"binaries/linux64/{IDENTIFIERS[model]}.so",
-            "resources/scene.toml",
-            "documentation/index.html",
-        ])
+        assert names == sorted(
+            [
+                "modelDescription.xml",
+                f"binaries/linux64/{IDENTIFIERS[model]}.so",
+                "resources/scene.toml",
+                "documentation/index.html",
+            ]
+        )
         for info in z.infolist():
             assert info.compress_type == zipfile.ZIP_DEFLATED, info.filename
             assert not info.filename.startswith("./") and "\\" not in info.filename
@@ -73,7 +74,9 @@ def test_model_description_follows_the_contract(fmu_path, model):
     md = read_model_description(str(fmu_path))
     assert md.fmiVersion == "2.0"
     assert md.variableNamingConvention == "structured"
-    assert re.fullmatch(r"\{[0-9a-f]{8}-[0-9a-f]{4}-[0-9a-f]{4}-[0-9a-f]{4}-[0-9a-f]{12}\}", md.guid)
+    assert re.fullmatch(
+        r"\{[0-9a-f]{8}-[0-9a-f]{4}-[0-9a-f]{4}-[0-9a-f]{4}-[0-9a-f]{12}\}", md.guid
+    )
     cs = md.coSimulation
     assert cs.modelIdentifier == IDENTIFIERS[model]
     assert cs.canHandleVariableCommunicationStepSize
@@ -111,12 +114,28 @@ def test_model_description_follows_the_contract(fmu_path, model):
         assert v[name].unit == unit, name
     assert v["crank.angle"].displayUnit == "deg"
     assert v["crank.speed"].displayUnit == "rpm"
-    for name in ["crank.length", "rod.length", "rod.model", "rod.elements", "rod.reference", "rod.modes"]:
+    for name in [
+        "crank.length",
+        "rod.length",
+        "rod.model",
+        "rod.elements",
+        "rod.reference",
+        "rod.modes",
+    ]:
         assert v[name].variability == "fixed", name
     assert v["rod.model"].type == "Enumeration"
-    assert [i.name for i in v["rod.model"].declaredType.items] == ["ffr", "segments", "modal_segments", "auto"]
+    assert [i.name for i in v["rod.model"].declaredType.items] == [
+        "ffr",
+        "segments",
+        "modal_segments",
+        "auto",
+    ]
     assert [i.name for i in v["rod.reference"].declaredType.items] == [
-        "simply_supported", "mean_axis", "body_fixed_mid", "cantilever"]
+        "simply_supported",
+        "mean_axis",
+        "body_fixed_mid",
+        "cantilever",
+    ]
     assert v["rod.elements"].type == "Integer" and v["rod.elements"].start == "8"
     assert float(v["rod.length"].start) == 0.3048
     frequencies = [n for n in v if n.startswith("rod.frequency[")]
@@ -124,7 +143,11 @@ def test_model_description_follows_the_contract(fmu_path, model):
     assert all(v[n].causality == "calculatedParameter" and v[n].unit == "Hz" for n in frequencies)
     assert float(md.defaultExperiment.stepSize) == 1e-4
     assert {c.name for c in md.logCategories} >= {
-        "logStatusError", "logStatusWarning", "logEvents", "logAll"}
+        "logStatusError",
+        "logStatusWarning",
+        "logEvents",
+        "logAll",
+    }
 
 
 def test_golden_model_description_matches_the_archive(fmu_path, model):

@@ -19,7 +19,6 @@ import os
 
 import numpy as np
 import pytest
-
 import random_rods as rr
 from helpers import ROOT
 
@@ -103,7 +102,9 @@ def test_smooth_starts(results):
         if max(m["pin_b"], m["pin_c"]) > 0.01:
             failures.append(f"rod {rod['id']:.0f}: pins {m['pin_b']:.2e}, {m['pin_c']:.2e}")
         if not 1 / 3 <= run.estimate / m["measured"] <= 3:
-            failures.append(f"rod {rod['id']:.0f}: estimate {run.estimate:.2e} against {m['v']:.2e}")
+            failures.append(
+                f"rod {rod['id']:.0f}: estimate {run.estimate:.2e} against {m['v']:.2e}"
+            )
     assert not failures, "\n".join(failures)
 
 
@@ -116,7 +117,8 @@ def test_abrupt_starts(results):
             failures.append(f"rod {rod['id']:.0f}: {m}")
         if not 1 / 3 <= run.estimate / m["measured"] <= 3:
             failures.append(
-                f"rod {rod['id']:.0f}: estimate {run.estimate:.2e} against {m['measured']:.2e}")
+                f"rod {rod['id']:.0f}: estimate {run.estimate:.2e} against {m['measured']:.2e}"
+            )
     assert not failures, "\n".join(failures)
 
 
@@ -155,8 +157,12 @@ def test_modal_segments_on_the_random_rods(modal_results):
         if rod["start"] == "smooth":
             if m["v"] > 0.005 or max(m["pin_b"], m["pin_c"]) > 0.015:
                 failures.append(f"rod {rod['id']:.0f}: {m}")
-            if not (run.estimate >= m["v"] / 3 and (run.estimate <= 3 * m["v"] or run.estimate <= 1e-3)):
-                failures.append(f"rod {rod['id']:.0f}: estimate {run.estimate:.2e} against {m['v']:.2e}")
+            if not (
+                run.estimate >= m["v"] / 3 and (run.estimate <= 3 * m["v"] or run.estimate <= 1e-3)
+            ):
+                failures.append(
+                    f"rod {rod['id']:.0f}: estimate {run.estimate:.2e} against {m['v']:.2e}"
+                )
         elif max(m["forced"], m["frequency"], m["ringing"]) > 0.005:
             failures.append(f"rod {rod['id']:.0f}: {m}")
         print(rod["id"], rod["start"], m, run.estimate)
@@ -164,7 +170,9 @@ def test_modal_segments_on_the_random_rods(modal_results):
     text = modal_table(modal_results)
     if os.environ.get("FLEXROD_BLESS"):
         MODAL_FRAGMENT.write_text(text)
-    assert MODAL_FRAGMENT.read_text() == text, f"{MODAL_FRAGMENT} is stale; FLEXROD_BLESS=1 rewrites it"
+    assert MODAL_FRAGMENT.read_text() == text, (
+        f"{MODAL_FRAGMENT} is stale; FLEXROD_BLESS=1 rewrites it"
+    )
 
 
 def modal_table(results):
@@ -217,7 +225,8 @@ def test_finer_modes_resolve_the_higher_modes_of_abrupt_starts(default_unzipdir,
         if not (worst <= 3e-4 and fine["amplitude"] <= m["amplitude"]):
             failures.append(
                 f"rod {rod['id']:.0f}: higher modes {worst:.2e}, peaks {m['amplitude']:.2e} -> "
-                f"{fine['amplitude']:.2e}")
+                f"{fine['amplitude']:.2e}"
+            )
     assert rows, "no abrupt start rings in a mode above 3 x its dominant one"
     assert not failures, "\n".join(failures)
     lines = [
@@ -237,7 +246,9 @@ def test_finer_modes_resolve_the_higher_modes_of_abrupt_starts(default_unzipdir,
     text = "\n".join(lines) + "\n"
     if os.environ.get("FLEXROD_BLESS"):
         RESOLUTION_FRAGMENT.write_text(text)
-    assert RESOLUTION_FRAGMENT.read_text() == text, f"{RESOLUTION_FRAGMENT} is stale; FLEXROD_BLESS=1 rewrites it"
+    assert RESOLUTION_FRAGMENT.read_text() == text, (
+        f"{RESOLUTION_FRAGMENT} is stale; FLEXROD_BLESS=1 rewrites it"
+    )
 
 
 START_FRAGMENT = ROOT / "docs" / "generated" / "random-rods-start.md"
@@ -279,39 +290,59 @@ def test_abrupt_starts_at_a_quarter_revolution(default_unzipdir, results):
         vibration[0.0].append(start_vibration(run) / ringing_of(ref[0], ref[1], w))
         extra = {"crank.design_speed": w}
         # The reference itself against the exact beam, at dead centre.
-        own = rr.compare(rod, rr.simulate(default_unzipdir, rod, {**extra, **QUARTER_REFERENCE}), ref)
+        own = rr.compare(
+            rod, rr.simulate(default_unzipdir, rod, {**extra, **QUARTER_REFERENCE}), ref
+        )
         reference_error.append(own["measured"])
         if own["measured"] > 5e-4:
             failures.append(f"rod {rod['id']:.0f}: the reference {own}")
         quarter = rr.simulate(default_unzipdir, rod, extra, start_angle=math.pi / 2)
-        chain = rr.simulate(default_unzipdir, rod, {**extra, **QUARTER_REFERENCE},
-                            start_angle=math.pi / 2)
+        chain = rr.simulate(
+            default_unzipdir, rod, {**extra, **QUARTER_REFERENCE}, start_angle=math.pi / 2
+        )
         reference = np.vstack([chain.t, chain.v, chain.pins.T])
         m = rr.compare(rod, quarter, reference)
         ratios.append(quarter.estimate / m["measured"])
         f_ref = rr.ringing_frequency(chain.t, chain.v, w / (2 * math.pi))
-        forced_share.append(np.abs(rr.forced(chain.t, chain.v, w, f_ref)).max() / np.abs(chain.v).max())
+        forced_share.append(
+            np.abs(rr.forced(chain.t, chain.v, w, f_ref)).max() / np.abs(chain.v).max()
+        )
         vibration[0.5].append(start_vibration(quarter) / ringing_of(chain.t, chain.v, w))
-        print(rod["id"], m["forced"], m["frequency"], m["ringing"], quarter.estimate, ratios[-1],
-              vibration[0.0][-1], vibration[0.5][-1])
+        print(
+            rod["id"],
+            m["forced"],
+            m["frequency"],
+            m["ringing"],
+            quarter.estimate,
+            ratios[-1],
+            vibration[0.0][-1],
+            vibration[0.5][-1],
+        )
         if max(m["forced"], m["frequency"], m["ringing"]) > 0.005 or not 1 / 3 <= ratios[-1] <= 3:
             failures.append(f"rod {rod['id']:.0f}: {m}, estimate {quarter.estimate:.2e}")
     for angle, values in vibration.items():
         if not all(0.5 <= x <= 2.0 for x in values):
             failures.append(f"start vibration at {angle} revolutions: {values}")
     assert not failures, "\n".join(failures)
-    text = "\n".join([
-        "<!-- written by `FLEXROD_BLESS=1 .venv/bin/python -m pytest tests/python/test_random_rods.py` (after `cargo run --release -p fmu`): rerun it, do not edit -->",
-        f"- The free vibration a start at speed rings, as the FMU estimates it at the start "
-        f"(logged; quasi-static): {min(vibration[0.0]):.2f} to {max(vibration[0.0]):.2f} times the "
-        f"reference's (its peak less its forced motion's) at dead centre, {min(vibration[0.5]):.2f} "
-        f"to {max(vibration[0.5]):.2f} times the chain's at a quarter revolution.",
-        f"- The {len(ratios)} abrupt starts from a quarter revolution against the chain on its modes "
-        f"(64 segments; after the starts at dead centre within {pct(max(reference_error))} of the "
-        f"exact beam's forced motion and free-vibration heights): forced motion {min(forced_share):.2f} to {max(forced_share):.2f} of the "
-        f"peak; rod.error_estimate / the larger of the forced motion's and the free vibration's "
-        f"height errors {min(ratios):.2f} to {max(ratios):.2f}.",
-    ]) + "\n"
+    text = (
+        "\n".join(
+            [
+                "<!-- written by `FLEXROD_BLESS=1 .venv/bin/python -m pytest tests/python/test_random_rods.py` (after `cargo run --release -p fmu`): rerun it, do not edit -->",
+                f"- The free vibration a start at speed rings, as the FMU estimates it at the start "
+                f"(logged; quasi-static): {min(vibration[0.0]):.2f} to {max(vibration[0.0]):.2f} times the "
+                f"reference's (its peak less its forced motion's) at dead centre, {min(vibration[0.5]):.2f} "
+                f"to {max(vibration[0.5]):.2f} times the chain's at a quarter revolution.",
+                f"- The {len(ratios)} abrupt starts from a quarter revolution against the chain on its modes "
+                f"(64 segments; after the starts at dead centre within {pct(max(reference_error))} of the "
+                f"exact beam's forced motion and free-vibration heights): forced motion {min(forced_share):.2f} to {max(forced_share):.2f} of the "
+                f"peak; rod.error_estimate / the larger of the forced motion's and the free vibration's "
+                f"height errors {min(ratios):.2f} to {max(ratios):.2f}.",
+            ]
+        )
+        + "\n"
+    )
     if os.environ.get("FLEXROD_BLESS"):
         START_FRAGMENT.write_text(text)
-    assert START_FRAGMENT.read_text() == text, f"{START_FRAGMENT} is stale; FLEXROD_BLESS=1 rewrites it"
+    assert START_FRAGMENT.read_text() == text, (
+        f"{START_FRAGMENT} is stale; FLEXROD_BLESS=1 rewrites it"
+    )

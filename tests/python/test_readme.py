@@ -14,7 +14,6 @@ import re
 
 import matplotlib
 import pytest
-
 from helpers import ROOT, cargo
 
 matplotlib.use("Agg")

@@ -9,7 +9,6 @@ import math
 import pytest
 from fmpy import extract
 from fmpy.fmi1 import FMICallException
-
 from helpers import ROOT, Slave, build_fmu
 
 SCENE = ROOT / "scenes" / "automotive_rod.toml"
@@ -128,8 +127,9 @@ def test_both_rod_models_run_the_shear_deformable_rod_and_say_what_they_keep(aut
                 assert "segment chain, 16 segments" in text and "shear slides" in text, text
             for k in range(steps):
                 t = k * dt
-                s.fmu.setReal([s.vr["crank.angle"], s.vr["crank.speed"]],
-                              [0.5 * accel * t * t, accel * t])
+                s.fmu.setReal(
+                    [s.vr["crank.angle"], s.vr["crank.speed"]], [0.5 * accel * t * t, accel * t]
+                )
                 s.fmu.doStep(currentCommunicationPoint=t, communicationStepSize=dt)
                 assert math.isfinite(s.get("rod.stress_max")[0])
             final[model] = s.get("rod.stress_max")[0]
@@ -176,14 +176,17 @@ def test_mode_parameters_declared_with_scene_values(slave):
     # The band chooses the modes: the count is not declared.
     assert "rod.modes" not in variables
     # The frequencies depend on both switches of the eigenproblem and on the slider's mass.
-    unknown = next(
-        u for u in slave.md.initialUnknowns if u.variable.name == "rod.frequency[1]"
-    )
+    unknown = next(u for u in slave.md.initialUnknowns if u.variable.name == "rod.frequency[1]")
     names = {d.name for d in unknown.dependencies}
     assert {"rod.loaded_modes", "slider.mass", "rod.small_end.mass"} <= names, names
     # And on what decides the model class: the band (against the slider-rod axial mode), the
     # switches, the tolerance.
-    assert {"rod.mode_band_hz", "rod.axial_dynamics", "rod.shear_deformation", "solver.tolerance"} <= names, names
+    assert {
+        "rod.mode_band_hz",
+        "rod.axial_dynamics",
+        "rod.shear_deformation",
+        "solver.tolerance",
+    } <= names, names
 
 
 def test_loaded_modes_give_the_piston_rod_axial_mode(automotive_unzipdir):
@@ -196,7 +199,9 @@ def test_loaded_modes_give_the_piston_rod_axial_mode(automotive_unzipdir):
     assert math.isclose(loaded[1], PISTON_AXIAL_HZ, abs_tol=0.5), loaded
     assert "3269 Hz axial" in text, text
     # Free modes: loaded modes and the automatic axial mode off.
-    s = initialized(automotive_unzipdir, integers={"rod.loaded_modes": 0, "rod.axial_dynamics_index": 3})
+    s = initialized(
+        automotive_unzipdir, integers={"rod.loaded_modes": 0, "rod.axial_dynamics_index": 3}
+    )
     try:
         free = frequencies(s)
         text = s.log.text()

@@ -1,14 +1,20 @@
 """The FMU against the core's own simulation (flexrod::Simulation driven without FMI)."""
 
 import math
-import shutil
 
 import numpy as np
 import pytest
 from fmpy import extract, read_model_description, simulate_fmu
-
 from helpers import (
-    DT, OUTPUTS, STOP, Slave, assert_close, crank_input, run_loop, schedule, unexpected_warnings,
+    DT,
+    OUTPUTS,
+    STOP,
+    Slave,
+    assert_close,
+    crank_input,
+    run_loop,
+    schedule,
+    unexpected_warnings,
 )
 
 
@@ -232,7 +238,9 @@ def test_reset_restores_start_values(unzipdir):
 def test_resource_location_with_a_space(fmu_path, spaced_dir, ref):
     unzipped = spaced_dir / "fmu"
     extract(str(fmu_path), str(unzipped))
-    result = simulate_fmu(str(unzipped), input=constant_speed_input(), output=OUTPUTS, output_interval=DT)
+    result = simulate_fmu(
+        str(unzipped), input=constant_speed_input(), output=OUTPUTS, output_interval=DT
+    )
     compare(result, ref(), "spaced path")
 
 
@@ -251,7 +259,9 @@ def test_parameters_and_frequencies(unzipdir):
     slave.fmu.exitInitializationMode()
     assert slave.get(*names) == f
     # Undeformed at the start, slider at r + L for theta = 0.
-    assert slave.get("rod.deflection", "slider.position") == pytest.approx([0.0, 0.1524 + 0.3048], abs=1e-12)
+    assert slave.get("rod.deflection", "slider.position") == pytest.approx(
+        [0.0, 0.1524 + 0.3048], abs=1e-12
+    )
     slave.free()
 
 
@@ -268,7 +278,9 @@ def test_segments_model(segments_fmu, default_fmu):
     md = read_model_description(str(segments_fmu))
     model = next(v for v in md.modelVariables if v.name == "rod.model")
     assert model.start == "2"
-    ffr = simulate_fmu(str(default_fmu), input=constant_speed_input(), output=OUTPUTS, output_interval=DT)
+    ffr = simulate_fmu(
+        str(default_fmu), input=constant_speed_input(), output=OUTPUTS, output_interval=DT
+    )
     ffr_v = ffr["rod.deflection_rel"]
     ffr_peak = np.max(np.abs(ffr_v))
     assert 0.01 < ffr_peak < 0.02
@@ -290,8 +302,10 @@ def test_segments_model(segments_fmu, default_fmu):
         force = np.hypot(result["pinB.force_x"], result["pinB.force_y"])
         ffr_force = np.hypot(ffr["pinB.force_x"], ffr["pinB.force_y"])
         force_error = np.max(np.abs(force - ffr_force)) / np.max(ffr_force)
-        print(f"segments N = {elements} against FFR: peak {100 * peak_error:+.3f} %, pointwise "
-              f"{100 * pointwise:.3f} %, |F_B| {100 * force_error:.3f} % of the peak")
+        print(
+            f"segments N = {elements} against FFR: peak {100 * peak_error:+.3f} %, pointwise "
+            f"{100 * pointwise:.3f} %, |F_B| {100 * force_error:.3f} % of the peak"
+        )
         assert abs(peak_error) < peak_bound, (elements, peak_error)
         assert pointwise < pointwise_bound, (elements, pointwise)
         assert force_error < 0.02, (elements, force_error)

@@ -12,7 +12,6 @@ import time
 from pathlib import Path
 
 import pytest
-
 from flexrod_sweep import SpecError, load, run_sweep
 
 BIN = Path(sys.executable).parent
@@ -48,8 +47,12 @@ def read_rows(path):
 
 
 def cli(*args, check=True):
-    res = subprocess.run([sys.executable, "-m", "flexrod_sweep", *map(str, args), "--no-progress"],
-                         capture_output=True, text=True, timeout=300)
+    res = subprocess.run(
+        [sys.executable, "-m", "flexrod_sweep", *map(str, args), "--no-progress"],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     if check and res.returncode != 0:
         raise AssertionError(f"flexrod_sweep failed:\n{res.stdout}\n{res.stderr}")
     return res
@@ -58,14 +61,26 @@ def cli(*args, check=True):
 @pytest.mark.parametrize(
     "edit, message",
     [
-        (('"rod.damping_ratio" = 0.02', '"rod.dampingratio" = 0.02'), "unknown variable 'rod.dampingratio'"),
-        (('"rod.damping_ratio" = 0.02', '"rod.damping_ratio" = [0.02, -0.01]'), "outside its range"),
-        (('"rod.damping_ratio" = 0.02', '"rod.elements" = [8, 5000]'), "outside its range [2.0, 128.0]"),
+        (
+            ('"rod.damping_ratio" = 0.02', '"rod.dampingratio" = 0.02'),
+            "unknown variable 'rod.dampingratio'",
+        ),
+        (
+            ('"rod.damping_ratio" = 0.02', '"rod.damping_ratio" = [0.02, -0.01]'),
+            "outside its range",
+        ),
+        (
+            ('"rod.damping_ratio" = 0.02', '"rod.elements" = [8, 5000]'),
+            "outside its range [2.0, 128.0]",
+        ),
         (('["ffr", "segments"]', '["ffr", "beam"]'), "not an item of RodModel"),
-        (('{ linspace = [150, 450, 4] }', '[]'), "empty grid"),
-        (('{ linspace = [150, 450, 4] }', '{ linspace = [150, 450, 0] }'), "empty grid"),
-        (('max_abs(rod.deflection_rel)', 'max_abs(rod.bending)'), "not an output of the FMU"),
-        (('"rod.damping_ratio" = 0.02', '"rod.frequency[1]" = 100.0'), "only parameters and inputs"),
+        (("{ linspace = [150, 450, 4] }", "[]"), "empty grid"),
+        (("{ linspace = [150, 450, 4] }", "{ linspace = [150, 450, 0] }"), "empty grid"),
+        (("max_abs(rod.deflection_rel)", "max_abs(rod.bending)"), "not an output of the FMU"),
+        (
+            ('"rod.damping_ratio" = 0.02', '"rod.frequency[1]" = 100.0'),
+            "only parameters and inputs",
+        ),
     ],
 )
 def test_bad_spec_is_rejected_before_any_run(default_fmu, tmp_path, edit, message):
@@ -89,8 +104,12 @@ def test_console_script_help_and_bad_spec(tmp_path):
     assert res.returncode == 0, res.stderr
     assert res.stdout.startswith("usage: flexrod-sweep") and "--out" in res.stdout, res.stdout
     spec = write_spec(tmp_path, 'name = "bad"\n[fmu]\npath = "x.fmu"\n[parmeters]\n')
-    res = subprocess.run([str(script), str(spec), "--out", str(tmp_path / "out"), "--workers", "0",
-                          "--no-progress"], capture_output=True, text=True, timeout=120)
+    res = subprocess.run(
+        [str(script), str(spec), "--out", str(tmp_path / "out"), "--workers", "0", "--no-progress"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert res.returncode == 2, (res.stdout, res.stderr)
     assert "unknown table(s) ['parmeters']" in res.stderr, res.stderr
     assert not (tmp_path / "out").exists()
@@ -99,7 +118,9 @@ def test_console_script_help_and_bad_spec(tmp_path):
 
 
 def test_latin_hypercube_expansion(default_fmu, tmp_path):
-    text = SMALL.format(fmu=default_fmu).replace('"rod.damping_ratio" = 0.02', '"slider.mass" = { range = [0.0, 0.5] }')
+    text = SMALL.format(fmu=default_fmu).replace(
+        '"rod.damping_ratio" = 0.02', '"slider.mass" = { range = [0.0, 0.5] }'
+    )
     text += "[sampling]\nsamples = 5\nseed = 3\n"
     spec = load(write_spec(tmp_path, text))
     runs = spec.runs()
@@ -114,7 +135,8 @@ def test_failed_runs_are_rows_and_sweep_resumes(default_fmu, tmp_path):
     # crank.length >= rod.length: fmi2Error at initialization; 600 rad/s FFR: past the rod's
     # deflection limit (0.05 L), refused by the default policy (discard) before the abort limit.
     text = SMALL.format(fmu=default_fmu).replace(
-        '"rod.damping_ratio" = 0.02', '"rod.damping_ratio" = 0.02\n"crank.length" = [0.1524, 0.4]')
+        '"rod.damping_ratio" = 0.02', '"rod.damping_ratio" = 0.02\n"crank.length" = [0.1524, 0.4]'
+    )
     text = text.replace("[150, 450, 4]", "[150, 600, 2]").replace('["ffr", "segments"]', '["ffr"]')
     spec = write_spec(tmp_path, text)
     out = tmp_path / "out"
@@ -140,7 +162,10 @@ def test_failed_runs_are_rows_and_sweep_resumes(default_fmu, tmp_path):
     (out / "results.csv").write_text("".join(lines[:3]))
     df3 = run_sweep(spec, out, workers=0, progress=False, plots=False)
     assert df3.attrs["ran"] == 2
-    strip = lambda rs: [{k: v for k, v in r.items() if k != "wall_time"} for r in rs]
+
+    def strip(rs):
+        return [{k: v for k, v in r.items() if k != "wall_time"} for r in rs]
+
     assert strip(read_rows(out / "results.csv")) == strip(rows)
 
 
@@ -158,14 +183,45 @@ def dask_cluster(tmp_path):
     address = f"tcp://127.0.0.1:{port}"
     env = {**os.environ, "DASK_DISTRIBUTED__WORKER__DAEMON": "False"}
     logs = [open(tmp_path / f"dask{i}.log", "w") for i in range(3)]
-    procs = [subprocess.Popen([str(BIN / "dask"), "scheduler", "--host", "127.0.0.1", "--port", str(port),
-                               "--no-dashboard"], stdout=logs[0], stderr=subprocess.STDOUT, env=env)]
+    procs = [
+        subprocess.Popen(
+            [
+                str(BIN / "dask"),
+                "scheduler",
+                "--host",
+                "127.0.0.1",
+                "--port",
+                str(port),
+                "--no-dashboard",
+            ],
+            stdout=logs[0],
+            stderr=subprocess.STDOUT,
+            env=env,
+        )
+    ]
     time.sleep(1.0)
     for i in (1, 2):
-        procs.append(subprocess.Popen(
-            [str(BIN / "dask"), "worker", address, "--nthreads", "1", "--nworkers", "1",
-             "--host", "127.0.0.1", "--no-dashboard", "--name", f"w{i}"],
-            stdout=logs[i], stderr=subprocess.STDOUT, env=env))
+        procs.append(
+            subprocess.Popen(
+                [
+                    str(BIN / "dask"),
+                    "worker",
+                    address,
+                    "--nthreads",
+                    "1",
+                    "--nworkers",
+                    "1",
+                    "--host",
+                    "127.0.0.1",
+                    "--no-dashboard",
+                    "--name",
+                    f"w{i}",
+                ],
+                stdout=logs[i],
+                stderr=subprocess.STDOUT,
+                env=env,
+            )
+        )
     try:
         from dask.distributed import Client
 
@@ -199,12 +255,15 @@ def test_distributed_equals_in_process(default_fmu, tmp_path, dask_cluster):
 
 
 def test_local_cluster_and_plots(default_fmu, tmp_path):
-    text = SMALL.format(fmu=default_fmu) + """
+    text = (
+        SMALL.format(fmu=default_fmu)
+        + """
 [plots]
 resonance = { x = "crank.speed", metric = "max_abs(rod.deflection_rel)", normalized = true }
 heatmap = { x = "crank.speed", y = "rod.model", metric = "max_abs(rod.deflection_rel)" }
 """
-    text = text.replace('["ffr", "segments"]', '[1, 2]')
+    )
+    text = text.replace('["ffr", "segments"]', "[1, 2]")
     spec = write_spec(tmp_path, text)
     res = cli(spec, "--out", tmp_path / "out", "--workers", "2")
     assert "8 runs: 8 ran" in res.stdout, res.stdout

@@ -26,8 +26,11 @@ def test_peak_table_of_the_docs_is_the_study_s():
     printed = io.StringIO()
     with contextlib.redirect_stdout(printed):
         peaks.main([str(STUDY), "--harmonics", "2", "3", "4", "5", "6", "7"])
-    rows = [cells(line) for line in printed.getvalue().splitlines()
-            if line.startswith("| ffr") or line.startswith("| segments")]
+    rows = [
+        cells(line)
+        for line in printed.getvalue().splitlines()
+        if line.startswith("| ffr") or line.startswith("| segments")
+    ]
     with_peak = [r for r in rows if r[3] and r[3][0].isdigit()]
     assert len(with_peak) >= 10, printed.getvalue()
     page_rows = [cells(line) for line in PAGE.read_text().splitlines() if line.startswith("| ")]
@@ -35,4 +38,5 @@ def test_peak_table_of_the_docs_is_the_study_s():
     assert not missing, (
         "docs/sweeps.md does not quote these rows of the peak analysis (rerun "
         "`python -m flexrod_sweep.peaks docs/sweeps/benchmark_resonance --harmonics 2 3 4 5 6 7` "
-        "and update the table):\n" + "\n".join(" | ".join(r) for r in missing))
+        "and update the table):\n" + "\n".join(" | ".join(r) for r in missing)
+    )

@@ -25,11 +25,28 @@ def rows_of(path):
 def test_rerun_after_a_killed_worker_runs_its_chunk_again(default_fmu, tmp_path):
     port = free_port()
     address = f"tcp://127.0.0.1:{port}"
-    env = {**os.environ, "DASK_DISTRIBUTED__SCHEDULER__ALLOWED_FAILURES": "0",
-           "DASK_DISTRIBUTED__WORKER__DAEMON": "False"}
+    env = {
+        **os.environ,
+        "DASK_DISTRIBUTED__SCHEDULER__ALLOWED_FAILURES": "0",
+        "DASK_DISTRIBUTED__WORKER__DAEMON": "False",
+    }
     logs = [open(tmp_path / f"dask{i}.log", "w") for i in range(3)]
-    procs = [subprocess.Popen([str(BIN / "dask"), "scheduler", "--host", "127.0.0.1", "--port", str(port),
-                               "--no-dashboard"], stdout=logs[0], stderr=subprocess.STDOUT, env=env)]
+    procs = [
+        subprocess.Popen(
+            [
+                str(BIN / "dask"),
+                "scheduler",
+                "--host",
+                "127.0.0.1",
+                "--port",
+                str(port),
+                "--no-dashboard",
+            ],
+            stdout=logs[0],
+            stderr=subprocess.STDOUT,
+            env=env,
+        )
+    ]
     spec = tmp_path / "spec.toml"
     spec.write_text(f"""
 name = "killed worker"
@@ -46,17 +63,47 @@ measure_revolutions = 2
     try:
         time.sleep(1.0)
         for i in (1, 2):
-            procs.append(subprocess.Popen(
-                [str(BIN / "dask"), "worker", address, "--nthreads", "1", "--no-nanny",
-                 "--host", "127.0.0.1", "--no-dashboard", "--name", f"w{i}"],
-                stdout=logs[i], stderr=subprocess.STDOUT, env=env))
+            procs.append(
+                subprocess.Popen(
+                    [
+                        str(BIN / "dask"),
+                        "worker",
+                        address,
+                        "--nthreads",
+                        "1",
+                        "--no-nanny",
+                        "--host",
+                        "127.0.0.1",
+                        "--no-dashboard",
+                        "--name",
+                        f"w{i}",
+                    ],
+                    stdout=logs[i],
+                    stderr=subprocess.STDOUT,
+                    env=env,
+                )
+            )
         from dask.distributed import Client
 
         with Client(address, timeout=30) as c:
             c.wait_for_workers(2, timeout=60)
-        sweep = subprocess.Popen([sys.executable, "-m", "flexrod_sweep", str(spec), "--out", str(out),
-                                  "--scheduler", address, "--no-progress", "--no-plots"],
-                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        sweep = subprocess.Popen(
+            [
+                sys.executable,
+                "-m",
+                "flexrod_sweep",
+                str(spec),
+                "--out",
+                str(out),
+                "--scheduler",
+                address,
+                "--no-progress",
+                "--no-plots",
+            ],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
         deadline = time.time() + 120
         while time.time() < deadline:
             p = out / "results.csv"
@@ -83,9 +130,23 @@ measure_revolutions = 2
     assert lost, f"no chunk was lost: {Counter(r['status'] for r in first)}\n{stdout}\n{stderr}"
     assert all("chunk failed" in r["message"] for r in first if r["run"] in lost)
     # A plain rerun (no option): the infrastructure's failures run again, nothing else.
-    res = subprocess.run([sys.executable, "-m", "flexrod_sweep", str(spec), "--out", str(out),
-                          "--workers", "0", "--no-progress", "--no-plots"],
-                         capture_output=True, text=True, timeout=300)
+    res = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "flexrod_sweep",
+            str(spec),
+            "--out",
+            str(out),
+            "--workers",
+            "0",
+            "--no-progress",
+            "--no-plots",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert res.returncode == 0, res.stderr
     assert f"40 runs: {len(lost)} ran, {40 - len(lost)} already done" in res.stdout, res.stdout
     second = rows_of(out / "results.csv")

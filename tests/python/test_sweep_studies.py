@@ -9,7 +9,6 @@ import json
 import math
 
 import pytest
-
 from flexrod_sweep import run_sweep
 from helpers import ROOT, build_fmu
 
@@ -20,7 +19,9 @@ RTOL = 1e-6
 
 @pytest.fixture(scope="module")
 def automotive_fmu(tmp_path_factory):
-    return build_fmu(tmp_path_factory.mktemp("automotive_fmu"), ROOT / "scenes" / "automotive_rod.toml")
+    return build_fmu(
+        tmp_path_factory.mktemp("automotive_fmu"), ROOT / "scenes" / "automotive_rod.toml"
+    )
 
 
 def pick(rows):
@@ -49,27 +50,41 @@ def stale(study, fmu, tmp_path, spec=None):
     meta = json.loads((study / "sweep.json").read_text())
     guid = read_model_description(str(fmu)).guid
     if guid != meta["fmu_guid"]:
-        return [f"made by an FMU with GUID {meta['fmu_guid']}; the current FMU's is {guid} "
-                "(another model description)"]
+        return [
+            f"made by an FMU with GUID {meta['fmu_guid']}; the current FMU's is {guid} "
+            "(another model description)"
+        ]
     with open(study / "results.csv", newline="") as f:
         rows = list(csv.DictReader(f))
     chosen = pick(rows)
     assert {r["status"] for r in rows} == {r["status"] for r in chosen}
     spec = spec or (study / meta["spec"]).resolve()
-    df = run_sweep(spec, tmp_path / "out", fmu=fmu, only=[r["run"] for r in chosen], workers=0,
-                   progress=False, plots=False)
+    df = run_sweep(
+        spec,
+        tmp_path / "out",
+        fmu=fmu,
+        only=[r["run"] for r in chosen],
+        workers=0,
+        progress=False,
+        plots=False,
+    )
     now = df.set_index("run")
     fixed = ("run", "index", "status", "message", "wall_time")
-    numeric = [c for c in meta["columns"]
-               if c not in fixed and ("(" in c or c.startswith("rod.frequency"))]
-    scale = {c: max((abs(float(r[c])) for r in rows if math.isfinite(float(r[c]))), default=0.0)
-             for c in numeric}
+    numeric = [
+        c for c in meta["columns"] if c not in fixed and ("(" in c or c.startswith("rod.frequency"))
+    ]
+    scale = {
+        c: max((abs(float(r[c])) for r in rows if math.isfinite(float(r[c]))), default=0.0)
+        for c in numeric
+    }
     problems = []
     for r in chosen:
         got = now.loc[r["run"]]
         where = f"run {r['run']} (index {r['index']})"
         if got["status"] != r["status"]:
-            problems.append(f"{where}: status {got['status']} ({got['message']}), committed {r['status']}")
+            problems.append(
+                f"{where}: status {got['status']} ({got['message']}), committed {r['status']}"
+            )
             continue
         for c in numeric:
             a, b = float(got[c]), float(r[c])
@@ -88,12 +103,15 @@ def fmu_of(meta, default_fmu, automotive_fmu):
 def test_committed_study_matches_the_current_fmu(name, default_fmu, automotive_fmu, tmp_path):
     study = STUDIES / name
     meta = json.loads((study / "sweep.json").read_text())
-    regen = (f"cargo run --release -p fmu && .venv/bin/flexrod-sweep regenerate docs/sweeps/{name}"
-             " (then update docs/sweeps.md from the new results)")
+    regen = (
+        f"cargo run --release -p fmu && .venv/bin/flexrod-sweep regenerate docs/sweeps/{name}"
+        " (then update docs/sweeps.md from the new results)"
+    )
     problems = stale(study, fmu_of(meta, default_fmu, automotive_fmu), tmp_path)
     assert not problems, (
         f"docs/sweeps/{name} no longer matches the current FMU (tolerance {RTOL:g} of each column's "
-        "largest value):\n  " + "\n  ".join(problems[:10]) + f"\nRegenerate: {regen}")
+        "largest value):\n  " + "\n  ".join(problems[:10]) + f"\nRegenerate: {regen}"
+    )
 
 
 def test_a_changed_result_is_caught(default_fmu, tmp_path):
@@ -120,7 +138,9 @@ def test_a_changed_result_is_caught(default_fmu, tmp_path):
     spec = ROOT / "python" / "specs" / "stability_map.toml"
     problems = stale(study, default_fmu, tmp_path, spec=spec)
     assert any(ok["run"] in p and "max_abs(rod.deflection_rel)" in p for p in problems), problems
-    assert any(warn["run"] in p and "status warning" in p and "committed timeout" in p for p in problems), problems
+    assert any(
+        warn["run"] in p and "status warning" in p and "committed timeout" in p for p in problems
+    ), problems
 
 
 def test_regenerate_makes_a_study_anew(default_fmu, tmp_path):
@@ -148,8 +168,21 @@ resonance = {{ x = "crank.speed", metric = "max_abs(rod.deflection_rel)" }}
     first = run_sweep(spec, study, workers=0, progress=False)
     (study / "resonance.svg").unlink()
     (study / "results.csv").write_text("stale\n")
-    res = subprocess.run([sys.executable, "-m", "flexrod_sweep", "regenerate", str(tmp_path / "studies"),
-                          "--workers", "0", "--no-progress"], capture_output=True, text=True, timeout=300)
+    res = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "flexrod_sweep",
+            "regenerate",
+            str(tmp_path / "studies"),
+            "--workers",
+            "0",
+            "--no-progress",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert res.returncode == 0, res.stderr
     assert "2 runs: 2 ran" in res.stdout, res.stdout
     meta = json.loads((study / "sweep.json").read_text())
@@ -160,4 +193,6 @@ resonance = {{ x = "crank.speed", metric = "max_abs(rod.deflection_rel)" }}
     assert (study / "resonance.svg").exists()
     with open(study / "results.csv", newline="") as f:
         rows = list(csv.DictReader(f))
-    assert [r["max_abs(rod.deflection_rel)"] for r in rows] == [repr(x) for x in first["max_abs(rod.deflection_rel)"]]
+    assert [r["max_abs(rod.deflection_rel)"] for r in rows] == [
+        repr(x) for x in first["max_abs(rod.deflection_rel)"]
+    ]

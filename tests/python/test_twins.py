@@ -5,7 +5,6 @@ setting either sets both, the last value set wins (also within one fmi2SetIntege
 
 import pytest
 from fmpy.fmi1 import FMICallException
-
 from helpers import Slave
 
 TWINS = {
@@ -42,8 +41,9 @@ def set_int(slave, **values):
 
 def test_every_enumeration_parameter_has_an_integer_twin(slave):
     variables = {v.name: v for v in slave.md.modelVariables}
-    enumerations = [v for v in slave.md.modelVariables
-                    if v.causality == "parameter" and v.type == "Enumeration"]
+    enumerations = [
+        v for v in slave.md.modelVariables if v.causality == "parameter" and v.type == "Enumeration"
+    ]
     assert {v.name for v in enumerations} == set(TWINS)
     for v in enumerations:
         twin = variables[TWINS[v.name]]
@@ -58,7 +58,10 @@ def test_every_enumeration_parameter_has_an_integer_twin(slave):
     # Every parameter is a Real, an Integer or an Enumeration with a twin (no Boolean or
     # String parameters exist).
     assert {v.type for v in slave.md.modelVariables if v.causality == "parameter"} <= {
-        "Real", "Integer", "Enumeration"}
+        "Real",
+        "Integer",
+        "Enumeration",
+    }
 
 
 def test_the_last_value_set_wins(initializing):
@@ -95,11 +98,14 @@ def test_the_twin_switches_the_model(slave, unzipdir):
     other.free()
 
 
-@pytest.mark.parametrize("name, bad, allowed", [
-    ("rod.model_index", 0, "1 (ffr), 2 (segments), 3 (modal_segments), 4 (auto)"),
-    ("rod.model_index", 5, "1 (ffr), 2 (segments), 3 (modal_segments), 4 (auto)"),
-    ("rod.reference_index", 5, "4 (cantilever)"),
-])
+@pytest.mark.parametrize(
+    "name, bad, allowed",
+    [
+        ("rod.model_index", 0, "1 (ffr), 2 (segments), 3 (modal_segments), 4 (auto)"),
+        ("rod.model_index", 5, "1 (ffr), 2 (segments), 3 (modal_segments), 4 (auto)"),
+        ("rod.reference_index", 5, "4 (cantilever)"),
+    ],
+)
 def test_out_of_range_twin_rejected_nothing_set(initializing, name, bad, allowed):
     slave = initializing
     before = get_int(slave, "rod.model", "rod.reference")
