@@ -1,24 +1,16 @@
 //! Trustworthy under abuse: the core refuses what it cannot do well, with the state
 //! kept and a message naming the value and the limit.
 
+mod common;
+
 use std::time::Instant;
 
 use flexrod::scene::{RodModelKind, SolverMethod};
-use flexrod::{CrankInput, ModelError, Scene, Simulation};
+use flexrod::{ModelError, Scene, Simulation};
 
 fn started(scene: &Scene, speed: f64) -> Simulation {
     let mut sim = Simulation::new(scene).expect("model builds");
-    sim.start(
-        0.0,
-        CrankInput {
-            angle: 0.0,
-            speed,
-            acceleration: 0.0,
-            jerk: 0.0,
-        },
-        0.0,
-    )
-    .expect("starts");
+    common::runs::start_at(&mut sim, speed);
     sim
 }
 

@@ -20,10 +20,12 @@
 //!   print exactly;
 //! - docs/fmu.md lists every item of every enumeration the model description declares.
 
+mod common;
+
 use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use flexrod::fmi::description::ModelDescription;
 use flexrod::limits::{CSV_FILE_CAP, MAX_POINTS, SCENE_FILE_CAP};
@@ -54,18 +56,7 @@ fn flexrod_within(args: &[&str], limit: Duration) -> Outcome {
     };
     let stdout = drain(Box::new(child.stdout.take().expect("stdout")));
     let stderr = drain(Box::new(child.stderr.take().expect("stderr")));
-    let t0 = Instant::now();
-    let status = loop {
-        if let Some(status) = child.try_wait().expect("the child's status") {
-            break status;
-        }
-        if t0.elapsed() > limit {
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!("flexrod {args:?} ran past {limit:?}");
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    };
+    let status = common::child::wait_within(&mut child, limit, &format!("flexrod {args:?}"));
     Outcome {
         code: status.code(),
         stdout: stdout.join().expect("stdout read"),
@@ -98,13 +89,25 @@ fn write(dir: &Path, name: &str, text: &str) -> String {
     path.to_str().unwrap().to_string()
 }
 
+/// `out` exited with `code` and a message under 2000 bytes that holds every one of `parts`.
+fn assert_short_refusal(out: &Outcome, code: i32, parts: &[&str]) {
+    assert_eq!(
+        out.code,
+        Some(code),
+        "{}",
+        &out.stderr[..out.stderr.len().min(2000)]
+    );
+    assert!(out.stderr.len() < 2000, "{} bytes", out.stderr.len());
+    assert_contains(&out.stderr, parts);
+}
+
 fn assert_contains(text: &str, parts: &[&str]) {
     for part in parts {
         assert!(text.contains(part), "'{part}' not in\n{text}");
     }
 }
 
-/// Item 1: `flexrod simulate` refuses a run past the shared point cap before it starts,
+/// `flexrod simulate` refuses a run past the shared point cap before it starts,
 /// naming the flag, the points it would need and the cap.
 #[test]
 fn runs_past_the_shared_point_cap_are_refused_naming_the_flag() {
@@ -150,7 +153,7 @@ fn attribute(xml: &str, element: &str, key: &str) -> String {
     }
 }
 
-/// Item 2: a control character in the scene's description or name is refused at scene
+/// A control character in the scene's description or name is refused at scene
 /// validation, naming the key, the character and its position; `& < > " '` and non-ASCII
 /// letters are escaped and read back unchanged from both model descriptions.
 #[test]
@@ -217,7 +220,7 @@ fn scene_texts_hold_only_what_xml_carries() {
     }
 }
 
-/// Item 3: `/dev/zero` as the scene file or the `--input` table is refused at its cap, with
+/// `/dev/zero` as the scene file or the `--input` table is refused at its cap, with
 /// the file, the cap and what was read named, without reading it to its end.
 #[test]
 fn files_past_their_caps_are_refused_without_reading_them_whole() {
@@ -249,7 +252,7 @@ fn files_past_their_caps_are_refused_without_reading_them_whole() {
     assert!(Scene::from_file(Path::new(&scene)).is_ok());
 }
 
-/// Item 4: `--speed` and `--revolutions` are refused with `--input` (the table gives the
+/// `--speed` and `--revolutions` are refused with `--input` (the table gives the
 /// crank's motion), the summary counts the revolutions the table's crank turned, and
 /// `--revolutions` with `--ramp` runs that many turns of the ramped crank.
 #[test]
@@ -289,7 +292,7 @@ fn input_tables_refuse_speed_and_revolutions_and_the_summary_reports_what_ran() 
     );
 }
 
-/// Item 5: a TOML line of 800 KB and a CSV line of 800 KB are echoed cut to
+/// A TOML line of 800 KB and a CSV line of 800 KB are echoed cut to
 /// `text::ECHO_CHARS` characters with their length, by the CLI and by the scene reader the
 /// packager and the FMU (resources, serialized states) share.
 #[test]
@@ -318,29 +321,15 @@ fn echoed_input_is_bounded() {
         &format!("0,0,150\n1,{},150\n", "9".repeat(800_000) + "x"),
     );
     let out = flexrod(&["simulate", "--input", &table]);
-    assert_eq!(
-        out.code,
-        Some(1),
-        "{}",
-        &out.stderr[..out.stderr.len().min(2000)]
-    );
-    assert!(out.stderr.len() < 2000, "{} bytes", out.stderr.len());
-    assert_contains(&out.stderr, &["line 2", "... (800007 bytes)"]);
+    assert_short_refusal(&out, 1, &["line 2", "... (800007 bytes)"]);
 
     // A flag's value, quoted by the command-line parser.
     let value = "9".repeat(100_000) + "x";
     let out = flexrod(&["simulate", "--speed", &value]);
-    assert_eq!(
-        out.code,
-        Some(2),
-        "{}",
-        &out.stderr[..out.stderr.len().min(2000)]
-    );
-    assert!(out.stderr.len() < 2000, "{} bytes", out.stderr.len());
-    assert_contains(&out.stderr, &["invalid value", "bytes)"]);
+    assert_short_refusal(&out, 2, &["invalid value", "bytes)"]);
 }
 
-/// Item 6: the messages name the value that is wrong, with its range, printed exactly.
+/// The messages name the value that is wrong, with its range, printed exactly.
 #[test]
 fn messages_name_the_wrong_value_with_exact_numbers() {
     // (a) A shear area or modulus that leaves the spectrum unresolvable is refused by name.
@@ -434,7 +423,7 @@ fn messages_name_the_wrong_value_with_exact_numbers() {
     }
 }
 
-/// Item 7: docs/fmu.md lists every item of every enumeration the model descriptions declare
+/// docs/fmu.md lists every item of every enumeration the model descriptions declare
 /// (name and code in the parameter table, `items 1..N` and `max="N"` in the ranges table).
 #[test]
 fn docs_list_every_enumeration_item_of_the_model_description() {

@@ -16,6 +16,7 @@
 //! - `[experiment]` step_size 0 and 1e-300, stop_time 1e300, start_time -inf: refused by the
 //!   scene validation naming the key and its range.
 
+mod common;
 #[allow(dead_code)]
 mod fuzz;
 
@@ -39,6 +40,7 @@ use flexrod::hash::fnv1a_64;
 use flexrod::scene::SolverMethod;
 use flexrod::{CrankInput, Scene, Simulation};
 
+use common::runs::{automotive_with, start_at};
 use fuzz::fmu::{null_state, Fmu, Vars, ERROR, OK};
 
 const CHILD: &str = "FLEXROD_HOSTILE_CHILD";
@@ -60,17 +62,7 @@ fn in_child(test: &str, case: &str, limit: Duration) {
         .stderr(Stdio::piped())
         .spawn()
         .expect("the child starts");
-    let status = loop {
-        if let Some(status) = child.try_wait().expect("the child's status") {
-            break status;
-        }
-        if t0.elapsed() > limit {
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!("{case}: the child ran past {limit:?}");
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    };
+    let status = common::child::wait_within(&mut child, limit, case);
     let output = child.wait_with_output().expect("the child's output");
     let took = t0.elapsed();
     println!(
@@ -582,36 +574,6 @@ fn the_error_estimate_is_finite_for_extreme_shear_parameters() {
     }
 }
 
-/// The automotive scene with `elements`, `reference` and Young's modulus (shear modulus
-/// `E / 2.6`) changed, each in its declared range.
-fn automotive(elements: usize, reference: &str, youngs_modulus: f64) -> Scene {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/automotive_rod.toml");
-    let text = std::fs::read_to_string(&path).unwrap().replace(
-        "reference = \"simply_supported\"",
-        &format!("reference = \"{reference}\""),
-    );
-    let mut s = Scene::from_toml_str(&text, "automotive").unwrap();
-    s.rod.elements = elements;
-    s.rod.youngs_modulus = youngs_modulus;
-    s.rod.shear_modulus = Some(youngs_modulus / 2.6);
-    s
-}
-
-/// Start `sim` at constant crank speed `speed`, rad/s, from angle 0.
-fn start_at(sim: &mut Simulation, speed: f64) {
-    sim.start(
-        0.0,
-        CrankInput {
-            angle: 0.0,
-            speed,
-            acceleration: 0.0,
-            jerk: 0.0,
-        },
-        0.0,
-    )
-    .unwrap();
-}
-
 /// A soft rod puts every mode into the automotive scene's 6 kHz band: 52 or 128 elements,
 /// `mean_axis`, E = 7.95e6 Pa (all in range) retain about a hundred modes, half of them
 /// axial, whose coupling (`na^2 n^2` terms per evaluation) made one 1e-4 s step take minutes.
@@ -621,7 +583,7 @@ fn a_soft_rod_with_every_mode_in_its_band_is_refused_before_it_is_built() {
     if is_child("soft-band") {
         for elements in [52, 128] {
             let t0 = Instant::now();
-            let e = Simulation::new(&automotive(elements, "mean_axis", 7.95e6))
+            let e = Simulation::new(&automotive_with(7.95e6, elements, "mean_axis"))
                 .err()
                 .unwrap_or_else(|| panic!("{elements} elements: built"));
             let took = t0.elapsed().as_secs_f64();
@@ -649,7 +611,7 @@ fn a_soft_rod_with_every_mode_in_its_band_is_refused_before_it_is_built() {
 fn a_soft_rod_at_a_tight_tolerance_ends_its_step_within_the_budget() {
     use flexrod::mechanism::stepping::{evaluations_allowed, WORK_BUDGET};
     if is_child("soft-tight") {
-        let mut scene = automotive(8, "simply_supported", 1e5);
+        let mut scene = automotive_with(1e5, 8, "simply_supported");
         scene.solver.tolerance = 1.4e-6;
         let mut sim = match Simulation::new(&scene) {
             Ok(sim) => sim,

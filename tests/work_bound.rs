@@ -11,25 +11,12 @@ mod common;
 
 use std::time::Instant;
 
+use common::runs::{automotive_with, start_at};
 use flexrod::beam::section_table::MAX_STATIONS;
 use flexrod::beam::SectionStation;
 use flexrod::mechanism::stepping::evaluations_allowed;
 use flexrod::scene::{RodModelKind, SolverMethod};
-use flexrod::{CrankInput, ModelError, Scene, Simulation};
-
-fn start(sim: &mut Simulation) {
-    sim.start(
-        0.0,
-        CrankInput {
-            angle: 0.0,
-            speed: 150.0,
-            acceleration: 0.0,
-            jerk: 0.0,
-        },
-        0.0,
-    )
-    .expect("starts");
-}
+use flexrod::{ModelError, Scene, Simulation};
 
 /// The largest FFR rod: 128 elements, every mode retained, soft and heavy (many internal steps).
 fn largest_ffr() -> Scene {
@@ -80,22 +67,6 @@ fn one_step(sim: &mut Simulation, h: f64) -> (f64, Result<(), ModelError>) {
     (t0.elapsed().as_secs_f64(), r)
 }
 
-/// The automotive scene with Young's modulus (shear modulus `E / 2.6`), element count and
-/// reference conditions changed: soft rods put many modes, axial ones among them, into its
-/// 6 kHz mode band.
-fn automotive(youngs_modulus: f64, elements: usize, reference: &str) -> Scene {
-    let path = common::fragments::repository().join("scenes/automotive_rod.toml");
-    let text = std::fs::read_to_string(path).unwrap().replace(
-        "reference = \"simply_supported\"",
-        &format!("reference = \"{reference}\""),
-    );
-    let mut s = Scene::from_toml_str(&text, "automotive").unwrap();
-    s.rod.youngs_modulus = youngs_modulus;
-    s.rod.shear_modulus = Some(youngs_modulus / 2.6);
-    s.rod.elements = elements;
-    s
-}
-
 /// One row of the worst-case table: build and start `scene`, then one communication step of
 /// `h`; (row, initialization s, step s).
 fn measure(label: &str, scene: &Scene, h: f64, speed: f64) -> (String, f64, f64) {
@@ -117,17 +88,7 @@ fn measure(label: &str, scene: &Scene, h: f64, speed: f64) -> (String, f64, f64)
             );
         }
     };
-    sim.start(
-        0.0,
-        CrankInput {
-            angle: 0.0,
-            speed,
-            acceleration: 0.0,
-            jerk: 0.0,
-        },
-        0.0,
-    )
-    .expect("starts");
+    start_at(&mut sim, speed);
     let init = t0.elapsed().as_secs_f64();
     let n = sim.mechanism().work_coordinates();
     let cost = sim.mechanism().evaluation_cost();
@@ -167,7 +128,7 @@ fn worst_case_time_per_call() {
     soft_segments.rod.youngs_modulus = 1e5;
     soft_segments.rod.density = 1e5;
     soft_segments.rod.deflection_policy = flexrod::scene::DeflectionPolicy::Warn;
-    let mut soft_tight = automotive(1e5, 8, "simply_supported");
+    let mut soft_tight = automotive_with(1e5, 8, "simply_supported");
     soft_tight.solver.tolerance = 1.4e-6;
     let cases = [
         ("default scene", Scene::benchmark(), 0.5, 150.0),
@@ -183,7 +144,7 @@ fn worst_case_time_per_call() {
         ),
         (
             "automotive, E = 2e8 Pa, 24 elements (43 modes in the band, 11 axial)",
-            automotive(2e8, 24, "simply_supported"),
+            automotive_with(2e8, 24, "simply_supported"),
             1e-2,
             628.3,
         ),
@@ -195,13 +156,13 @@ fn worst_case_time_per_call() {
         ),
         (
             "automotive, E = 7.95e6 Pa, 52 elements, mean_axis",
-            automotive(7.95e6, 52, "mean_axis"),
+            automotive_with(7.95e6, 52, "mean_axis"),
             1e-4,
             628.3,
         ),
         (
             "automotive, E = 7.95e6 Pa, 128 elements, mean_axis",
-            automotive(7.95e6, 128, "mean_axis"),
+            automotive_with(7.95e6, 128, "mean_axis"),
             1e-4,
             628.3,
         ),
@@ -242,7 +203,7 @@ fn the_work_budget_refuses_a_long_step_of_a_large_model_with_the_state_kept() {
     scene.rod.elements = 48;
     scene.rod.modes = 3 * 48;
     let mut sim = Simulation::new(&scene).unwrap();
-    start(&mut sim);
+    start_at(&mut sim, 150.0);
     let n = sim.state().dae.q.len();
     let t0 = Instant::now();
     let e = sim.advance(1.0).expect_err("over the budget");
@@ -271,7 +232,7 @@ fn the_work_budget_counts_the_chain_behind_its_modes() {
     scene.slider.mass = 0.1;
     scene.solver.tolerance = 1e-8;
     let mut sim = Simulation::new(&scene).unwrap();
-    start(&mut sim);
+    start_at(&mut sim, 150.0);
     let n = sim.mechanism().work_coordinates();
     assert!(n > 4 * sim.state().dae.q.len(), "{n}");
     let t0 = Instant::now();

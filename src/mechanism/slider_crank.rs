@@ -45,6 +45,8 @@ pub struct Mechanism {
     /// When the communication step in progress must end at the latest
     /// ([`super::stepping::WALL_GUARD_SECONDS`] after it started).
     pub(super) call_deadline: std::time::Instant,
+    /// Work units of one evaluation, for the work budget ([`evaluation_cost`]), once.
+    pub(super) evaluation_cost: f64,
 }
 
 /// What restores the state's held step ([`StepAhead`]) when a communication step fails: most
@@ -100,16 +102,19 @@ pub(super) fn dae_context<'a>(
     }
 }
 
-/// Refuse a rod one evaluation of which costs more than a communication step can afford
-/// [`crate::rod::cost::MIN_EVALUATIONS_PER_CALL`] times within the work budget of one call
-/// (`stepping::WORK_BUDGET`): every call would be refused or nearly so.
-fn check_evaluation_cost(rod: &dyn RodBody) -> Result<(), ModelError> {
+/// The work units of one evaluation of `rod` with the slider ([`crate::rod::cost`]): the dense
+/// terms of its [`RodBody::work_coordinates`] and the slider, and what the rod adds
+/// ([`RodBody::extra_evaluation_cost`]). A rod one evaluation of which costs more than a
+/// communication step can afford [`crate::rod::cost::MIN_EVALUATIONS_PER_CALL`] times within
+/// the work budget of one call (`stepping::WORK_BUDGET`) is refused: every call would be
+/// refused or nearly so.
+fn evaluation_cost(rod: &dyn RodBody) -> Result<f64, ModelError> {
     use crate::rod::cost::{dense_evaluation, MIN_EVALUATIONS_PER_CALL};
     let n = rod.work_coordinates() + 1;
     let cost = dense_evaluation(n) + rod.extra_evaluation_cost();
     let allowed = super::stepping::WORK_BUDGET / MIN_EVALUATIONS_PER_CALL;
     if cost <= allowed {
-        return Ok(());
+        return Ok(cost);
     }
     Err(ModelError::TooCostly {
         message: format!(
@@ -129,7 +134,7 @@ impl Mechanism {
             ..spec.clone()
         };
         let rod = crate::rod::build(&spec.rod, spec.slider.mass)?;
-        check_evaluation_cost(rod.as_ref())?;
+        let evaluation_cost = evaluation_cost(rod.as_ref())?;
         let n = rod.n_coordinates() + 1;
         let probe_pins = Cell::default();
         let probe = SliderCrankDae {
@@ -186,6 +191,7 @@ impl Mechanism {
                 .map(GasForce::new)
                 .transpose()?,
             call_deadline: std::time::Instant::now(),
+            evaluation_cost,
         })
     }
 

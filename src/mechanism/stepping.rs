@@ -554,16 +554,15 @@ impl Mechanism {
     /// Whether the communication step in progress is over its work budget
     /// ([`over_work_budget`]) or past its wall-time guard ([`WALL_GUARD_SECONDS`]).
     fn over_budget(&self, state: &MechanismState, entry: &StepStats) -> bool {
-        over_work_budget(state, entry, self.evaluation_cost())
+        over_work_budget(state, entry, self.evaluation_cost)
             || std::time::Instant::now() > self.call_deadline
     }
 
     /// Work units of one evaluation ([`crate::rod::cost`]): the dense terms of
     /// [`Self::work_coordinates`] and what the rod adds
-    /// ([`crate::rod::RodBody::extra_evaluation_cost`]).
+    /// ([`crate::rod::RodBody::extra_evaluation_cost`]), computed when the mechanism is built.
     pub fn evaluation_cost(&self) -> f64 {
-        crate::rod::cost::dense_evaluation(self.work_coordinates())
-            + self.rod.extra_evaluation_cost()
+        self.evaluation_cost
     }
 }
 

@@ -7,11 +7,13 @@
 //!   CDI benchmark note;
 //! - [`fragments`]: the generated-fragment convention (`docs/generated/<id>.md` embedded in
 //!   README.md and docs/ between markers) and [`check_generated`];
+//! - [`child`]: child processes with a time limit;
 //! - [`generated`]: tables assembled from parts measured by several tests, number formats.
 
 // Not every test file uses every helper.
 #![allow(dead_code)]
 
+pub mod child;
 pub mod exudyn;
 pub mod fragments;
 pub mod generated;

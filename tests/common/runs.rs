@@ -241,3 +241,34 @@ pub fn peak_pin_b_force(record: &Record) -> f64 {
         .map(|o| o.pin_b_force[0].hypot(o.pin_b_force[1]))
         .fold(0.0, f64::max)
 }
+
+/// Start `sim` at constant crank speed `speed`, rad/s, from angle 0 at t = 0.
+pub fn start_at(sim: &mut Simulation, speed: f64) {
+    sim.start(
+        0.0,
+        CrankInput {
+            angle: 0.0,
+            speed,
+            acceleration: 0.0,
+            jerk: 0.0,
+        },
+        0.0,
+    )
+    .expect("starts");
+}
+
+/// The automotive scene with Young's modulus (shear modulus `E / 2.6`), element count and
+/// reference conditions changed, each within its declared range: a soft rod puts many modes,
+/// axial ones among them, into its 6 kHz mode band.
+pub fn automotive_with(youngs_modulus: f64, elements: usize, reference: &str) -> Scene {
+    let path = super::fragments::repository().join("scenes/automotive_rod.toml");
+    let text = std::fs::read_to_string(path).unwrap().replace(
+        "reference = \"simply_supported\"",
+        &format!("reference = \"{reference}\""),
+    );
+    let mut s = Scene::from_toml_str(&text, "automotive").unwrap();
+    s.rod.youngs_modulus = youngs_modulus;
+    s.rod.shear_modulus = Some(youngs_modulus / 2.6);
+    s.rod.elements = elements;
+    s
+}
