@@ -31,6 +31,9 @@
 #![deny(unsafe_code)]
 
 pub mod beam;
+pub mod bytes;
+pub mod cosimulation;
+pub mod crankshaft;
 pub mod drive;
 pub mod error;
 pub mod fmi;

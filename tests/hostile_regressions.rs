@@ -470,7 +470,7 @@ fn experiment_values_past_their_ranges_are_refused() {
 /// refuse later).
 #[test]
 fn declared_ranges_are_what_the_fmu_can_do() {
-    use flexrod::model::{Model, VariableTable};
+    use flexrod::model::{RodModel, VariableTable};
     use flexrod::scene::RodModelKind;
     let automotive = Scene::from_file(Path::new("scenes/automotive_rod.toml")).unwrap();
     let d = ModelDescription::for_scene(&automotive).unwrap();
@@ -490,12 +490,13 @@ fn declared_ranges_are_what_the_fmu_can_do() {
             "{:?}",
             scene.rod.model
         );
-        let mut model = Model::new(scene.clone(), &table);
-        let (_, text) = model.set_integers(&[(v, least - 1)]).unwrap_err();
+        let vr = v.value_reference;
+        let mut model = RodModel::with_table(scene.clone(), table.clone()).unwrap();
+        let (_, text) = model.set_integers(&[(vr, least - 1)]).unwrap_err();
         assert!(text.contains(&format!("{least}..=128")), "{text}");
-        model.set_integers(&[(v, least)]).unwrap();
+        model.set_integers(&[(vr, least)]).unwrap();
         model
-            .ensure_started(0.0, &table)
+            .ensure_started(0.0)
             .unwrap_or_else(|e| panic!("{:?} with {least}: {e}", scene.rod.model));
         println!(
             "{:?}: rod.elements declared min {least}, {} refused at the set call: {text}",

@@ -295,7 +295,8 @@ fn with_guid(bytes: &[u8], guid: &str) -> Vec<u8> {
 /// The offset of the start time (after the header, GUID and three flag bytes).
 fn start_time_at(bytes: &[u8]) -> usize {
     let (at, guid) = guid_at(bytes);
-    at + 4 + guid.len() + 3
+    // After the token: the machine state and the last step status.
+    at + 4 + guid.len() + 2
 }
 
 /// The offset of the core's first cached output (`rod.deflection`): after the core's magic,

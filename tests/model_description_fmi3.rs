@@ -8,8 +8,9 @@
 
 use std::path::Path;
 
-use flexrod::fmi::variables::{Access, Causality, ValueType};
+use flexrod::fmi::variables::{Causality, ValueType};
 use flexrod::fmi::{ModelDescription, Standard};
+use flexrod::model::variables::{Access, VariableTable};
 use flexrod::Scene;
 
 #[test]
@@ -54,7 +55,11 @@ fn fmi3_description_from_the_same_table() {
     assert!(!d3.xml.contains("guid="));
     assert_ne!(d2.guid, d3.guid);
     // Every FMI 2.0 variable but the scalar frequencies is there, same reference and causality.
-    for v in d2.table.variables() {
+    let t2 = VariableTable::for_scene(&scene, Standard::Fmi2.interface()).unwrap();
+    let t3 = VariableTable::for_scene(&scene, Standard::Fmi3.interface()).unwrap();
+    assert_eq!(t2.declarations(), &d2.table);
+    assert_eq!(t3.declarations(), &d3.table);
+    for v in t2.variables() {
         if matches!(v.access, Access::Frequency(_)) {
             assert!(d3.table.by_name(&v.name).is_none(), "{}", v.name);
             continue;
@@ -68,9 +73,9 @@ fn fmi3_description_from_the_same_table() {
         assert_eq!(w.dimension, None, "{}", v.name);
     }
     // The additions.
-    let k = d2.table.frequency_count();
+    let k = t2.frequency_count();
     assert_eq!(k, 6);
-    assert_eq!(d3.table.frequency_count(), k);
+    assert_eq!(t3.frequency_count(), k);
     let freq = d3.table.by_name("rod.frequency").unwrap();
     assert_eq!((freq.value_reference, freq.dimension), (153, Some(k)));
     assert_eq!(freq.causality, Causality::CalculatedParameter);

@@ -291,7 +291,7 @@ fn statics_midpoint_moment_axial_force_and_stress_match_beam_theory() {
 /// 130-133; `rod.mass` (134) is in every FMU.
 #[test]
 fn stress_variables_present_only_when_asked() {
-    use flexrod::fmi::variables::VariableTable;
+    use flexrod::model::variables::VariableTable;
     let names = [
         ("rod.axial_force_mid", 130),
         ("rod.bending_moment_mid", 131),

@@ -24,7 +24,9 @@ mod simulate;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+use flexrod::fmi::registry::ModelKind;
 use flexrod::fmi::{ModelDescription, Standard};
+use flexrod::model::variables::VariableTable;
 use flexrod::Scene;
 
 /// Command-line arguments.
@@ -165,16 +167,33 @@ fn run() -> Result<(), Failure> {
         flexrod::limits::SCENE_FILE_CAP,
         "the scene file",
     )?;
-    let scene = Scene::from_toml_str(&scene_text, &args.scene.display().to_string())
-        .map_err(|e| e.to_string())?;
-    let description = ModelDescription::for_scene(&scene).map_err(|e| {
-        format!(
-            "the scene {} does not give a valid model: {e}",
-            args.scene.display()
-        )
-    })?;
+    let origin = args.scene.display().to_string();
+    // The rod's scene, or `None` for another model ([`ModelKind`]).
+    let scene = match ModelKind::of_scene_text(&scene_text) {
+        ModelKind::Rod => {
+            Some(Scene::from_toml_str(&scene_text, &origin).map_err(|e| e.to_string())?)
+        }
+        ModelKind::Crankshaft => None,
+    };
+    let describe = |standard: Standard| {
+        ModelDescription::for_scene_text(&scene_text, &origin, standard).map_err(|e| {
+            format!(
+                "the scene {origin} does not give a valid {}model: {e}",
+                match standard {
+                    Standard::Fmi2 => "",
+                    Standard::Fmi3 => "FMI 3.0 ",
+                }
+            )
+        })
+    };
+    let description = describe(Standard::Fmi2)?;
 
     if args.simulate {
+        let Some(scene) = &scene else {
+            return Err(Failure::Usage(format!(
+                "--simulate runs the rod's scenes; {origin} describes the crankshaft, whose FMU runs in an importer (e.g. python/examples/engine_loop.py with FMPy)"
+            )));
+        };
         let e = &scene.experiment;
         simulate::check_length(
             e.start_time,
@@ -187,9 +206,8 @@ fn run() -> Result<(), Failure> {
 
     let mut fmu_path = None;
     if args.package {
-        let identifier = flexrod::fmi::description::model_identifier(&scene);
-        package::check_identifier(identifier)?;
-        package::check_experiment(&scene, &args.scene.display().to_string())?;
+        package::check_identifier(&description.info.name)?;
+        package::check_experiment(&description.info.default_experiment, &origin)?;
         package::platform()?;
         let target_dir = package::target_dir()?;
         let library = package::build_library(&target_dir)?;
@@ -197,14 +215,19 @@ fn run() -> Result<(), Failure> {
         for &standard in &args.standards {
             let description = match standard {
                 Standard::Fmi2 => description.clone(),
-                Standard::Fmi3 => ModelDescription::for_scene_fmi3(&scene).map_err(|e| {
-                    format!(
-                        "the scene {} does not give a valid FMI 3.0 model: {e}",
-                        args.scene.display()
-                    )
-                })?,
+                Standard::Fmi3 => describe(Standard::Fmi3)?,
             };
-            let fmu = package::write_fmu(&out_dir, &scene, &scene_text, &description, &library)?;
+            let documentation = match &scene {
+                Some(scene) => docs::index_html(scene, &description),
+                None => docs::model_page(&description),
+            };
+            let fmu = package::write_fmu(
+                &out_dir,
+                &scene_text,
+                &description,
+                &documentation,
+                &library,
+            )?;
             println!(
                 "wrote {} (FMI {}, {} {}, {} variables)",
                 fmu.display(),
@@ -217,17 +240,19 @@ fn run() -> Result<(), Failure> {
         }
     }
 
-    if args.simulate {
+    if let (true, Some(scene)) = (args.simulate, &scene) {
         let options = simulate::Options {
             accel: args.accel,
             steps: args.steps.clone(),
         };
-        let run = simulate::run(&scene, &options)?;
+        let run = simulate::run(scene, &options)?;
         if let Some(csv) = &args.csv {
-            simulate::write_csv(csv, &description.table, &run)?;
+            let table = VariableTable::for_scene(scene, Standard::Fmi2.interface())
+                .map_err(|e| e.to_string())?;
+            simulate::write_csv(csv, &table, &run)?;
             println!("wrote {}", csv.display());
         }
-        simulate::print_summary(&scene, &run, fmu_path.as_deref());
+        simulate::print_summary(scene, &run, fmu_path.as_deref());
     }
     Ok(())
 }

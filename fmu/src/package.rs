@@ -5,10 +5,9 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use flexrod::fmi::description::model_identifier;
+use flexrod::cosimulation::DefaultExperiment;
 use flexrod::fmi::resource::SCENE_FILE;
 use flexrod::fmi::{ModelDescription, Standard};
-use flexrod::Scene;
 use zip::write::SimpleFileOptions;
 use zip::{CompressionMethod, DateTime, ZipWriter};
 
@@ -34,8 +33,7 @@ const GRID_TOLERANCE: f64 = 1e-9;
 /// step_size`, n >= 1, within 1e-9 relative. Otherwise a fixed-step importer that passes the
 /// stop time to `fmi2SetupExperiment` would have to step past it on its last step (the FMU
 /// refuses: it never integrates past stopTime), and fmusim refuses to start.
-pub fn check_experiment(scene: &Scene, origin: &str) -> Result<(), String> {
-    let e = &scene.experiment;
+pub fn check_experiment(e: &DefaultExperiment, origin: &str) -> Result<(), String> {
     let (start, stop, step) = (e.start_time, e.stop_time, e.step_size);
     let duration = stop - start;
     let valid = start.is_finite() && stop.is_finite() && step.is_finite();
@@ -127,12 +125,12 @@ pub const FMI3_PLATFORM: &str = "x86_64-linux";
 /// (FMI 3.0), from the same library (it exports the `fmi2*` and the `fmi3*` functions).
 pub fn write_fmu(
     out_dir: &Path,
-    scene: &Scene,
     scene_text: &str,
     description: &ModelDescription,
+    documentation: &str,
     library: &Path,
 ) -> Result<PathBuf, String> {
-    let identifier = model_identifier(scene);
+    let identifier = description.info.name.as_str();
     let (platform, suffix) = match description.standard() {
         Standard::Fmi2 => (platform()?.0, ""),
         Standard::Fmi3 => {
@@ -147,7 +145,6 @@ pub fn write_fmu(
     let path = out_dir.join(format!("{identifier}{suffix}.fmu"));
     let file = File::create(&path).map_err(|e| format!("cannot create {}: {e}", path.display()))?;
 
-    let documentation = crate::docs::index_html(scene, description);
     let entries: [(String, &[u8], u32); 4] = [
         (
             "modelDescription.xml".into(),
@@ -192,21 +189,22 @@ pub fn write_fmu(
 mod tests {
     use super::*;
 
-    fn scene_with(start: f64, stop: f64, step: f64) -> Scene {
-        let mut scene = Scene::benchmark();
-        scene.experiment.start_time = start;
-        scene.experiment.stop_time = stop;
-        scene.experiment.step_size = step;
-        scene
+    fn experiment_of(start: f64, stop: f64, step: f64) -> DefaultExperiment {
+        DefaultExperiment {
+            start_time: start,
+            stop_time: stop,
+            step_size: step,
+        }
     }
 
     #[test]
     fn experiments_must_be_whole_numbers_of_steps() {
-        assert!(check_experiment(&scene_with(0.0, 0.0838, 1e-4), "s").is_ok());
-        assert!(check_experiment(&scene_with(0.1, 0.3, 0.1), "s").is_ok());
-        assert!(check_experiment(&scene_with(0.0, 1.0, 1.0), "s").is_ok());
+        assert!(check_experiment(&experiment_of(0.0, 0.0838, 1e-4), "s").is_ok());
+        assert!(check_experiment(&experiment_of(0.1, 0.3, 0.1), "s").is_ok());
+        assert!(check_experiment(&experiment_of(0.0, 1.0, 1.0), "s").is_ok());
         let two_revolutions = 4.0 * std::f64::consts::PI / 150.0;
-        let e = check_experiment(&scene_with(0.0, two_revolutions, 1e-4), "the scene").unwrap_err();
+        let e =
+            check_experiment(&experiment_of(0.0, two_revolutions, 1e-4), "the scene").unwrap_err();
         assert!(e.starts_with("the scene: [experiment]"), "{e}");
         assert!(
             e.contains("not a whole number of step_size = 0.0001 s"),
@@ -219,7 +217,7 @@ mod tests {
             (0.0, 1.0, 2.0),
             (0.0, f64::NAN, 1e-4),
         ] {
-            assert!(check_experiment(&scene_with(start, stop, step), "s").is_err());
+            assert!(check_experiment(&experiment_of(start, stop, step), "s").is_err());
         }
     }
 
@@ -232,8 +230,10 @@ mod tests {
             if path.extension().and_then(|e| e.to_str()) != Some("toml") {
                 continue;
             }
-            let scene = Scene::from_file(&path).unwrap();
-            check_experiment(&scene, &path.display().to_string()).unwrap();
+            let text = std::fs::read_to_string(&path).unwrap();
+            let origin = path.display().to_string();
+            let d = ModelDescription::for_scene_text(&text, &origin, Standard::Fmi2).unwrap();
+            check_experiment(&d.info.default_experiment, &origin).unwrap();
             n += 1;
         }
         assert!(n >= 6, "{n} scenes in {}", dir.display());

@@ -12,8 +12,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use flexrod::drive::{self, CrankDrive};
-use flexrod::fmi::variables::OutputGetter;
-use flexrod::fmi::VariableTable;
+use flexrod::model::variables::{OutputGetter, VariableTable};
 use flexrod::text::number;
 use flexrod::{Outputs, Scene, Simulation, StepStats};
 

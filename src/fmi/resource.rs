@@ -1,4 +1,5 @@
-//! Finding the scene an FMU was exported for: `resources/scene.toml` under the FMI 2.0
+//! Finding the model an FMU was exported for: its scene `resources/scene.toml` (which model
+//! it describes: [`super::registry`]) under the FMI 2.0
 //! `fmuResourceLocation` (a URI, percent-decoded) or in the FMI 3.0 `resourcePath` (a plain
 //! file-system path, taken as it is: `%` is a character of the folder's name), checked against
 //! the GUID or `instantiationToken` the importer passes.
@@ -6,15 +7,16 @@
 use std::path::PathBuf;
 
 use super::description::ModelDescription;
+use super::registry;
 use super::standard::Standard;
-use crate::model::Scene;
+use crate::cosimulation::CoSimulationModel;
 
 /// File name of the scene inside `resources/`.
 pub const SCENE_FILE: &str = "scene.toml";
 
-/// The scene, its description and where it came from.
+/// The model, its description and where it came from.
 pub struct LoadedModel {
-    pub scene: Scene,
+    pub model: Box<dyn CoSimulationModel>,
     pub description: ModelDescription,
     /// "resources/scene.toml at <path>" or "the compiled-in default scene".
     pub origin: String,
@@ -93,12 +95,13 @@ pub fn load_model_for(
     match from_resources {
         Ok(model) => check_guid(model, guid),
         Err(reason) => {
-            let scene = Scene::benchmark();
-            let description = ModelDescription::for_standard(&scene, standard)
+            let model = registry::default_model(standard)
+                .map_err(|e| format!("{reason}; the compiled-in default scene fails: {e}"))?;
+            let description = ModelDescription::of(&*model, standard)
                 .map_err(|e| format!("{reason}; the compiled-in default scene fails: {e}"))?;
             if description.guid == guid {
                 Ok(LoadedModel {
-                    scene,
+                    model,
                     description,
                     origin: format!("the compiled-in default scene ({reason})"),
                 })
@@ -136,11 +139,11 @@ fn load_from_resources(uri: &str, standard: Standard) -> Result<LoadedModel, Str
     let path = resource_folder(uri, standard)?.join(SCENE_FILE);
     let text = crate::limits::read_text(&path, crate::limits::SCENE_FILE_CAP, "the scene file")?;
     let origin = path.display().to_string();
-    let scene = Scene::from_toml_str(&text, &origin).map_err(|e| e.to_string())?;
-    let description = ModelDescription::for_standard(&scene, standard)
+    let model = registry::model_from_scene_text(&text, &origin, standard)?;
+    let description = ModelDescription::of(&*model, standard)
         .map_err(|e| format!("the scene {origin} cannot be built: {e}"))?;
     Ok(LoadedModel {
-        scene,
+        model,
         description,
         origin,
     })

@@ -6,7 +6,7 @@
 //! interface offers (arrays, input derivatives, the independent variable `time`) and the XML
 //! written.
 
-use crate::model::Interface;
+use crate::cosimulation::Interface;
 
 /// The FMI standard of an FMU, a description or an instance.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -2,9 +2,9 @@
 //! model's types, and what only the standards have: value references and the type families of
 //! their get/set functions.
 
-pub use crate::model::variables::{
-    Access, Causality, EnumerationType, Initial, InitialDependencies, OutputGetter, Value,
-    ValueType, Variability, Variable, VariableId, VariableTable, ENUMERATION_TYPES,
+pub use crate::cosimulation::{
+    Causality, Declaration, Declarations, EnumerationType, Initial, InitialDependencies, Value,
+    ValueType, Variability, VariableId,
 };
 
 use super::standard::Standard;

@@ -4,7 +4,8 @@
 //! calls); it says nothing of how the interface reports the outcome.
 
 use super::inputs::Inputs;
-use super::variables::{Access, Value, Variable, VariableTable};
+use super::variables::{Access, Interface, Value, Variable, VariableId, VariableTable};
+use crate::cosimulation::{DefaultExperiment, ModelInfo};
 use crate::error::ModelError;
 use crate::scene::Scene;
 use crate::simulation::{Simulation, Snapshot};
@@ -18,9 +19,12 @@ pub enum StepError {
     Step(ModelError),
 }
 
-/// One model instance.
-pub struct Model {
-    /// The scene the model was exported for: the start values, restored by [`Model::reset`].
+/// One instance of the rod's model.
+pub struct RodModel {
+    /// Its variables, declared for the interface it was built for.
+    table: VariableTable,
+    info: ModelInfo,
+    /// The scene the model was exported for: the start values, restored by [`RodModel::reset`].
     exported: Scene,
     /// The instance's own copy, with the parameters the importer set.
     scene: Scene,
@@ -35,7 +39,7 @@ pub struct Model {
     design_speed_filled: Option<f64>,
 }
 
-/// A saved model: everything [`Model::restore`] needs to continue bit for bit.
+/// A saved model: everything [`RodModel::restore`] needs to continue bit for bit.
 #[derive(Clone, Debug)]
 pub struct SavedModel {
     scene: Scene,
@@ -72,7 +76,7 @@ impl SavedModel {
 
     /// A saved model without a simulation from its parts (as [`SavedModel::started`],
     /// [`SavedModel::inputs_bytes`], [`SavedModel::parameters_text`] give them); the
-    /// simulation's bytes are read by [`Model::saved_from_bytes`].
+    /// simulation's bytes are read by [`RodModel::saved_from_bytes`].
     pub fn from_parts(
         started: bool,
         inputs: &[u8; Inputs::BYTES],
@@ -90,31 +94,60 @@ impl SavedModel {
     }
 }
 
-impl Model {
-    /// A model of `scene`, inputs at the start values of `table`, not built yet.
-    pub fn new(scene: Scene, table: &VariableTable) -> Model {
-        Model {
+impl RodModel {
+    /// A model of `scene` with its variables declared for `interface` (the model is built
+    /// once to count the natural frequencies), not built yet.
+    pub fn new(scene: Scene, interface: Interface) -> Result<RodModel, ModelError> {
+        let table = VariableTable::for_scene(&scene, interface)?;
+        RodModel::with_table(scene, table)
+    }
+
+    /// A model of `scene` with the variables of `table`, inputs at its start values, not
+    /// built yet. The scene's texts must be ones descriptions carry.
+    pub fn with_table(scene: Scene, table: VariableTable) -> Result<RodModel, ModelError> {
+        // The scene's texts go into attributes: only characters XML 1.0 carries.
+        scene.validate_texts()?;
+        let e = &scene.experiment;
+        let info = ModelInfo {
+            name: scene.name.clone(),
+            description: scene.description.clone(),
+            default_experiment: DefaultExperiment {
+                start_time: e.start_time,
+                stop_time: e.stop_time,
+                step_size: e.step_size,
+            },
+            units: crate::cosimulation::units::SI_UNITS,
+            enumeration_types: &super::variables::ENUMERATION_TYPES,
+        };
+        Ok(RodModel {
+            inputs: Inputs::from_start_values(&table),
+            table,
+            info,
             exported: scene.clone(),
             scene,
-            inputs: Inputs::from_start_values(table),
             simulation: None,
             started: false,
             design_speed_filled: None,
-        }
+        })
     }
 
-    /// Back to the start values of the exported scene and of `table`, not built.
-    pub fn reset(&mut self, table: &VariableTable) {
+    /// Its variables.
+    pub fn table(&self) -> &VariableTable {
+        &self.table
+    }
+
+    /// The model's info (names, default experiment, units, enumeration types).
+    pub fn model_info(&self) -> &ModelInfo {
+        &self.info
+    }
+
+    /// Back to the start values of the exported scene and of the table, not built.
+    pub fn reset(&mut self) {
         self.scene = self.exported.clone();
-        self.inputs = Inputs::from_start_values(table);
+        self.inputs = Inputs::from_start_values(&self.table);
         self.simulation = None;
         self.started = false;
         self.design_speed_filled = None;
-    }
-
-    /// The start time of the scene's default experiment, s.
-    pub fn default_start_time(&self) -> f64 {
-        self.scene.experiment.start_time
     }
 
     /// What sets the accuracy instead of an importer's tolerance, in words.
@@ -160,7 +193,7 @@ impl Model {
 
     /// Build the simulation for the current parameters if needed, with at least the
     /// frequencies `table` declares, and start it with the current inputs at `t0`.
-    pub fn ensure_started(&mut self, t0: f64, table: &VariableTable) -> Result<(), ModelError> {
+    pub fn ensure_started(&mut self, t0: f64) -> Result<(), ModelError> {
         if self.simulation.is_none() {
             check_geometry(&self.scene)?;
             // `crank.design_speed = 0`: the crank speed at initialization, written into the
@@ -172,7 +205,7 @@ impl Model {
             }
             let simulation = Simulation::new(&self.scene)?;
             let available = simulation.frequencies_hz().len();
-            let declared = table.frequency_count();
+            let declared = self.table.frequency_count();
             if available < declared {
                 return Err(ModelError::State {
                     message: format!(
@@ -311,8 +344,9 @@ impl Model {
         Ok(())
     }
 
-    /// Set the Real input or parameter `v`; true if a parameter changed.
-    pub fn set_real(&mut self, v: &Variable, x: f64) -> Result<bool, String> {
+    /// Set the Real input or parameter `vr`; true if a parameter changed.
+    pub fn set_real(&mut self, vr: VariableId, x: f64) -> Result<bool, String> {
+        let v = self.table.get(vr).ok_or_else(|| unknown(vr))?;
         match v.access {
             Access::Input(slot) => {
                 self.inputs.set(slot, x);
@@ -328,9 +362,10 @@ impl Model {
 
     /// Set Integer parameters, all or none: on error, the position of the refused one and
     /// the allowed values.
-    pub fn set_integers(&mut self, items: &[(&Variable, i32)]) -> Result<(), (usize, String)> {
+    pub fn set_integers(&mut self, items: &[(VariableId, i32)]) -> Result<(), (usize, String)> {
         let mut scene = self.scene.clone();
-        for (k, &(v, n)) in items.iter().enumerate() {
+        for (k, &(vr, n)) in items.iter().enumerate() {
+            let v = self.table.get(vr).ok_or_else(|| (k, unknown(vr)))?;
             // The declared range holds at the set call. Where it is narrower than the setter's
             // own (`rod.elements`: the least count that leaves the declared frequencies for the
             // exported model), its text is the message; elsewhere the setter's, which names the
@@ -365,9 +400,13 @@ impl Model {
     /// Set input derivatives ([`Inputs::set_derivatives`]); returns the warnings.
     pub fn set_input_derivatives(
         &mut self,
-        items: &[(&Variable, i32, f64)],
+        items: &[(VariableId, i32, f64)],
     ) -> Result<Vec<String>, String> {
-        self.inputs.set_derivatives(items)
+        let mut resolved = Vec::with_capacity(items.len());
+        for &(vr, order, x) in items {
+            resolved.push((self.table.get(vr).ok_or_else(|| unknown(vr))?, order, x));
+        }
+        self.inputs.set_derivatives(&resolved)
     }
 
     /// Refuse, before anything changes, a communication step `h` that needs too much work.
@@ -470,12 +509,8 @@ impl Model {
 
     /// Refuse a saved model whose scene is not this model's exported scene with only the
     /// parameters of `table` changed ([`super::binding::check_same_model`]).
-    pub fn check_same_model(
-        &self,
-        saved: &SavedModel,
-        table: &VariableTable,
-    ) -> Result<(), String> {
-        super::binding::check_same_model(&self.exported, &saved.scene, table)
+    pub fn check_same_model(&self, saved: &SavedModel) -> Result<(), String> {
+        super::binding::check_same_model(&self.exported, &saved.scene, &self.table)
     }
 
     /// `saved` (from [`SavedModel::from_parts`]) with the simulation read from the core's
@@ -518,6 +553,11 @@ impl Model {
     }
 }
 
+/// The message for an identifier the table does not have.
+fn unknown(vr: VariableId) -> String {
+    format!("unknown value reference {vr}")
+}
+
 /// Integer parameters whose declared range is narrower than what their setter takes.
 const NARROWER_THAN_THE_SETTER: [&str; 1] = ["rod.elements"];
 
@@ -554,8 +594,8 @@ mod tests {
         let mut scene = Scene::benchmark();
         scene.crank.length = scene.rod.length;
         let table = VariableTable::new(&scene, 0);
-        let mut model = Model::new(scene, &table);
-        let e = model.ensure_started(0.0, &table).unwrap_err().to_string();
+        let mut model = RodModel::with_table(scene, table).unwrap();
+        let e = model.ensure_started(0.0).unwrap_err().to_string();
         assert!(
             e.contains("crank.length = 0.3048 m") && e.contains("0 < crank.length < rod.length"),
             "{e}"

@@ -18,11 +18,12 @@
 //! interface turns them into statuses is its own concern.
 
 pub mod binding;
+mod cosimulation;
 pub mod inputs;
 pub mod instance;
+mod saved_state;
 pub mod variables;
 
-pub use crate::scene::{check_experiment_times, Scene, EXPERIMENT_TIME_LIMIT};
 pub use inputs::{AccelerationSource, Inputs};
-pub use instance::{Model, SavedModel, StepError};
+pub use instance::{RodModel, SavedModel, StepError};
 pub use variables::{Interface, VariableId, VariableTable};

@@ -6,12 +6,13 @@ use std::io;
 use quick_xml::events::{BytesDecl, Event};
 use quick_xml::Writer;
 
-use super::{model_identifier, CAPABILITIES};
-use crate::fmi::logging::LOG_CATEGORIES;
-use crate::fmi::variables::{
-    Causality, InitialDependencies, Value, ValueType, VariableTable, ENUMERATION_TYPES,
+use super::CAPABILITIES;
+use crate::cosimulation::{
+    Causality, Declarations, DefaultExperiment, EnumerationType, InitialDependencies, ModelInfo,
+    Value, ValueType,
 };
-use crate::model::Scene;
+use crate::fmi::logging::LOG_CATEGORIES;
+use crate::fmi::standard::Standard;
 
 /// Shortest text that reads back as the same f64. Non-finite values have no xs:double text
 /// that importers accept (and are never valid start values or bounds here): an error.
@@ -33,7 +34,7 @@ pub(super) fn value_text(value: Value) -> io::Result<String> {
     }
 }
 
-pub(super) fn render(scene: &Scene, table: &VariableTable, guid: &str) -> io::Result<String> {
+pub(super) fn render(info: &ModelInfo, table: &Declarations, guid: &str) -> io::Result<String> {
     let mut w = Writer::new_with_indent(Vec::new(), b' ', 2);
     w.write_event(Event::Decl(BytesDecl::new("1.0", Some("UTF-8"), None)))?;
     let n_event_indicators = "0";
@@ -41,20 +42,20 @@ pub(super) fn render(scene: &Scene, table: &VariableTable, guid: &str) -> io::Re
     w.create_element("fmiModelDescription")
         .with_attributes([
             ("fmiVersion", "2.0"),
-            ("modelName", scene.name.as_str()),
+            ("modelName", info.name.as_str()),
             ("guid", guid),
-            ("description", scene.description.as_str()),
+            ("description", info.description.as_str()),
             ("version", env!("CARGO_PKG_VERSION")),
             ("generationTool", generation_tool),
             ("variableNamingConvention", "structured"),
             ("numberOfEventIndicators", n_event_indicators),
         ])
         .write_inner_content(|w| {
-            write_co_simulation(w, scene)?;
-            super::units::write_units(w, table)?;
-            write_type_definitions(w)?;
+            write_co_simulation(w, info)?;
+            super::units::write_units(w, info.units, table)?;
+            write_type_definitions(w, info.enumeration_types, Standard::Fmi2)?;
             write_log_categories(w)?;
-            write_default_experiment(w, scene)?;
+            write_default_experiment(w, &info.default_experiment)?;
             write_model_variables(w, table)?;
             write_model_structure(w, table)
         })?;
@@ -69,8 +70,8 @@ pub(super) fn named_error(name: &str, attribute: &str, e: io::Error) -> io::Erro
     io::Error::new(e.kind(), format!("{name}: {attribute}: {e}"))
 }
 
-fn write_co_simulation(w: &mut W, scene: &Scene) -> io::Result<()> {
-    let mut attributes = vec![("modelIdentifier", model_identifier(scene))];
+fn write_co_simulation(w: &mut W, info: &ModelInfo) -> io::Result<()> {
+    let mut attributes = vec![("modelIdentifier", info.name.as_str())];
     attributes.extend(CAPABILITIES);
     w.create_element("CoSimulation")
         .with_attributes(attributes)
@@ -78,31 +79,54 @@ fn write_co_simulation(w: &mut W, scene: &Scene) -> io::Result<()> {
     Ok(())
 }
 
-fn write_type_definitions(w: &mut W) -> io::Result<()> {
+/// `TypeDefinitions`: the model's enumeration types (none: no element). FMI 2.0 writes each
+/// as a `SimpleType` with an `Enumeration`, FMI 3.0 as an `EnumerationType`; the items are
+/// numbered 1, 2, ... in order.
+pub(super) fn write_type_definitions(
+    w: &mut W,
+    types: &[&EnumerationType],
+    standard: Standard,
+) -> io::Result<()> {
+    if types.is_empty() {
+        return Ok(());
+    }
     w.create_element("TypeDefinitions")
         .write_inner_content(|w| {
-            for ty in ENUMERATION_TYPES {
-                w.create_element("SimpleType")
-                    .with_attributes([("name", ty.name), ("description", ty.description)])
-                    .write_inner_content(|w| {
-                        w.create_element("Enumeration").write_inner_content(|w| {
-                            for (i, item) in ty.items().iter().enumerate() {
-                                let value = (i + 1).to_string();
-                                w.create_element("Item")
-                                    .with_attributes([
-                                        ("name", item.name),
-                                        ("value", value.as_str()),
-                                        ("description", item.description),
-                                    ])
-                                    .write_empty()?;
-                            }
-                            Ok(())
-                        })?;
-                        Ok(())
-                    })?;
+            for ty in types {
+                let attributes = [("name", ty.name), ("description", ty.description)];
+                match standard {
+                    Standard::Fmi2 => {
+                        w.create_element("SimpleType")
+                            .with_attributes(attributes)
+                            .write_inner_content(|w| {
+                                w.create_element("Enumeration")
+                                    .write_inner_content(|w| write_items(w, ty))?;
+                                Ok(())
+                            })?;
+                    }
+                    Standard::Fmi3 => {
+                        w.create_element("EnumerationType")
+                            .with_attributes(attributes)
+                            .write_inner_content(|w| write_items(w, ty))?;
+                    }
+                }
             }
             Ok(())
         })?;
+    Ok(())
+}
+
+fn write_items(w: &mut W, ty: &EnumerationType) -> io::Result<()> {
+    for (i, item) in ty.items().iter().enumerate() {
+        let value = (i + 1).to_string();
+        w.create_element("Item")
+            .with_attributes([
+                ("name", item.name),
+                ("value", value.as_str()),
+                ("description", item.description),
+            ])
+            .write_empty()?;
+    }
     Ok(())
 }
 
@@ -118,8 +142,7 @@ fn write_log_categories(w: &mut W) -> io::Result<()> {
     Ok(())
 }
 
-pub(super) fn write_default_experiment(w: &mut W, scene: &Scene) -> io::Result<()> {
-    let e = &scene.experiment;
+pub(super) fn write_default_experiment(w: &mut W, e: &DefaultExperiment) -> io::Result<()> {
     let (start, stop, step) = (
         real_text(e.start_time)?,
         real_text(e.stop_time)?,
@@ -135,7 +158,7 @@ pub(super) fn write_default_experiment(w: &mut W, scene: &Scene) -> io::Result<(
     Ok(())
 }
 
-fn write_model_variables(w: &mut W, table: &VariableTable) -> io::Result<()> {
+fn write_model_variables(w: &mut W, table: &Declarations) -> io::Result<()> {
     w.create_element("ModelVariables")
         .write_inner_content(|w| {
             for (i, v) in table.variables().iter().enumerate() {
@@ -197,7 +220,7 @@ fn write_model_variables(w: &mut W, table: &VariableTable) -> io::Result<()> {
     Ok(())
 }
 
-fn write_model_structure(w: &mut W, table: &VariableTable) -> io::Result<()> {
+fn write_model_structure(w: &mut W, table: &Declarations) -> io::Result<()> {
     let knowns: Vec<usize> = table
         .variables()
         .iter()

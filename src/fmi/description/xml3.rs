@@ -10,13 +10,12 @@ use std::io;
 use quick_xml::events::{BytesDecl, BytesText, Event};
 use quick_xml::Writer;
 
-use super::model_identifier;
-use super::xml::{named_error, value_text, write_default_experiment, W};
-use crate::fmi::logging::LOG_CATEGORIES;
-use crate::fmi::variables::{
-    Causality, InitialDependencies, Value, ValueType, VariableTable, ENUMERATION_TYPES,
+use super::xml::{named_error, value_text, write_default_experiment, write_type_definitions, W};
+use crate::cosimulation::{
+    Causality, Declarations, InitialDependencies, ModelInfo, Value, ValueType,
 };
-use crate::model::Scene;
+use crate::fmi::logging::LOG_CATEGORIES;
+use crate::fmi::standard::Standard;
 
 /// The attributes of `<CoSimulation>` (besides `modelIdentifier`); only what is implemented
 /// and tested is claimed.
@@ -38,30 +37,30 @@ pub const CAPABILITIES_FMI3: [(&str, &str); 13] = [
     ("hasEventMode", "false"),
 ];
 
-pub(super) fn render(scene: &Scene, table: &VariableTable, token: &str) -> io::Result<String> {
+pub(super) fn render(info: &ModelInfo, table: &Declarations, token: &str) -> io::Result<String> {
     let mut w = Writer::new_with_indent(Vec::new(), b' ', 2);
     w.write_event(Event::Decl(BytesDecl::new("1.0", Some("UTF-8"), None)))?;
     let generation_tool = concat!("flexrod ", env!("CARGO_PKG_VERSION"));
     w.create_element("fmiModelDescription")
         .with_attributes([
             ("fmiVersion", "3.0"),
-            ("modelName", scene.name.as_str()),
+            ("modelName", info.name.as_str()),
             ("instantiationToken", token),
-            ("description", scene.description.as_str()),
+            ("description", info.description.as_str()),
             ("version", env!("CARGO_PKG_VERSION")),
             ("generationTool", generation_tool),
             ("variableNamingConvention", "structured"),
         ])
         .write_inner_content(|w| {
-            let mut attributes = vec![("modelIdentifier", model_identifier(scene))];
+            let mut attributes = vec![("modelIdentifier", info.name.as_str())];
             attributes.extend(CAPABILITIES_FMI3);
             w.create_element("CoSimulation")
                 .with_attributes(attributes)
                 .write_empty()?;
-            super::units::write_units(w, table)?;
-            write_type_definitions(w)?;
+            super::units::write_units(w, info.units, table)?;
+            write_type_definitions(w, info.enumeration_types, Standard::Fmi3)?;
             write_log_categories(w)?;
-            write_default_experiment(w, scene)?;
+            write_default_experiment(w, &info.default_experiment)?;
             write_model_variables(w, table)?;
             write_model_structure(w, table)
         })?;
@@ -84,32 +83,7 @@ fn write_log_categories(w: &mut W) -> io::Result<()> {
     Ok(())
 }
 
-fn write_type_definitions(w: &mut W) -> io::Result<()> {
-    w.create_element("TypeDefinitions")
-        .write_inner_content(|w| {
-            for ty in ENUMERATION_TYPES {
-                w.create_element("EnumerationType")
-                    .with_attributes([("name", ty.name), ("description", ty.description)])
-                    .write_inner_content(|w| {
-                        for (i, item) in ty.items().iter().enumerate() {
-                            let value = (i + 1).to_string();
-                            w.create_element("Item")
-                                .with_attributes([
-                                    ("name", item.name),
-                                    ("value", value.as_str()),
-                                    ("description", item.description),
-                                ])
-                                .write_empty()?;
-                        }
-                        Ok(())
-                    })?;
-            }
-            Ok(())
-        })?;
-    Ok(())
-}
-
-fn write_model_variables(w: &mut W, table: &VariableTable) -> io::Result<()> {
+fn write_model_variables(w: &mut W, table: &Declarations) -> io::Result<()> {
     w.create_element("ModelVariables")
         .write_inner_content(|w| {
             for v in table.variables() {
@@ -173,7 +147,7 @@ fn write_model_variables(w: &mut W, table: &VariableTable) -> io::Result<()> {
     Ok(())
 }
 
-fn write_model_structure(w: &mut W, table: &VariableTable) -> io::Result<()> {
+fn write_model_structure(w: &mut W, table: &Declarations) -> io::Result<()> {
     let knowns: Vec<u32> = table
         .variables()
         .iter()

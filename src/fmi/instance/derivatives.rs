@@ -1,16 +1,15 @@
-//! Derivatives: `fmi2SetRealInputDerivatives` (the crank acceleration and jerk of the input law; what
-//! each derivative means is the model's, see [`crate::model::inputs`]), and the two derivative
-//! functions this FMU does not provide.
+//! Derivatives: `fmi2SetRealInputDerivatives` (what each derivative means is the model's),
+//! and the two derivative functions this FMU does not provide.
 
 use super::Instance;
+use crate::cosimulation::CoSimulationModel;
 use crate::fmi::state_machine::{Call, MachineState};
 use crate::fmi::status::{FmiError, FmiResult, Status};
-use crate::fmi::variables::{Family, ValueReference, Variable};
-use crate::model::Inputs;
+use crate::fmi::variables::{Family, ValueReference};
 
-impl Instance {
-    /// `fmi2SetRealInputDerivatives`: the crank acceleration alpha_k and jerk j_k of the law that starts
-    /// at this communication point ([`crate::model::Inputs::set_derivatives`]). Unknown value
+impl<M: CoSimulationModel + ?Sized> Instance<M> {
+    /// `fmi2SetRealInputDerivatives`: derivatives of inputs at this communication point (the
+    /// rod's model: the crank acceleration and jerk of the law that starts there). Unknown value
     /// references, variables that are not Real, and the model's refusals are errors, and
     /// then nothing is set; the model's warnings are logged.
     pub fn set_real_input_derivatives(
@@ -20,14 +19,16 @@ impl Instance {
         values: &[f64],
     ) -> FmiResult<Status> {
         for ((&vr, &order), &x) in vrs.iter().zip(orders).zip(values) {
-            let v = self.variable(vr, Family::Real)?;
-            Inputs::check_derivative(v, order, x).map_err(FmiError::rejected)?;
+            self.variable(vr, Family::Real)?;
+            self.model
+                .check_input_derivative(vr, order, x)
+                .map_err(FmiError::rejected)?;
         }
-        let items: Vec<(&Variable, i32, f64)> = vrs
+        let items: Vec<(ValueReference, i32, f64)> = vrs
             .iter()
             .zip(orders)
             .zip(values)
-            .map(|((&vr, &order), &x)| (self.table.get(vr).expect("checked above"), order, x))
+            .map(|((&vr, &order), &x)| (vr, order, x))
             .collect();
         let warnings = self
             .model

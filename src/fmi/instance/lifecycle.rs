@@ -4,11 +4,13 @@
 use crate::text::time;
 use std::borrow::Cow;
 
-use super::{model_error, Instance};
+use super::Instance;
+use crate::cosimulation::CoSimulationModel;
 use crate::fmi::experiment::Experiment;
 use crate::fmi::state_machine::{Call, MachineState};
 use crate::fmi::status::{FmiError, FmiResult, Status};
-impl Instance {
+
+impl<M: CoSimulationModel + ?Sized> Instance<M> {
     /// `fmi2SetDebugLogging`.
     pub fn set_debug_logging(&mut self, on: bool, categories: &[Cow<str>]) -> FmiResult<Status> {
         let names: Vec<&str> = categories.iter().map(|c| c.as_ref()).collect();
@@ -54,7 +56,7 @@ impl Instance {
     pub fn exit_initialization_mode(&mut self) -> FmiResult<Status> {
         if let Err(e) = self.ensure_started() {
             // Nothing may look started: outputs read in the Error state fail with this reason.
-            self.model.discard_simulation();
+            self.model.discard_built();
             self.failure = Some(e.message.clone());
             return Err(FmiError::failed(e.message));
         }
@@ -83,9 +85,9 @@ impl Instance {
     /// valid.
     pub fn reset(&mut self) -> FmiResult<Status> {
         self.logger.reset();
-        self.model.reset(&self.table);
+        self.model.reset();
         self.experiment = Experiment {
-            start_time: self.model.default_start_time(),
+            start_time: self.model.info().default_experiment.start_time,
             stop_time: None,
         };
         self.last_step = Status::Ok;
@@ -98,7 +100,7 @@ impl Instance {
     /// current inputs at the start time.
     pub(super) fn ensure_started(&mut self) -> FmiResult<()> {
         self.model
-            .ensure_started(self.experiment.start_time, &self.table)
-            .map_err(|e| FmiError::rejected(model_error(e)))
+            .ensure_started(self.experiment.start_time)
+            .map_err(FmiError::rejected)
     }
 }

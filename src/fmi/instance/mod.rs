@@ -16,9 +16,10 @@
 //! - [`stepping`]: `fmi2DoStep` and the status queries;
 //! - [`states`]: FMU states and their serialization.
 //!
-//! The model behind the instance ([`Model`]: parameters, inputs and their law, the
-//! simulation) is the model's own ([`crate::model`]); this layer adds the state machine, the
-//! experiment, logging, statuses and saved FMU states.
+//! The model behind the instance is any [`CoSimulationModel`]: the instance drives its
+//! hooks and adds the state machine, the experiment, logging, statuses and saved FMU states.
+//! The C functions hold an `Instance<dyn CoSimulationModel>` (the default); which model a
+//! resource folder holds is decided in one place, [`crate::fmi::registry`].
 
 mod derivatives;
 mod lifecycle;
@@ -38,9 +39,7 @@ use super::resource;
 use super::standard::Standard;
 use super::state_machine::{self, Call, MachineState};
 use super::status::{FmiResult, Status};
-use super::variables::VariableTable;
-use crate::error::ModelError;
-use crate::model::{Model, Scene};
+use crate::cosimulation::{CoSimulationModel, Declarations};
 
 /// `fmi2Type` value of Co-Simulation.
 pub const FMI2_CO_SIMULATION: i32 = 1;
@@ -60,15 +59,14 @@ pub struct InstantiateArgs<'a> {
     pub resource_location: Option<&'a str>,
 }
 
-/// One FMU instance.
-pub struct Instance {
+/// One FMU instance of the model `M`.
+pub struct Instance<M: CoSimulationModel + ?Sized = dyn CoSimulationModel> {
     /// FMI 2.0 or FMI 3.0: names in messages and the type families of get/set.
     standard: Standard,
     guid: String,
-    table: VariableTable,
-    /// The model: parameters (the exported scene's start values, restored by `fmi2Reset`),
-    /// inputs and the simulation.
-    model: Model,
+    /// The model: its parameters (the exported start values, restored by `fmi2Reset`), its
+    /// inputs and what it built from them.
+    model: Box<M>,
     state: MachineState,
     logger: Logger,
     experiment: Experiment,
@@ -81,22 +79,14 @@ pub struct Instance {
     serialized: Option<(usize, Vec<u8>)>,
 }
 
-fn model_error(e: ModelError) -> String {
-    e.to_string()
-}
-
 impl Instance {
-    /// `fmi2Instantiate`: load the scene from the resources, check the GUID. Failures are
+    /// `fmi2Instantiate`: load the model from the resources, check the GUID. Failures are
     /// logged and give `None`.
     pub fn instantiate(args: InstantiateArgs<'_>, logger: Logger) -> Option<Instance> {
         let result = guard::catch(AssertUnwindSafe(|| load(&args, &logger)));
         let failure = match result {
-            Ok(Ok(model)) => {
-                return Some(Instance::from_description(
-                    model.scene,
-                    model.description,
-                    logger,
-                ))
+            Ok(Ok(loaded)) => {
+                return Some(Instance::new(loaded.model, &loaded.description, logger))
             }
             Ok(Err(message)) => message,
             Err(panic) => {
@@ -113,22 +103,18 @@ impl Instance {
         );
         None
     }
+}
 
-    /// An instance of `scene` with its description (for tools and tests; no GUID check).
-    pub fn from_description(
-        scene: Scene,
-        description: ModelDescription,
-        logger: Logger,
-    ) -> Instance {
-        let model = Model::new(scene, &description.table);
+impl<M: CoSimulationModel + ?Sized> Instance<M> {
+    /// An instance of `model` with its description (for tools and tests; no GUID check).
+    pub fn new(model: Box<M>, description: &ModelDescription, logger: Logger) -> Instance<M> {
         let experiment = Experiment {
-            start_time: model.default_start_time(),
+            start_time: model.info().default_experiment.start_time,
             stop_time: None,
         };
         Instance {
             standard: description.standard,
-            guid: description.guid,
-            table: description.table,
+            guid: description.guid.clone(),
             model,
             state: MachineState::Instantiated,
             logger,
@@ -155,12 +141,17 @@ impl Instance {
         &self.guid
     }
 
+    /// The model's variables.
+    fn table(&self) -> &Declarations {
+        self.model.declarations()
+    }
+
     /// Run one FMI call: check the call sequence, run `f` with panics caught, log a failure
     /// and return the status for the importer.
     pub fn run(
         &mut self,
         call: Call,
-        f: impl FnOnce(&mut Instance) -> FmiResult<Status>,
+        f: impl FnOnce(&mut Instance<M>) -> FmiResult<Status>,
     ) -> Status {
         let result = guard::catch(AssertUnwindSafe(|| {
             state_machine::check(call, self.state, self.standard)?;
@@ -250,9 +241,8 @@ mod tests {
     }
 
     fn instance(sink: Option<Box<dyn LogSink>>) -> Instance {
-        let scene = Scene::benchmark();
-        let description = ModelDescription::for_scene(&scene).unwrap();
-        Instance::from_description(scene, description, Logger::new(sink, false))
+        let logger = Logger::new(sink, false);
+        crate::fmi::registry::default_instance(Standard::Fmi2, logger).unwrap()
     }
 
     #[test]
@@ -274,10 +264,9 @@ mod tests {
     #[test]
     fn fmi3_messages_name_fmi3_functions() {
         let messages = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
-        let scene = Scene::benchmark();
-        let description = ModelDescription::for_scene_fmi3(&scene).unwrap();
         let sink = Box::new(Capture(messages.clone()));
-        let mut i = Instance::from_description(scene, description, Logger::new(Some(sink), false));
+        let logger = Logger::new(Some(sink), false);
+        let mut i = crate::fmi::registry::default_instance(Standard::Fmi3, logger).unwrap();
         let stop = Some(1e-3);
         assert_eq!(
             i.run(Call::SetupExperiment, |i| i
@@ -292,7 +281,7 @@ mod tests {
             Call::ExitInitializationMode,
             Instance::exit_initialization_mode,
         );
-        let vr = i.table.by_name("rod.length").unwrap().value_reference;
+        let vr = i.table().by_name("rod.length").unwrap().value_reference;
         // A fixed parameter after initialization, a step past the stop time, a wrong size.
         assert_eq!(
             i.run(Call::SetReal, |i| i.set_real(&[vr], &[0.3])),

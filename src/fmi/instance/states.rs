@@ -3,8 +3,9 @@
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use super::{model_error, Instance};
-use crate::fmi::fmu_state::{self, FmuState};
+use super::Instance;
+use crate::cosimulation::CoSimulationModel;
+use crate::fmi::fmu_state::{self, FmuState, Header};
 use crate::fmi::state_machine::Call;
 use crate::fmi::status::{FmiError, FmiResult, Status};
 
@@ -12,12 +13,14 @@ use crate::fmi::status::{FmiError, FmiResult, Status};
 /// another instance is recognized as foreign.
 static NEXT_STATE_HANDLE: AtomicUsize = AtomicUsize::new(1);
 
-impl Instance {
+impl<M: CoSimulationModel + ?Sized> Instance<M> {
     fn capture(&self) -> FmuState {
         FmuState {
-            machine: self.state,
-            experiment: self.experiment,
-            last_step: self.last_step,
+            header: Header {
+                machine: self.state,
+                experiment: self.experiment,
+                last_step: self.last_step,
+            },
             model: self.model.save(),
         }
     }
@@ -57,10 +60,10 @@ impl Instance {
         let saved = &self.fmu_states[&handle];
         self.model
             .restore(&saved.model)
-            .map_err(|e| FmiError::rejected(model_error(e)))?;
-        self.experiment = saved.experiment;
-        self.last_step = saved.last_step;
-        self.state = saved.machine;
+            .map_err(FmiError::rejected)?;
+        self.experiment = saved.header.experiment;
+        self.last_step = saved.header.last_step;
+        self.state = saved.header.machine;
         self.failure = None;
         Ok(Status::Ok)
     }
@@ -81,13 +84,11 @@ impl Instance {
         if !cached {
             self.saved(handle)?;
             let saved = &self.fmu_states[&handle];
-            // The core serializes the current state of a simulation: the model brings the
-            // saved snapshot in, writes it, and puts the current state back.
-            let simulation_bytes = self
+            let model_bytes = self
                 .model
-                .simulation_bytes(&saved.model)
-                .map_err(|e| FmiError::rejected(model_error(e)))?;
-            let bytes = fmu_state::serialize(&self.guid, saved, simulation_bytes.as_deref());
+                .write_saved(&saved.model)
+                .map_err(FmiError::rejected)?;
+            let bytes = fmu_state::serialize(&self.guid, &saved.header, &model_bytes);
             self.serialized = Some((handle, bytes));
         }
         Ok(self
@@ -129,23 +130,19 @@ impl Instance {
         existing: Option<usize>,
     ) -> FmiResult<usize> {
         let rejected = |m: String| FmiError::rejected(format!("serialized state rejected: {m}"));
-        let parsed = fmu_state::deserialize(&self.guid, self.standard, bytes).map_err(rejected)?;
-        self.model
-            .check_same_model(&parsed.state.model, &self.table)
-            .map_err(rejected)?;
-        let model = self
-            .model
-            .saved_from_bytes(parsed.state.model, parsed.simulation_bytes)
-            .map_err(|e| FmiError::rejected(model_error(e)))?;
-        if parsed.state.machine.is_stepping() {
-            if let Some(time) = model.time() {
-                fmu_state::check_time(time, &parsed.state.experiment).map_err(rejected)?;
-            }
+        let (header, model_bytes) =
+            fmu_state::deserialize(&self.guid, self.standard, bytes).map_err(rejected)?;
+        let model = self.model.read_saved(model_bytes).map_err(rejected)?;
+        if header.machine.is_stepping() {
+            let Some(time) = self.model.saved_time(&model) else {
+                return Err(rejected(format!(
+                    "machine state {} without a built model (a state after initialization always holds one)",
+                    header.machine.name()
+                )));
+            };
+            fmu_state::check_time(time, &header.experiment).map_err(rejected)?;
         }
-        let state = FmuState {
-            model,
-            ..parsed.state
-        };
+        let state = FmuState { header, model };
         let handle = self.handle_for(existing);
         self.fmu_states.insert(handle, state);
         if matches!(self.serialized, Some((h, _)) if h == handle) {

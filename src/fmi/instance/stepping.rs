@@ -1,14 +1,13 @@
 //! `fmi2DoStep` and the status queries.
 
-use super::{model_error, Instance, TIME_TOLERANCE};
-use crate::error::ModelError;
+use super::{Instance, TIME_TOLERANCE};
+use crate::cosimulation::{CoSimulationModel, StepOutcome};
 use crate::fmi::state_machine::{Call, MachineState};
 use crate::fmi::status::{FmiError, FmiResult, Status, StatusKind};
-use crate::model::StepError;
-use crate::model::EXPERIMENT_TIME_LIMIT;
+use crate::limits::EXPERIMENT_TIME_LIMIT;
 use crate::text::time;
 
-impl Instance {
+impl<M: CoSimulationModel + ?Sized> Instance<M> {
     /// `fmi2DoStep`: integrate from the FMU time `t` to `t + h`.
     pub fn do_step(&mut self, t: f64, h: f64) -> FmiResult<Status> {
         let Some(now) = self.model.time() else {
@@ -55,48 +54,29 @@ impl Instance {
                 limit - t
             )));
         }
-        // Refusals that change nothing come first: a step beyond the work bound.
-        self.model
-            .check_step(h)
-            .map_err(|e| FmiError::rejected(model_error(e)))?;
-        // A new input law starts at every communication point (see `crate::model::inputs`);
-        // refused inputs change nothing, a failed step keeps the state before it.
-        let result = match self.model.step(h) {
-            Ok(()) => Ok(()),
-            Err(StepError::Inputs(e)) => return Err(FmiError::rejected(model_error(e))),
-            Err(StepError::Step(e)) => Err(e),
-        };
-        match result {
-            Ok(()) => {
+        // A new input law starts at every communication point; refused inputs or work
+        // change nothing, a discarded step keeps the state before it.
+        match self.model.step(h) {
+            StepOutcome::Done => {
                 self.last_step = Status::Ok;
                 Ok(self.take_warnings())
             }
-            Err(e @ ModelError::StepFailed { .. }) => {
+            StepOutcome::Refused(reason) => {
+                self.take_warnings();
+                Err(FmiError::rejected(reason))
+            }
+            StepOutcome::Discarded { reason, remedy } => {
                 self.state = MachineState::StepFailed;
                 self.last_step = Status::Discard;
                 self.take_warnings();
                 Err(FmiError::discard(format!(
-                    "{e}. Restore a state saved before the step ({}) and retry with a smaller communication step, or terminate",
+                    "{reason}. Restore a state saved before the step ({}) and {remedy}",
                     Call::SetFMUstate.name(self.standard)
                 )))
             }
-            Err(e @ ModelError::DeflectionLimit { discard: true, .. }) => {
-                self.state = MachineState::StepFailed;
-                self.last_step = Status::Discard;
+            StepOutcome::Failed(reason) => {
                 self.take_warnings();
-                Err(FmiError::discard(format!(
-                    "{e}. Restore a state saved before the step ({}) and continue, switch the model, or terminate",
-                    Call::SetFMUstate.name(self.standard)
-                )))
-            }
-            Err(e @ ModelError::TooMuchWork { .. }) => {
-                // Refused before or without changing anything: the instance stays usable.
-                self.take_warnings();
-                Err(FmiError::rejected(model_error(e)))
-            }
-            Err(e) => {
-                self.take_warnings();
-                Err(FmiError::failed(model_error(e)))
+                Err(FmiError::failed(reason))
             }
         }
     }

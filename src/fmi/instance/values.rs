@@ -4,15 +4,15 @@
 //! table has only scalars, so there one value reference is one value).
 
 use super::Instance;
+use crate::cosimulation::{CoSimulationModel, Declaration};
 use crate::fmi::state_machine::{Call, MachineState};
 use crate::fmi::status::{FmiError, FmiResult, Status};
-use crate::fmi::variables::{Causality, Family, ValueReference, Variable};
-use crate::model::Model;
+use crate::fmi::variables::{Causality, Family, ValueReference};
 
-impl Instance {
-    pub(super) fn variable(&self, vr: ValueReference, family: Family) -> FmiResult<&Variable> {
+impl<M: CoSimulationModel + ?Sized> Instance<M> {
+    pub(super) fn variable(&self, vr: ValueReference, family: Family) -> FmiResult<&Declaration> {
         let standard = self.standard;
-        let v = self.table.get(vr).ok_or_else(|| {
+        let v = self.table().get(vr).ok_or_else(|| {
             FmiError::rejected(format!(
                 "unknown value reference {vr}: no {} variable of this FMU has it (see modelDescription.xml)",
                 family.name(standard)
@@ -33,7 +33,7 @@ impl Instance {
         Ok(v)
     }
 
-    fn settable(&self, vr: ValueReference, family: Family) -> FmiResult<&Variable> {
+    fn settable(&self, vr: ValueReference, family: Family) -> FmiResult<&Declaration> {
         let v = self.variable(vr, family)?;
         match v.causality {
             Causality::Input => Ok(v),
@@ -78,7 +78,7 @@ impl Instance {
         // Unknown references count one value here; they are reported by the checks after.
         let expected: usize = vrs
             .iter()
-            .map(|&vr| self.table.get(vr).map_or(1, |v| v.value_count()))
+            .map(|&vr| self.table().get(vr).map_or(1, |v| v.value_count()))
             .sum();
         if expected != n_values {
             return Err(FmiError::rejected(format!(
@@ -95,18 +95,18 @@ impl Instance {
         self.check_value_count(vrs, values.len())?;
         let mut needs_simulation = false;
         for &vr in vrs {
-            needs_simulation |= self.variable(vr, Family::Real)?.access.needs_simulation();
+            needs_simulation |= self.variable(vr, Family::Real)?.computed;
         }
         if needs_simulation {
             self.prepare_values()?;
         }
         let mut next = 0;
         for &vr in vrs {
-            let v = self.table.get(vr).expect("checked above");
-            let out = &mut values[next..next + v.value_count()];
-            next += out.len();
+            let n = self.table().get(vr).expect("checked above").value_count();
+            let out = &mut values[next..next + n];
+            next += n;
             self.model
-                .get_real(v, out, self.experiment.start_time)
+                .get_real(vr, out, self.experiment.start_time)
                 .map_err(FmiError::rejected)?;
         }
         Ok(Status::Ok)
@@ -122,8 +122,8 @@ impl Instance {
     ) -> FmiResult<Status> {
         self.check_value_count(vrs, values.len())?;
         for (&vr, out) in vrs.iter().zip(values.iter_mut()) {
-            let v = self.variable(vr, family)?;
-            *out = T::from(self.model.get_integer(v).map_err(FmiError::rejected)?);
+            self.variable(vr, family)?;
+            *out = T::from(self.model.get_integer(vr).map_err(FmiError::rejected)?);
         }
         Ok(Status::Ok)
     }
@@ -139,7 +139,7 @@ impl Instance {
                     v.name
                 )));
             }
-            if let Err(allowed) = Model::check_real(v, x) {
+            if let Err(allowed) = self.model.check_real(vr, x) {
                 return Err(FmiError::rejected(format!(
                     "{} = {x:e} (value reference {vr}) is out of range: allowed {allowed}; nothing was set",
                     v.name
@@ -148,8 +148,7 @@ impl Instance {
         }
         let mut parameter_changed = false;
         for (&vr, &x) in vrs.iter().zip(values) {
-            let v = self.table.get(vr).expect("checked above");
-            parameter_changed |= self.model.set_real(v, x).map_err(FmiError::rejected)?;
+            parameter_changed |= self.model.set_real(vr, x).map_err(FmiError::rejected)?;
         }
         if self.state != MachineState::StepComplete {
             self.model.invalidate(parameter_changed);
@@ -179,14 +178,11 @@ impl Instance {
             })?;
             checked.push(n);
         }
-        let items: Vec<(&Variable, i32)> = vrs
-            .iter()
-            .zip(checked)
-            .map(|(&vr, n)| (self.table.get(vr).expect("checked above"), n))
-            .collect();
-        self.model
-            .set_integers(&items)
-            .map_err(|(k, allowed)| out_of_range(items[k].0, vrs[k], values[k], allowed))?;
+        let items: Vec<(ValueReference, i32)> = vrs.iter().copied().zip(checked).collect();
+        if let Err((k, allowed)) = self.model.set_integers(&items) {
+            let v = self.table().get(vrs[k]).expect("checked above");
+            return Err(out_of_range(v, vrs[k], values[k], allowed));
+        }
         Ok(Status::Ok)
     }
 
@@ -203,7 +199,7 @@ impl Instance {
 
 /// A value refused by a set call, with the allowed values.
 fn out_of_range(
-    v: &Variable,
+    v: &Declaration,
     vr: ValueReference,
     value: impl std::fmt::Display,
     allowed: String,

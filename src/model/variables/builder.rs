@@ -1,11 +1,11 @@
 //! The builder of the variable list: one method per kind of variable (input, output, Real or
 //! Integer parameter, calculated parameter), and the unit types the list uses.
 
-use super::types::{
-    Access, Causality, Initial, InitialDependencies, InputSlot, OutputGetter, Value, ValueType,
-    Variability, Variable,
-};
+use super::types::{Access, InputSlot, OutputGetter, Variable};
 use super::{Interface, VariableId, VariableTable};
+use crate::cosimulation::{
+    Causality, Declaration, Initial, InitialDependencies, Value, ValueType, Variability,
+};
 use crate::scene::Scene;
 
 pub(super) const RAD: ValueType = ValueType::Real {
@@ -47,28 +47,16 @@ impl<'a> Builder<'a> {
 
     /// The table, with its index by value reference.
     pub fn finish(self) -> VariableTable {
-        let max_vr = self
-            .variables
-            .iter()
-            .map(|v| v.value_reference)
-            .max()
-            .unwrap_or(0);
-        let mut by_vr = vec![0u16; max_vr as usize + 1];
-        for (i, v) in self.variables.iter().enumerate() {
-            // One variable a value reference, in every interface (a programming error
-            // otherwise: the table is built from constants).
-            assert_eq!(
-                by_vr[v.value_reference as usize], 0,
-                "value reference {} given twice ({})",
-                v.value_reference, v.name
-            );
-            by_vr[v.value_reference as usize] = (i + 1) as u16;
-        }
-        VariableTable {
-            variables: self.variables,
-            by_vr,
-            interface: self.interface,
-        }
+        VariableTable::from_variables(self.variables, self.interface)
+    }
+
+    /// Add a variable; `computed` follows from where its value lives.
+    fn push(&mut self, declared: Declaration, access: Access) {
+        let declared = Declaration {
+            computed: access.needs_simulation(),
+            ..declared
+        };
+        self.variables.push(Variable { declared, access });
     }
 
     /// `min`/`max` of the variable added last.
@@ -91,6 +79,7 @@ impl<'a> Builder<'a> {
     pub fn set_access(&mut self, access: Access) {
         if let Some(v) = self.variables.last_mut() {
             v.access = access;
+            v.declared.computed = access.needs_simulation();
         }
     }
 
@@ -103,21 +92,24 @@ impl<'a> Builder<'a> {
 
     /// The independent variable `time` (causality `independent`).
     pub fn independent(&mut self, name: &str, vr: VariableId, description: &str) {
-        self.variables.push(Variable {
-            name: name.into(),
-            value_reference: vr,
-            description: description.into(),
-            causality: Causality::Independent,
-            variability: Variability::Continuous,
-            initial: None,
-            value_type: real("s"),
-            start: None,
-            min: None,
-            max: None,
-            access: Access::Time,
-            initial_dependencies: InitialDependencies::None,
-            dimension: None,
-        });
+        self.push(
+            Declaration {
+                name: name.into(),
+                value_reference: vr,
+                description: description.into(),
+                causality: Causality::Independent,
+                variability: Variability::Continuous,
+                initial: None,
+                value_type: real("s"),
+                start: None,
+                min: None,
+                max: None,
+                initial_dependencies: InitialDependencies::None,
+                dimension: None,
+                computed: false,
+            },
+            Access::Time,
+        );
     }
 
     /// `min="0"` on a Real parameter that must be positive: the bounds are closed, so 0
@@ -141,21 +133,24 @@ impl<'a> Builder<'a> {
         slot: InputSlot,
         description: &str,
     ) {
-        self.variables.push(Variable {
-            name: name.into(),
-            value_reference: vr,
-            description: description.into(),
-            causality: Causality::Input,
-            variability: Variability::Continuous,
-            initial: None,
-            value_type: ty,
-            start: Some(Value::Real(start)),
-            min: None,
-            max: None,
-            access: Access::Input(slot),
-            initial_dependencies: InitialDependencies::None,
-            dimension: None,
-        });
+        self.push(
+            Declaration {
+                name: name.into(),
+                value_reference: vr,
+                description: description.into(),
+                causality: Causality::Input,
+                variability: Variability::Continuous,
+                initial: None,
+                value_type: ty,
+                start: Some(Value::Real(start)),
+                min: None,
+                max: None,
+                initial_dependencies: InitialDependencies::None,
+                dimension: None,
+                computed: false,
+            },
+            Access::Input(slot),
+        );
     }
 
     pub fn output(
@@ -167,21 +162,24 @@ impl<'a> Builder<'a> {
         deps: InitialDependencies,
         description: &str,
     ) {
-        self.variables.push(Variable {
-            name: name.into(),
-            value_reference: vr,
-            description: description.into(),
-            causality: Causality::Output,
-            variability: Variability::Continuous,
-            initial: Some(Initial::Calculated),
-            value_type: ty,
-            start: None,
-            min: None,
-            max: None,
-            access: Access::Output(get),
-            initial_dependencies: deps,
-            dimension: None,
-        });
+        self.push(
+            Declaration {
+                name: name.into(),
+                value_reference: vr,
+                description: description.into(),
+                causality: Causality::Output,
+                variability: Variability::Continuous,
+                initial: Some(Initial::Calculated),
+                value_type: ty,
+                start: None,
+                min: None,
+                max: None,
+                initial_dependencies: deps,
+                dimension: None,
+                computed: false,
+            },
+            Access::Output(get),
+        );
     }
 
     pub fn real_parameter(
@@ -193,21 +191,24 @@ impl<'a> Builder<'a> {
         set: fn(&mut Scene, f64),
         description: &str,
     ) {
-        self.variables.push(Variable {
-            name: name.into(),
-            value_reference: vr,
-            description: description.into(),
-            causality: Causality::Parameter,
-            variability: Variability::Fixed,
-            initial: Some(Initial::Exact),
-            value_type: ty,
-            start: Some(Value::Real(get(self.scene))),
-            min: None,
-            max: None,
-            access: Access::RealParameter { get, set },
-            initial_dependencies: InitialDependencies::None,
-            dimension: None,
-        });
+        self.push(
+            Declaration {
+                name: name.into(),
+                value_reference: vr,
+                description: description.into(),
+                causality: Causality::Parameter,
+                variability: Variability::Fixed,
+                initial: Some(Initial::Exact),
+                value_type: ty,
+                start: Some(Value::Real(get(self.scene))),
+                min: None,
+                max: None,
+                initial_dependencies: InitialDependencies::None,
+                dimension: None,
+                computed: false,
+            },
+            Access::RealParameter { get, set },
+        );
     }
 
     pub fn integer_parameter(
@@ -219,21 +220,24 @@ impl<'a> Builder<'a> {
         set: fn(&mut Scene, i32) -> Result<(), String>,
         description: &str,
     ) {
-        self.variables.push(Variable {
-            name: name.into(),
-            value_reference: vr,
-            description: description.into(),
-            causality: Causality::Parameter,
-            variability: Variability::Fixed,
-            initial: Some(Initial::Exact),
-            value_type: ty,
-            start: Some(Value::Integer(get(self.scene))),
-            min: None,
-            max: None,
-            access: Access::IntegerParameter { get, set },
-            initial_dependencies: InitialDependencies::None,
-            dimension: None,
-        });
+        self.push(
+            Declaration {
+                name: name.into(),
+                value_reference: vr,
+                description: description.into(),
+                causality: Causality::Parameter,
+                variability: Variability::Fixed,
+                initial: Some(Initial::Exact),
+                value_type: ty,
+                start: Some(Value::Integer(get(self.scene))),
+                min: None,
+                max: None,
+                initial_dependencies: InitialDependencies::None,
+                dimension: None,
+                computed: false,
+            },
+            Access::IntegerParameter { get, set },
+        );
     }
 
     /// A calculated parameter (`rod.frequency[k]`).
@@ -246,20 +250,23 @@ impl<'a> Builder<'a> {
         deps: InitialDependencies,
         description: String,
     ) {
-        self.variables.push(Variable {
-            name,
-            value_reference: vr,
-            description,
-            causality: Causality::CalculatedParameter,
-            variability: Variability::Fixed,
-            initial: Some(Initial::Calculated),
-            value_type: ty,
-            start: None,
-            min: None,
-            max: None,
+        self.push(
+            Declaration {
+                name,
+                value_reference: vr,
+                description,
+                causality: Causality::CalculatedParameter,
+                variability: Variability::Fixed,
+                initial: Some(Initial::Calculated),
+                value_type: ty,
+                start: None,
+                min: None,
+                max: None,
+                initial_dependencies: deps,
+                dimension: None,
+                computed: false,
+            },
             access,
-            initial_dependencies: deps,
-            dimension: None,
-        });
+        );
     }
 }

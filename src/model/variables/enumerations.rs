@@ -2,15 +2,9 @@
 //! (`RodModelKind::ALL`, `ReferenceKind::ALL` with `name()`), numbered 1, 2, ... in that
 //! order; only the items' descriptions are written here.
 
+use crate::cosimulation::{EnumerationItem, EnumerationType};
 use crate::rod::PhysicsSwitch;
 use crate::scene::{ReferenceKind, RodModelKind};
-
-/// One item of an enumeration type.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct EnumerationItem {
-    pub name: &'static str,
-    pub description: &'static str,
-}
 
 /// A core enumeration exported as an enumeration type: its variants in code order.
 pub trait Kind: Copy + PartialEq + 'static {
@@ -100,64 +94,6 @@ fn items<K: Kind>() -> Vec<EnumerationItem> {
             description: k.description(),
         })
         .collect()
-}
-
-/// An enumeration type of the description (its type definitions).
-#[derive(Debug)]
-pub struct EnumerationType {
-    pub name: &'static str,
-    pub description: &'static str,
-    /// The items in code order, from the core's name list.
-    items: fn() -> Vec<EnumerationItem>,
-}
-
-impl PartialEq for EnumerationType {
-    /// Types are identified by their name (unique in a description).
-    fn eq(&self, other: &Self) -> bool {
-        self.name == other.name
-    }
-}
-
-impl EnumerationType {
-    /// The items; item `i` (0-based) has the value `i + 1`.
-    pub fn items(&self) -> Vec<EnumerationItem> {
-        (self.items)()
-    }
-
-    /// The largest code (the number of items).
-    pub fn max_code(&self) -> i32 {
-        i32::try_from(self.items().len()).unwrap_or(i32::MAX)
-    }
-
-    /// "1 = ffr, 2 = segments, ...", every item, for the description of an Integer twin.
-    pub fn codes_text(&self) -> String {
-        let items: Vec<String> = self
-            .items()
-            .iter()
-            .enumerate()
-            .map(|(i, item)| format!("{} = {}", i + 1, item.name))
-            .collect();
-        items.join(", ")
-    }
-
-    /// The description of the Integer twin of the Enumeration parameter `name`.
-    pub fn twin_description(&self, name: &str) -> String {
-        format!(
-            "{name} as an Integer, for importers that ignore Enumeration variables: {}. The same parameter as {name}: setting either sets both, the last value set wins",
-            self.codes_text()
-        )
-    }
-
-    /// "1 (ffr), 2 (segments), ...", every item, for messages and descriptions.
-    pub fn allowed_text(&self) -> String {
-        let items: Vec<String> = self
-            .items()
-            .iter()
-            .enumerate()
-            .map(|(i, item)| format!("{} ({})", i + 1, item.name))
-            .collect();
-        items.join(", ")
-    }
 }
 
 /// `rod.model`.

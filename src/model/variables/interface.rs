@@ -15,8 +15,9 @@
 //!   (the element names of the array are the same: `rod.frequency[k]`, k = 1..K).
 
 use super::builder::{real, Builder};
-use super::types::{Access, InitialDependencies, InputSlot};
+use super::types::{Access, InputSlot};
 use super::Interface;
+use crate::cosimulation::InitialDependencies;
 use crate::error::ModelError;
 use crate::scene::Scene;
 

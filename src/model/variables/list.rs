@@ -8,8 +8,9 @@ use super::ranges::{
     set_reference, set_shear_deformation, usize_to_i32, ELEMENTS_MAX,
 };
 use super::ranges::{loaded_modes_code, set_loaded_modes};
-use super::types::{Access, InitialDependencies, InputSlot, Value, ValueType};
+use super::types::{Access, InputSlot};
 use super::{Interface, VariableId, VariableTable, FREQUENCY_VR_BASE};
+use crate::cosimulation::{InitialDependencies, Value, ValueType};
 use crate::scene::Scene;
 
 /// Parameters the rod's natural frequencies depend on (names a scene does not declare are

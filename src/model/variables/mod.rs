@@ -23,14 +23,14 @@ mod list;
 pub mod ranges;
 pub mod types;
 
-pub use enumerations::{
-    EnumerationItem, EnumerationType, ENUMERATION_TYPES, ROD_MODEL, ROD_REFERENCE,
+pub use crate::cosimulation::{
+    Causality, Declaration, Declarations, Initial, InitialDependencies, Interface, Value,
+    ValueType, Variability, VariableId,
 };
+pub use crate::cosimulation::{EnumerationItem, EnumerationType};
+pub use enumerations::{ENUMERATION_TYPES, ROD_MODEL, ROD_REFERENCE};
 pub use ranges::ELEMENTS_MAX;
-pub use types::{
-    Access, Causality, Initial, InitialDependencies, InputSlot, OutputGetter, Value, ValueType,
-    Variability, Variable,
-};
+pub use types::{Access, InputSlot, OutputGetter, Variable};
 
 pub use interface::SHAPE_POINTS_MAX;
 
@@ -38,53 +38,15 @@ use crate::error::ModelError;
 use crate::scene::Scene;
 use crate::simulation::Simulation;
 
-/// The identifier of a variable in get/set calls (the interface's value reference).
-pub type VariableId = u32;
-
 /// Identifier of `rod.frequency[1]` minus one.
 pub const FREQUENCY_VR_BASE: VariableId = 200;
-
-/// What the interface a table is declared for offers, and its words in descriptions.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Interface {
-    /// Its name in descriptions (e.g. where a variable exists because of it).
-    pub name: &'static str,
-    /// Array variables: `rod.shape` and `rod.frequency` as arrays; without them the
-    /// frequencies are the scalars `rod.frequency[k]` and there is no shape.
-    pub arrays: bool,
-    /// Derivatives of inputs set at communication points: the crank acceleration is the
-    /// derivative of `crank.speed` (order 1) or `crank.angle` (order 2), the crank jerk order 2
-    /// of `crank.speed` or 3 of `crank.angle`; without them they are the inputs
-    /// `crank.acceleration` and `crank.jerk`.
-    pub input_derivatives: bool,
-    /// The independent variable `time` declared as a variable.
-    pub independent_variable: bool,
-    /// Its name for the outcome of a step refused with the state before it kept (the caller
-    /// may restore a state and retry), and for a step that failed.
-    pub refused_step: &'static str,
-    pub failed_step: &'static str,
-}
-
-impl Interface {
-    /// Scalars only, input derivatives, no independent variable, plain words (for tools
-    /// that read names and identifiers).
-    pub const SCALARS: Interface = Interface {
-        name: "the interface",
-        arrays: false,
-        input_derivatives: true,
-        independent_variable: false,
-        refused_step: "refused",
-        failed_step: "failed",
-    };
-}
 
 /// All variables of one model, in description order, with an index by identifier.
 #[derive(Clone)]
 pub struct VariableTable {
     variables: Vec<Variable>,
-    /// `by_vr[vr]` = position + 1 in `variables`, 0 if no variable has that identifier.
-    by_vr: Vec<u16>,
-    interface: Interface,
+    /// The declarations of `variables`, in the same order: what an interface sees.
+    declarations: Declarations,
 }
 
 impl VariableTable {
@@ -103,9 +65,26 @@ impl VariableTable {
         Ok(VariableTable::for_interface(scene, k, interface))
     }
 
+    /// The table from its variables in description order.
+    pub(super) fn from_variables(variables: Vec<Variable>, interface: Interface) -> VariableTable {
+        let declarations = Declarations::new(
+            variables.iter().map(|v| v.declared.clone()).collect(),
+            interface,
+        );
+        VariableTable {
+            variables,
+            declarations,
+        }
+    }
+
     /// The interface the table was declared for.
     pub fn interface(&self) -> Interface {
-        self.interface
+        self.declarations.interface()
+    }
+
+    /// The declarations (what an interface sees), in the same order as [`Self::variables`].
+    pub fn declarations(&self) -> &Declarations {
+        &self.declarations
     }
 
     /// All variables in description order.
@@ -115,8 +94,7 @@ impl VariableTable {
 
     /// The variable with this identifier.
     pub fn get(&self, vr: VariableId) -> Option<&Variable> {
-        let position = *self.by_vr.get(vr as usize)?;
-        (position > 0).then(|| &self.variables[position as usize - 1])
+        self.declarations.position(vr).map(|p| &self.variables[p])
     }
 
     /// 1-based index in the description's variable list (used by its model structure).

@@ -2,8 +2,9 @@
 //! carries the allowed values for the message; the physical ranges are checked when the model
 //! is built (`Simulation::new`).
 
-use super::enumerations::{self, EnumerationType, Kind, PHYSICS_SWITCH, ROD_MODEL, ROD_REFERENCE};
+use super::enumerations::{self, Kind, PHYSICS_SWITCH, ROD_MODEL, ROD_REFERENCE};
 use crate::beam::mesh::MAX_ELEMENTS;
+use crate::cosimulation::EnumerationType;
 use crate::rod::PhysicsSwitch;
 use crate::scene::{DeflectionPolicy, ReferenceKind, RodModelKind, Scene};
 

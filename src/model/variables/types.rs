@@ -1,85 +1,11 @@
-//! The types a variable is made of: its attributes (causality, variability, initial, type and
-//! unit, in the words of the co-simulation standards), start values, and where its value
-//! lives ([`Access`]).
+//! A variable of the rod's model: its declaration (what an interface sees, see
+//! [`crate::cosimulation`]) and where its value lives ([`Access`]).
 
-use super::enumerations::EnumerationType;
-use super::VariableId;
+use std::ops::{Deref, DerefMut};
+
+use crate::cosimulation::Declaration;
 use crate::mechanism::Outputs;
 use crate::scene::Scene;
-
-/// Causality (`Independent` only for the independent variable `time`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Causality {
-    Independent,
-    Input,
-    Output,
-    Parameter,
-    CalculatedParameter,
-}
-
-impl Causality {
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Causality::Independent => "independent",
-            Causality::Input => "input",
-            Causality::Output => "output",
-            Causality::Parameter => "parameter",
-            Causality::CalculatedParameter => "calculatedParameter",
-        }
-    }
-}
-
-/// Variability (only those used here).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Variability {
-    Fixed,
-    Continuous,
-}
-
-impl Variability {
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Variability::Fixed => "fixed",
-            Variability::Continuous => "continuous",
-        }
-    }
-}
-
-/// `initial` (absent for inputs).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Initial {
-    Exact,
-    Calculated,
-}
-
-impl Initial {
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Initial::Exact => "exact",
-            Initial::Calculated => "calculated",
-        }
-    }
-}
-
-/// The type of a variable, with its unit attributes.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum ValueType {
-    Real {
-        /// Unit (declared in the unit definitions); `None` for dimensionless.
-        unit: Option<&'static str>,
-        /// Display unit (deg for angles, rpm for speeds).
-        display_unit: Option<&'static str>,
-    },
-    Integer,
-    Enumeration(&'static EnumerationType),
-}
-
-/// A start value.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Value {
-    Real(f64),
-    Integer(i32),
-}
 
 /// The inputs an instance stores between communication points.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -127,38 +53,25 @@ pub enum Access {
     Frequencies,
 }
 
-/// Which knowns an unknown depends on during initialization (the description's initial
-/// unknowns).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum InitialDependencies {
-    /// Constant during initialization (e.g. the deflection of the undeformed rod).
-    None,
-    /// Every input and every parameter.
-    All,
-    /// The named inputs and parameters (names absent from the table are skipped).
-    Named(&'static [&'static str]),
-}
-
-/// One scalar variable.
+/// One variable: its declaration and where its value lives. It reads as its declaration
+/// (`v.name`, `v.causality`, ...).
 #[derive(Clone)]
 pub struct Variable {
-    pub name: String,
-    pub value_reference: VariableId,
-    pub description: String,
-    pub causality: Causality,
-    pub variability: Variability,
-    pub initial: Option<Initial>,
-    pub value_type: ValueType,
-    pub start: Option<Value>,
-    /// `min` and `max` attributes (closed bounds).
-    pub min: Option<Value>,
-    pub max: Option<Value>,
+    pub declared: Declaration,
     pub access: Access,
-    /// Only for outputs and calculated parameters.
-    pub initial_dependencies: InitialDependencies,
-    /// Arrays: the fixed number of elements; `None` for a scalar (tables declared without
-    /// arrays have only scalars).
-    pub dimension: Option<usize>,
+}
+
+impl Deref for Variable {
+    type Target = Declaration;
+    fn deref(&self) -> &Declaration {
+        &self.declared
+    }
+}
+
+impl DerefMut for Variable {
+    fn deref_mut(&mut self) -> &mut Declaration {
+        &mut self.declared
+    }
 }
 
 impl Access {
@@ -169,12 +82,5 @@ impl Access {
             self,
             Access::Output(_) | Access::Frequency(_) | Access::Frequencies | Access::Shape
         )
-    }
-}
-
-impl Variable {
-    /// Number of values the variable takes in a get/set call: 1, or the array's length.
-    pub fn value_count(&self) -> usize {
-        self.dimension.unwrap_or(1)
     }
 }
