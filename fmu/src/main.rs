@@ -191,7 +191,7 @@ fn run() -> Result<(), Failure> {
     if args.simulate {
         let Some(scene) = &scene else {
             return Err(Failure::Usage(format!(
-                "--simulate runs the rod's scenes; {origin} describes the crankshaft, whose FMU runs in an importer (e.g. python/examples/engine_loop.py with FMPy)"
+                "--simulate runs the rod's scenes; {origin} describes the crankshaft, whose FMU runs in an importer (e.g. FMPy)"
             )));
         };
         let e = &scene.experiment;
