@@ -12,11 +12,15 @@
 //!    stepping and outputs;
 //! 5. [`scene`]: the TOML scene, composed of each layer's own spec types;
 //! 6. [`simulation`]: the facade: a mechanism built from a scene, its state and snapshots;
-//! 7. [`drive`]: crank laws and the run loop; [`model`]: the model's self-description for an
-//!    interface (the variable table, the crank input law between communication points, the
-//!    instance hooks with their validity checks), knowing nothing of FMI;
-//! 8. [`fmi`]: the FMI 2.0 / FMI 3.0 C ABI, a generic shell over [`model`] that knows nothing
-//!    of the mechanism (the only place with `unsafe`).
+//! 7. [`drive`]: crank laws and the run loop; [`model`]: the rod's model as a co-simulation
+//!    model (the variable table, the crank input law between communication points, the hooks
+//!    with their validity checks, its saved state), knowing nothing of FMI; [`crankshaft`]: the
+//!    crankshaft and flywheel, a second co-simulation model;
+//! 8. [`fmi`]: the FMI 2.0 / FMI 3.0 C ABI, a generic shell over any
+//!    [`cosimulation::CoSimulationModel`] (the only place with `unsafe`).
+//!
+//! Below them: [`cosimulation`], the contract between a model and an interface (declarations,
+//! hooks, step outcomes); [`bytes`], the byte forms of saved states.
 //!
 //! Physics and equations: `docs/physics.md`; the FMU's contract: `docs/fmu.md`. The sources,
 //! listed in `docs/physics.md`: O. P. Agrawal and A. A. Shabana, "Dynamic analysis of
