@@ -5,7 +5,7 @@
 //! `modelDescription.xml` from the declarations and checks its get/set calls against them;
 //! each model implements the hooks and keeps its own accessors.
 //!
-//! - [`model`]: the hooks, the step outcome and the opaque saved state;
+//! - `model.rs`: the hooks ([`CoSimulationModel`]), the step outcome and the opaque saved state;
 //! - this file: the [`Interface`] a table is declared for, a variable's [`Declaration`], the
 //!   [`Declarations`] of one model with their index by identifier, and the model's
 //!   [`ModelInfo`] (names, default experiment, units and enumeration types);
