@@ -259,6 +259,13 @@ fn forged_state(
         }
     }
     let mut forged = bytes[..start - 4].to_vec();
+    // The model's bytes are length-prefixed (u64) after the shell's header: magic, version,
+    // GUID, machine state, last step status, start time, stop flag and stop time.
+    let guid_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let model_len_at = 16 + guid_len + 1 + 1 + 8 + 1 + 8;
+    let model_len = u64::from_le_bytes(bytes[model_len_at..model_len_at + 8].try_into().unwrap());
+    let model_len = model_len as usize + text.len() - len;
+    forged[model_len_at..model_len_at + 8].copy_from_slice(&(model_len as u64).to_le_bytes());
     forged.extend_from_slice(&(text.len() as u32).to_le_bytes());
     forged.extend_from_slice(text.as_bytes());
     forged.extend_from_slice(&bytes[start + len..bytes.len() - 8]);
