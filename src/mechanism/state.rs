@@ -2,6 +2,7 @@
 
 use super::crank::CrankInput;
 use super::outputs::Outputs;
+use crate::bytes::{ByteReader, ByteWriter};
 use crate::integrator::{DaeState, StepAhead};
 use crate::text::time;
 
@@ -50,39 +51,13 @@ pub struct MechanismState {
 }
 
 impl MechanismState {
-    /// Append the state as little-endian numbers.
+    /// Append the state as little-endian numbers (the layout: `docs/fmu.md`, "FMU states and
+    /// serialization").
     pub fn write_bytes(&self, out: &mut Vec<u8>) {
-        let mut put = |x: f64| out.extend_from_slice(&x.to_le_bytes());
-        put(self.time);
-        put(self.input_time);
-        put(self.previous_input_time);
-        put(self.previous_input.angle);
-        put(self.previous_input.speed);
-        put(self.previous_input.acceleration);
-        put(self.previous_input.jerk);
-        put(self.input.angle);
-        put(self.input.speed);
-        put(self.input.acceleration);
-        put(self.input.jerk);
-        put(self.slider_force);
-        let o = &self.outputs;
-        for x in [
-            o.deflection,
-            o.deflection_rel,
-            o.pin_b_force[0],
-            o.pin_b_force[1],
-            o.pin_c_force[0],
-            o.pin_c_force[1],
-            o.crank_torque,
-            o.slider_position,
-            o.slider_velocity,
-        ] {
-            put(x);
+        let mut w = ByteWriter::default();
+        for x in self.scalars() {
+            w.f64(x);
         }
-        put(self.dae.t);
-        put(self.dae.step_hint);
-        put(self.dae.amplitude);
-        put(self.start_vibration);
         for v in [
             &self.dae.q,
             &self.dae.v,
@@ -90,9 +65,7 @@ impl MechanismState {
             &self.dae.acc,
             &self.dae.lambda,
         ] {
-            for &x in v.iter() {
-                put(x);
-            }
+            v.iter().for_each(|&x| w.f64(x));
         }
         let s = &self.outputs.section;
         for x in [
@@ -101,24 +74,19 @@ impl MechanismState {
             s.stress_max,
             s.stress_max_position,
         ] {
-            put(x);
+            w.f64(x);
         }
-        for c in [
-            self.stats.steps,
-            self.stats.newton_iterations,
-            self.stats.halvings,
-        ] {
-            out.extend_from_slice(&c.to_le_bytes());
+        let c = &self.stats;
+        for n in [c.steps, c.newton_iterations, c.halvings] {
+            w.u64(n);
         }
-        out.push(self.large_deflection_warned as u8);
+        w.flag(self.large_deflection_warned);
         let a = &self.ahead;
-        out.push(a.held as u8);
+        w.flag(a.held);
         if a.held {
-            let mut put = |x: f64| out.extend_from_slice(&x.to_le_bytes());
-            put(a.t0);
-            put(a.end.t);
-            put(a.end.step_hint);
-            put(a.end.amplitude);
+            for x in [a.t0, a.end.t, a.end.step_hint, a.end.amplitude] {
+                w.f64(x);
+            }
             for v in [
                 &a.z0,
                 &a.zd0,
@@ -130,133 +98,153 @@ impl MechanismState {
                 &a.end.acc,
                 &a.end.lambda,
             ] {
-                for &x in v.iter() {
-                    put(x);
-                }
+                v.iter().for_each(|&x| w.f64(x));
             }
         }
+        out.extend_from_slice(&w.bytes);
     }
 
-    /// Read what [`Self::write_bytes`] wrote, into a state of the same dimensions.
-    pub fn read_bytes(&mut self, bytes: &[u8]) -> Result<(), String> {
-        let n = self.dae.q.len();
-        let m = self.dae.lambda.len();
-        let base = 8 * (29 + 4 * n + m) + 8 * 3 + 1;
-        let k = self.ahead.z0.len();
-        let ahead_len = 8 * (4 + 4 * k + 4 * n + m);
-        let held = match bytes.get(base) {
-            Some(0) => false,
-            Some(1) if k > 0 => true,
-            Some(b) => {
-                return Err(format!(
-                    "the held-step flag is {b}, allowed 0{}",
-                    if k > 0 {
-                        " or 1"
-                    } else {
-                        " (this model has no dense output)"
-                    }
-                ))
-            }
-            None => {
-                return Err(format!(
-                "{} bytes of state, this model needs at least {} (truncated or from another model)",
-                bytes.len(),
-                base + 1
-            ))
-            }
+    /// The scalars of the byte form, in order: times, the two crank laws, the slider force,
+    /// the nine cached outputs, the integrator's time, step proposal and amplitude, the start's
+    /// vibration.
+    fn scalars(&self) -> [f64; 25] {
+        let (p, i, o) = (&self.previous_input, &self.input, &self.outputs);
+        [
+            self.time,
+            self.input_time,
+            self.previous_input_time,
+            p.angle,
+            p.speed,
+            p.acceleration,
+            p.jerk,
+            i.angle,
+            i.speed,
+            i.acceleration,
+            i.jerk,
+            self.slider_force,
+            o.deflection,
+            o.deflection_rel,
+            o.pin_b_force[0],
+            o.pin_b_force[1],
+            o.pin_c_force[0],
+            o.pin_c_force[1],
+            o.crank_torque,
+            o.slider_position,
+            o.slider_velocity,
+            self.dae.t,
+            self.dae.step_hint,
+            self.dae.amplitude,
+            self.start_vibration,
+        ]
+    }
+
+    fn set_scalars(&mut self, x: [f64; 25]) {
+        let [time, input_time, previous_input_time, pa, ps, pacc, pj, ia, is, iacc, ij, force, o0, o1, o2, o3, o4, o5, o6, o7, o8, t, hint, amplitude, vibration] =
+            x;
+        self.time = time;
+        self.input_time = input_time;
+        self.previous_input_time = previous_input_time;
+        self.previous_input = CrankInput {
+            angle: pa,
+            speed: ps,
+            acceleration: pacc,
+            jerk: pj,
         };
-        let expected = base + 1 + if held { ahead_len } else { 0 };
-        if bytes.len() != expected {
-            return Err(format!(
-                "{} bytes of state, this model needs {expected} (truncated or from another model)",
-                bytes.len()
-            ));
-        }
-        let mut at = 0usize;
-        let mut get = || {
-            let x = f64::from_le_bytes(bytes[at..at + 8].try_into().unwrap());
-            at += 8;
-            x
+        self.input = CrankInput {
+            angle: ia,
+            speed: is,
+            acceleration: iacc,
+            jerk: ij,
         };
-        self.time = get();
-        self.input_time = get();
-        self.previous_input_time = get();
-        self.previous_input.angle = get();
-        self.previous_input.speed = get();
-        self.previous_input.acceleration = get();
-        self.previous_input.jerk = get();
-        self.input.angle = get();
-        self.input.speed = get();
-        self.input.acceleration = get();
-        self.input.jerk = get();
-        self.slider_force = get();
+        self.slider_force = force;
         let o = &mut self.outputs;
-        o.deflection = get();
-        o.deflection_rel = get();
-        o.pin_b_force = [get(), get()];
-        o.pin_c_force = [get(), get()];
-        o.crank_torque = get();
-        o.slider_position = get();
-        o.slider_velocity = get();
-        self.dae.t = get();
-        self.dae.step_hint = get();
-        self.dae.amplitude = get();
-        self.start_vibration = get();
+        o.deflection = o0;
+        o.deflection_rel = o1;
+        o.pin_b_force = [o2, o3];
+        o.pin_c_force = [o4, o5];
+        o.crank_torque = o6;
+        o.slider_position = o7;
+        o.slider_velocity = o8;
+        self.dae.t = t;
+        self.dae.step_hint = hint;
+        self.dae.amplitude = amplitude;
+        self.start_vibration = vibration;
+    }
+
+    /// Read what [`Self::write_bytes`] wrote, into a state of the same dimensions; every
+    /// field checked ([`Self::validate`]).
+    pub fn read_bytes(&mut self, bytes: &[u8]) -> Result<(), String> {
+        let mut r = ByteReader::new(bytes);
+        let other_model = |e: String| format!("{e} (truncated or from another model)");
+        let mut scalars = [0.0; 25];
+        for x in scalars.iter_mut() {
+            *x = r.f64("the state").map_err(other_model)?;
+        }
+        self.set_scalars(scalars);
         for v in [
             &mut self.dae.q,
             &mut self.dae.v,
             &mut self.dae.qdd,
             &mut self.dae.acc,
+            &mut self.dae.lambda,
         ] {
             for x in v.iter_mut() {
-                *x = get();
+                *x = r.f64("the coordinates").map_err(other_model)?;
             }
         }
-        for x in self.dae.lambda.iter_mut() {
-            *x = get();
-        }
         let s = &mut self.outputs.section;
-        s.axial_force_mid = get();
-        s.bending_moment_mid = get();
-        s.stress_max = get();
-        s.stress_max_position = get();
-        let mut at = base - 25;
-        let mut count = || {
-            let c = u64::from_le_bytes(bytes[at..at + 8].try_into().unwrap());
-            at += 8;
-            c
-        };
-        self.stats.steps = count();
-        self.stats.newton_iterations = count();
-        self.stats.halvings = count();
+        for x in [
+            &mut s.axial_force_mid,
+            &mut s.bending_moment_mid,
+            &mut s.stress_max,
+            &mut s.stress_max_position,
+        ] {
+            *x = r.f64("the section outputs").map_err(other_model)?;
+        }
+        let c = &mut self.stats;
+        for n in [&mut c.steps, &mut c.newton_iterations, &mut c.halvings] {
+            *n = r.u64("the counters").map_err(other_model)?;
+        }
         if !(self.start_vibration.is_finite() && self.start_vibration >= 0.0) {
             return Err(format!(
                 "the start's vibration amplitude is {}, allowed a finite value >= 0",
                 self.start_vibration
             ));
         }
-        self.large_deflection_warned = match bytes[base - 1] {
+        self.large_deflection_warned =
+            r.flag("the deflection warning flag").map_err(other_model)?;
+        self.read_held_step(&mut r).map_err(other_model)?;
+        r.finish("the state").map_err(other_model)?;
+        self.validate()?;
+        self.warnings.clear();
+        Ok(())
+    }
+
+    /// The held internal step: its flag (1 only with dense output) and its values.
+    fn read_held_step(&mut self, r: &mut ByteReader<'_>) -> Result<(), String> {
+        let dense = !self.ahead.z0.is_empty();
+        self.ahead.held = match r.u8("the held-step flag")? {
             0 => false,
-            1 => true,
+            1 if dense => true,
             b => {
-                return Err(format!(
-                    "the deflection warning flag is {b}, allowed 0 or 1"
-                ))
+                let allowed = if dense {
+                    " or 1"
+                } else {
+                    " (this model has no dense output)"
+                };
+                return Err(format!("the held-step flag is {b}, allowed 0{allowed}"));
             }
         };
-        self.ahead.held = held;
-        if held {
-            let mut at = base + 1;
-            let mut get = || {
-                let x = f64::from_le_bytes(bytes[at..at + 8].try_into().unwrap());
-                at += 8;
-                x
-            };
+        if self.ahead.held {
             let a = &mut self.ahead;
-            a.t0 = get();
-            a.end.t = get();
-            a.end.step_hint = get();
-            a.end.amplitude = get();
+            for x in [
+                &mut a.t0,
+                &mut a.end.t,
+                &mut a.end.step_hint,
+                &mut a.end.amplitude,
+            ] {
+                *x = r.f64("the held step")?;
+            }
             for v in [
                 &mut a.z0,
                 &mut a.zd0,
@@ -269,12 +257,10 @@ impl MechanismState {
                 &mut a.end.lambda,
             ] {
                 for x in v.iter_mut() {
-                    *x = get();
+                    *x = r.f64("the held step")?;
                 }
             }
         }
-        self.validate()?;
-        self.warnings.clear();
         Ok(())
     }
 

@@ -45,6 +45,11 @@ impl<'a> Builder<'a> {
         }
     }
 
+    /// The interface the table is declared for.
+    pub fn interface(&self) -> Interface {
+        self.interface
+    }
+
     /// The table, with its index by value reference.
     pub fn finish(self) -> VariableTable {
         VariableTable::from_variables(self.variables, self.interface)
