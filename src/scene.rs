@@ -118,9 +118,9 @@ pub struct ExperimentSpec {
     pub crank_speed: f64,
 }
 
-/// The window of the crank speed, rad/s (95 000 rpm): `[experiment] crank_speed` and the input
-/// `crank.speed` (`simulation::INPUT_WINDOWS`).
-pub const CRANK_SPEED_WINDOW: f64 = 1e4;
+/// The window of the crank speed, rad/s: `[experiment] crank_speed` and the input
+/// `crank.speed` (the crank law's [`crate::mechanism::crank::SPEED_WINDOW`]).
+pub use crate::mechanism::crank::SPEED_WINDOW as CRANK_SPEED_WINDOW;
 
 pub use crate::cosimulation::experiment::{check_experiment_times, EXPERIMENT_STEP_RANGE};
 pub use crate::limits::EXPERIMENT_TIME_LIMIT;

@@ -9,6 +9,7 @@
 //! `omega(t_k + s) = omega_k + alpha_k s + j_k s^2 / 2`.
 
 use crate::error::ModelError;
+use crate::mechanism::crank;
 pub use crate::mechanism::{CrankInput, StepStats};
 use crate::mechanism::{Mechanism, MechanismState, Outputs};
 use crate::scene::Scene;
@@ -54,14 +55,19 @@ pub struct InputSnapshot {
     slider_force: f64,
 }
 
-/// Largest magnitudes of the inputs (past them no output can be trusted): crank
-/// angle 1e9 rad (the phase keeps 1e-7 rad), crank speed 1e4 rad/s (95 000 rpm), crank
-/// acceleration 1e8 rad/s^2, slider force 1e8 N.
-pub const INPUT_WINDOWS: [f64; 4] = [1e9, crate::scene::CRANK_SPEED_WINDOW, 1e8, 1e8];
+/// Largest magnitude of the slider force, N.
+pub const SLIDER_FORCE_WINDOW: f64 = 1e8;
 
-/// The largest crank jerk `|j_k|` of an input law, rad/s^3 (the order-2 derivative of
-/// `crank.speed`): the acceleration window's 1e8 rad/s^2 reached in 1e-4 s.
-pub const JERK_WINDOW: f64 = 1e12;
+/// Largest magnitudes of the inputs (past them no output can be trusted): the crank law's
+/// angle, speed and acceleration ([`crate::mechanism::crank`]), the slider force.
+pub const INPUT_WINDOWS: [f64; 4] = [
+    crank::ANGLE_WINDOW,
+    crank::SPEED_WINDOW,
+    crank::ACCELERATION_WINDOW,
+    SLIDER_FORCE_WINDOW,
+];
+
+pub use crate::mechanism::crank::JERK_WINDOW;
 
 impl Simulation {
     /// Build the model of `scene`: validate the parameters, preprocess the rod (modes,
@@ -298,31 +304,13 @@ impl Simulation {
 }
 
 fn check_input(input: CrankInput, slider_force: f64) -> Result<(), ModelError> {
-    let checks: [(&'static str, f64, f64, &str); 5] = [
-        ("crank.angle", input.angle, INPUT_WINDOWS[0], "rad"),
-        ("crank.speed", input.speed, INPUT_WINDOWS[1], "rad/s"),
-        (
-            "crank.speed derivative (crank acceleration)",
-            input.acceleration,
-            INPUT_WINDOWS[2],
-            "rad/s^2",
-        ),
-        (
-            "crank.speed order-2 derivative (crank jerk)",
-            input.jerk,
-            JERK_WINDOW,
-            "rad/s^3",
-        ),
-        ("slider.force", slider_force, INPUT_WINDOWS[3], "N"),
-    ];
-    for (name, value, bound, unit) in checks {
-        if !(value.is_finite() && value.abs() <= bound) {
-            return Err(ModelError::InvalidParameter {
-                name,
-                value,
-                allowed: format!("a finite value with |value| <= {bound:e} {unit}"),
-            });
-        }
+    input.check()?;
+    if !(slider_force.is_finite() && slider_force.abs() <= SLIDER_FORCE_WINDOW) {
+        return Err(ModelError::InvalidParameter {
+            name: "slider.force",
+            value: slider_force,
+            allowed: format!("a finite value with |value| <= {SLIDER_FORCE_WINDOW:e} N"),
+        });
     }
     Ok(())
 }

@@ -3,7 +3,6 @@
 //! piecewise-cubic motion set densely does, including the rows read between its input points
 //! (communication points that set no input, where the integrator holds a step past the point).
 
-use flexrod::drive::engine::continued_smoothly;
 use flexrod::mechanism::CrankLaw;
 use flexrod::{CrankInput, Scene, Simulation};
 
@@ -38,8 +37,7 @@ fn sparse_run(
         if k % every == 0 {
             let s = t - input_time;
             input = if smooth {
-                continued_smoothly(
-                    input,
+                input.continued_smoothly(
                     s,
                     exact(t).acceleration,
                     speed(t + input_step),

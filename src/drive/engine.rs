@@ -11,7 +11,6 @@ use std::time::{Duration, Instant};
 use super::law::CrankDrive;
 use crate::error::ModelError;
 use crate::mechanism::gas_force::GasForceTable;
-use crate::mechanism::CrankInput;
 use crate::scene::Scene;
 use crate::simulation::Simulation;
 
@@ -119,7 +118,7 @@ impl EngineRun {
 
     /// The run as a co-simulation master with input derivatives drives it: the gas force inside
     /// the model as [`EngineRun::run_with_gas_table`], the crank input set every `input_step` s
-    /// only (angle, speed, acceleration and jerk: [`continued_smoothly`], the speed following
+    /// only (angle, speed, acceleration and jerk: [`CrankInput::continued_smoothly`], the speed following
     /// the drive through each step), and a row every `sample` s (a communication point
     /// that sets no input, so the integrator holds its steps across it). `input_step` a
     /// multiple of `sample`, both divisors of the run's length.
@@ -137,7 +136,7 @@ impl EngineRun {
     /// The run on the communication step `step`, the crank input set every `input_step` s (a
     /// multiple of `step`), a row every `sample` s (a multiple of `step`); `held_gas`: the pulse
     /// through `slider.force`, held over each communication step at its mid-step value;
-    /// `smooth`: the input continued with a jerk ([`continued_smoothly`]), else with a constant
+    /// `smooth`: the input continued with a jerk ([`CrankInput::continued_smoothly`]), else with a constant
     /// acceleration ([`continued`]).
     fn run_on_grid(
         &self,
@@ -179,9 +178,9 @@ impl EngineRun {
                 let h = (input_every as f64 * step).min(self.stop - t);
                 let (s, speed) = (sim.time() - input_time, law.at(t + h).speed);
                 input = if smooth {
-                    continued_smoothly(input, s, law.at(t).acceleration, speed, h)
+                    input.continued_smoothly(s, law.at(t).acceleration, speed, h)
                 } else {
-                    continued(input, s, speed, h)
+                    input.continued(s, speed, h)
                 };
                 input_time = sim.time();
                 sim.set_input(input)?;
@@ -196,42 +195,6 @@ impl EngineRun {
         }
         let (name, _) = sim.mechanism().integrator_name();
         Ok((rows, clock.elapsed(), name.to_string()))
-    }
-}
-
-/// The input that continues the crank law `input` (set `s` seconds ago): its angle and speed
-/// carried on as `CrankLaw` carries them, with the constant acceleration that reaches the drive's
-/// `speed` (rad/s) after the next communication step `h`. The speed follows the drive exactly at
-/// the communication points, the angle by the trapezoidal rule (within `alpha_max h^2 / 12`,
-/// 2e-7 rad on the ramp to 6000 rpm), and the state needs no projection at the new input
-/// (`Mechanism::advance`: a new acceleration on the same angle and speed).
-fn continued(input: CrankInput, s: f64, speed: f64, h: f64) -> CrankInput {
-    let (angle, omega, _) = input.after(s);
-    CrankInput {
-        angle,
-        speed: omega,
-        acceleration: (speed - omega) / h,
-        jerk: 0.0,
-    }
-}
-
-/// The input that continues the crank law `input` (set `s` seconds ago, with its jerk) in
-/// angle and speed, with the drive's acceleration `now` (rad/s^2) and the jerk that reaches the
-/// drive's `speed` (rad/s) after the next communication step `h`:
-/// `j = 2 (speed - omega - alpha h) / h^2`. The angle and the speed are continuous across the
-/// input points and the speed follows the drive exactly there; the acceleration steps at a
-/// point by the difference of the quadratic speed from the drive's, `h^2 alpha'' / 6` (25
-/// rad/s^2 on the ramp to 6000 rpm at `h = 1e-3` s, against `h alpha'` = 1940 rad/s^2 for an
-/// acceleration held over the step), so the steps barely ring the rod. (Continuing the
-/// acceleration too would leave the steps' speeds no free parameter but the jerk, and any
-/// error of the first acceleration would alternate in sign from step to step for ever.)
-pub fn continued_smoothly(input: CrankInput, s: f64, now: f64, speed: f64, h: f64) -> CrankInput {
-    let (angle, omega, _) = input.after(s);
-    CrankInput {
-        angle,
-        speed: omega,
-        acceleration: now,
-        jerk: 2.0 * (speed - omega - now * h) / (h * h),
     }
 }
 
@@ -351,7 +314,7 @@ mod tests {
         for k in 0..(run.stop / h).round() as usize {
             let t = k as f64 * h;
             let t_input = k.saturating_sub(1) as f64 * h;
-            let next = continued(input, t - t_input, law.at(t + h).speed, h);
+            let next = input.continued(t - t_input, law.at(t + h).speed, h);
             if k > 0 {
                 let (angle, speed, _) = CrankLaw {
                     length: run.speed,

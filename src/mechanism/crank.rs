@@ -1,8 +1,21 @@
-//! The prescribed crank (docs/fmu.md, "Behaviour"):
-//! `theta(t) = theta_k + omega_k s + alpha_k s^2 / 2 + j_k s^3 / 6`, `s = t - t_k`; pin B at
-//! `r (cos theta, sin theta)`.
+//! The crank input law, one owner (docs/fmu.md, "Input law between communication points"):
+//! `theta(t) = theta_k + omega_k s + alpha_k s^2 / 2 + j_k s^3 / 6`, `s = t - t_k`, from the
+//! inputs set at the communication point `t_k`; pin B at `r (cos theta, sin theta)`. Here: the
+//! law's values and their windows, its check, the pin's motion, and how a drive continues a law
+//! at the next communication point.
 
 use nalgebra::Vector2;
+
+use crate::error::ModelError;
+
+/// Largest |crank angle| of a law, rad (the phase keeps 1e-7 rad).
+pub const ANGLE_WINDOW: f64 = 1e9;
+/// Largest |crank speed|, rad/s (95 000 rpm): `crank.speed` and `[experiment] crank_speed`.
+pub const SPEED_WINDOW: f64 = 1e4;
+/// Largest |crank acceleration| `alpha_k`, rad/s^2.
+pub const ACCELERATION_WINDOW: f64 = 1e8;
+/// Largest |crank jerk| `j_k`, rad/s^3: the acceleration window reached in 1e-4 s.
+pub const JERK_WINDOW: f64 = 1e12;
 
 /// Crank input at a communication point.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
@@ -28,6 +41,73 @@ pub struct CrankLaw {
 }
 
 impl CrankInput {
+    /// Every value finite and within its window; the error names the value as the set calls
+    /// do (the order-1 and order-2 derivatives of `crank.speed` are the acceleration and jerk).
+    pub fn check(&self) -> Result<(), ModelError> {
+        let checks: [(&'static str, f64, f64, &str); 4] = [
+            ("crank.angle", self.angle, ANGLE_WINDOW, "rad"),
+            ("crank.speed", self.speed, SPEED_WINDOW, "rad/s"),
+            (
+                "crank.speed derivative (crank acceleration)",
+                self.acceleration,
+                ACCELERATION_WINDOW,
+                "rad/s^2",
+            ),
+            (
+                "crank.speed order-2 derivative (crank jerk)",
+                self.jerk,
+                JERK_WINDOW,
+                "rad/s^3",
+            ),
+        ];
+        for (name, value, bound, unit) in checks {
+            if !(value.is_finite() && value.abs() <= bound) {
+                return Err(ModelError::InvalidParameter {
+                    name,
+                    value,
+                    allowed: format!("a finite value with |value| <= {bound:e} {unit}"),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// The input that continues this crank law (set `s` seconds ago): its angle and speed
+    /// carried on as `CrankLaw` carries them, with the constant acceleration that reaches the drive's
+    /// `speed` (rad/s) after the next communication step `h`. The speed follows the drive exactly at
+    /// the communication points, the angle by the trapezoidal rule (within `alpha_max h^2 / 12`,
+    /// 2e-7 rad on the ramp to 6000 rpm), and the state needs no projection at the new input
+    /// (`Mechanism::advance`: a new acceleration on the same angle and speed).
+    pub fn continued(&self, s: f64, speed: f64, h: f64) -> CrankInput {
+        let (angle, omega, _) = self.after(s);
+        CrankInput {
+            angle,
+            speed: omega,
+            acceleration: (speed - omega) / h,
+            jerk: 0.0,
+        }
+    }
+
+    /// The input that continues this crank law (set `s` seconds ago, with its jerk) in
+    /// angle and speed, with the drive's acceleration `now` (rad/s^2) and the jerk that reaches the
+    /// drive's `speed` (rad/s) after the next communication step `h`:
+    /// `j = 2 (speed - omega - alpha h) / h^2`. The angle and the speed are continuous across the
+    /// input points and the speed follows the drive exactly there; the acceleration steps at a
+    /// point by the difference of the quadratic speed from the drive's, `h^2 alpha'' / 6` (25
+    /// rad/s^2 on the ramp to 6000 rpm at `h = 1e-3` s, against `h alpha'` = 1940 rad/s^2 for an
+    /// acceleration held over the step), so the steps barely ring the rod. (Continuing the
+    /// acceleration too would leave the steps' speeds no free parameter but the jerk, and any
+    /// error of the first acceleration would alternate in sign from step to step for ever.)
+    pub fn continued_smoothly(&self, s: f64, now: f64, speed: f64, h: f64) -> CrankInput {
+        let (angle, omega, _) = self.after(s);
+        CrankInput {
+            angle,
+            speed: omega,
+            acceleration: now,
+            jerk: 2.0 * (speed - omega - now * h) / (h * h),
+        }
+    }
+
     /// Angle, speed and acceleration `s` seconds after this input was set:
     /// `theta_k + omega_k s + alpha_k s^2 / 2 + j_k s^3 / 6` and its derivatives.
     pub fn after(&self, s: f64) -> (f64, f64, f64) {
