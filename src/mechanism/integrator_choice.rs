@@ -4,23 +4,23 @@
 //!
 //! - `solver.method = "auto"`: error-controlled steps. On the FFR rod's modal coordinates
 //!   while the explicit stability step `2.5 / |lambda|_max` of the retained modes is at least
-//!   [`AUTO_EXPLICIT_MIN_STEP`]: the exponential form of the RK4(3) pair (ETDRK4 in
-//!   Krogstad's stages, 2005, with the weights of Cox and Matthews 2002) where the modes are the mechanism's own oscillators
-//!   ([`modes_are_oscillators`]) on the closed-form minimal coordinates, the
-//!   classic RK4(3) pair elsewhere. Else (the segment chain, many or very stiff modes) the
-//!   adaptive generalized-alpha method.
-//! - `"dopri5"`, `"rk43"`: that pair, classic form, on the modal coordinates; refused without
-//!   them (the segment chain).
-//! - The chain on its modes ([`RodBody::modal_oscillators`]): `auto` takes the exponential form
-//!   on its modal coordinates (the general partitioned evaluation), its pinned bending modes
-//!   and loaded axial mode the mechanism's own oscillators.
-//! - `"exponential"`: the exponential form wherever the closed form exists (an FFR rod of 1 to
+//!   [`AUTO_EXPLICIT_MIN_STEP`]: ETDRK4 ([`ExponentialRungeKutta`]: Krogstad's stages, 2005,
+//!   with the weights of Cox and Matthews 2002) where the modes are the mechanism's own
+//!   oscillators ([`modes_are_oscillators`]) on the closed-form minimal coordinates, the
+//!   RK4(3) pair ([`AdaptiveRungeKutta`]) elsewhere. Else (the segment chain, many or very
+//!   stiff modes) the adaptive generalized-alpha method.
+//! - `"dopri5"`, `"rk43"`: that pair on the modal coordinates; refused without them (the
+//!   segment chain).
+//! - The chain on its modes ([`RodBody::modal_oscillators`]): `auto` takes ETDRK4 on its modal
+//!   coordinates (the general partitioned evaluation), its pinned bending modes and loaded
+//!   axial mode the mechanism's own oscillators.
+//! - `"exponential"`: ETDRK4 wherever the closed form exists (an FFR rod of 1 to
 //!   [`crate::rod::ffr::MAX_MODES`] modes), also where `auto` would not take it; refused
 //!   elsewhere.
 //! - `"rk4"`: the fixed-step classic RK4 with projection, its step capped at the stability
 //!   step; `"generalized_alpha"`: fixed steps of `solver.step`.
 //!
-//! Why the exponential form only where the modes are the mechanism's own oscillators
+//! Why ETDRK4 only where the modes are the mechanism's own oscillators
 //! ([`modes_are_oscillators`]): the modes of the pinned rod are the mechanism's linear
 //! oscillators (the reduced mass is `M_ff` at the undeformed configuration, whatever the crank
 //! angle and the slider mass), and so are the mass-loaded modes that carry the slider
@@ -28,17 +28,17 @@
 //! of the reduced mass grows as `1 / cos^2` of the rod's angle to its line). Split off with their
 //! effective modal mass ([`effective_modal_mass`]), the remainder is smooth and the step is set
 //! by the accuracy of the response. Free axial modes that carry the piston couple through the
-//! constraints instead: their split-off oscillators are not the mechanism's, and the exponential
-//! form took twice the steps of the classic pair on the automotive rod with free modes
-//! (`cargo run --release --example exponential_choice`).
+//! constraints instead: their split-off oscillators are not the mechanism's, and ETDRK4 took
+//! twice the steps of the RK4(3) pair on the automotive rod with free modes (`cargo run
+//! --release --example exponential_choice`).
 
 use super::spec::{SolverMethod, SolverSpec};
 use crate::error::ModelError;
 use crate::integrator::exponential::Oscillator;
 use crate::integrator::generalized_alpha::AlphaErrorControl;
 use crate::integrator::{
-    AdaptiveRungeKutta, DaeSystem, ErrorControl, ExplicitRk4, GeneralizedAlpha, Integrator,
-    Tableau, DORMAND_PRINCE, RK4_FSAL,
+    AdaptiveRungeKutta, DaeSystem, ErrorControl, ExplicitRk4, ExponentialRungeKutta,
+    GeneralizedAlpha, Integrator, Tableau, DORMAND_PRINCE, RK4_FSAL,
 };
 use crate::rod::RodBody;
 
@@ -158,9 +158,11 @@ pub enum Pair {
 /// The integrator chosen, with its settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum IntegratorChoice {
-    /// [`AdaptiveRungeKutta`] on the modal coordinates with `pair`; with `exponential` in its
-    /// exponential form (ETDRK4, only with [`Pair::Rk43`]).
-    AdaptiveRungeKutta { pair: Pair, exponential: bool },
+    /// [`AdaptiveRungeKutta`] on the modal coordinates with `pair`.
+    AdaptiveRungeKutta { pair: Pair },
+    /// [`ExponentialRungeKutta`] (ETDRK4) on the modal coordinates, with the local tolerance of
+    /// the RK4(3) pair.
+    ExponentialRungeKutta,
     /// [`ExplicitRk4`] with fixed steps of at most `max_step`, s.
     ExplicitRk4 { max_step: f64 },
     /// [`GeneralizedAlpha`]: error-controlled steps with `adaptive`, else fixed steps of
@@ -175,14 +177,15 @@ impl IntegratorChoice {
     /// generalized-alpha either way).
     pub fn max_step(&self, solver: &SolverSpec) -> f64 {
         match *self {
-            IntegratorChoice::AdaptiveRungeKutta { .. } => f64::INFINITY,
+            IntegratorChoice::AdaptiveRungeKutta { .. }
+            | IntegratorChoice::ExponentialRungeKutta => f64::INFINITY,
             IntegratorChoice::ExplicitRk4 { max_step } => max_step,
             IntegratorChoice::GeneralizedAlpha { .. } => solver.step,
         }
     }
 }
 
-/// `auto` takes the exponential form whatever the stability step of the explicit pair: the
+/// `auto` takes ETDRK4 whatever the stability step of the explicit pair: the
 /// closed form exists, its modes are the mechanism's own oscillators
 /// ([`modes_are_oscillators`]) and not overdamped (their propagator is exact, so the stiffest
 /// mode does not hold the step). Measured on the automotive rod with E and G times 1e4
@@ -231,7 +234,6 @@ pub fn choose(solver: &SolverSpec, facts: &MechanismFacts) -> Result<IntegratorC
             if method == SolverMethod::Dopri5 {
                 return Ok(IntegratorChoice::AdaptiveRungeKutta {
                     pair: Pair::DormandPrince,
-                    exponential: false,
                 });
             }
             let minimal = auto && facts.closed_form;
@@ -239,9 +241,10 @@ pub fn choose(solver: &SolverSpec, facts: &MechanismFacts) -> Result<IntegratorC
                 Some(pinned) => forced || minimal && pinned,
                 None => (forced || auto) && facts.modal_oscillators,
             };
-            Ok(IntegratorChoice::AdaptiveRungeKutta {
-                pair: Pair::Rk43,
-                exponential,
+            Ok(if exponential {
+                IntegratorChoice::ExponentialRungeKutta
+            } else {
+                IntegratorChoice::AdaptiveRungeKutta { pair: Pair::Rk43 }
             })
         }
         SolverMethod::Rk4 => Ok(IntegratorChoice::ExplicitRk4 {
@@ -264,30 +267,23 @@ pub fn build(
     system: &dyn DaeSystem,
 ) -> Box<dyn Integrator> {
     match choice {
-        IntegratorChoice::AdaptiveRungeKutta { pair, exponential } => {
-            let elastic = rod.elastic_coordinates().expect("modal coordinates");
-            let omega = rod
-                .elastic_circular_frequencies()
-                .expect("modal frequencies");
+        IntegratorChoice::AdaptiveRungeKutta { pair } => {
             // The RK4(3) pair: four evaluations a step and 2.8 times the stable step on the
             // stiff mode (module documentation of `crate::integrator::adaptive_runge_kutta`).
             let (tableau, factor): (&'static Tableau, f64) = match pair {
                 Pair::Rk43 => (&RK4_FSAL, LOCAL_TOLERANCE_FACTOR_RK4),
                 Pair::DormandPrince => (&DORMAND_PRINCE, LOCAL_TOLERANCE_FACTOR),
             };
-            let control = ErrorControl {
-                tolerance: solver.tolerance * factor,
-                amplitude_floor: AMPLITUDE_FLOOR,
-                scales: elastic.clone().map(|i| rod.coordinate_scale(i)).collect(),
-                rate_weights: omega.iter().map(|w| w.max(1.0)).collect(),
-                initial_step: solver.step,
-                max_rejections: MAX_REJECTIONS,
-                per_unit_step: Some(ERROR_PER_UNIT_STEP_RK4 / factor),
-            };
-            let integrator = AdaptiveRungeKutta::new(system, elastic.collect(), control, tableau);
-            if !exponential {
-                return Box::new(integrator);
-            }
+            let (independent, control) = explicit_control(solver, rod, factor);
+            Box::new(AdaptiveRungeKutta::new(
+                system,
+                independent,
+                control,
+                tableau,
+            ))
+        }
+        IntegratorChoice::ExponentialRungeKutta => {
+            let (independent, control) = explicit_control(solver, rod, LOCAL_TOLERANCE_FACTOR_RK4);
             let oscillators = match (rod.ffr_kernel(), rod.modal_oscillators()) {
                 (Some(kernel), _) => (0..kernel.n)
                     .map(|i| {
@@ -299,9 +295,10 @@ pub fn build(
                     .into_iter()
                     .map(|(omega2, damping)| Oscillator::new(omega2, damping))
                     .collect(),
-                (None, None) => unreachable!("the exponential form needs the rod's oscillators"),
+                (None, None) => unreachable!("ETDRK4 needs the rod's oscillators"),
             };
-            let mut integrator = integrator.exponential(oscillators);
+            let mut integrator =
+                ExponentialRungeKutta::new(system, independent, control, oscillators);
             for index in rod.axial_mode_indices() {
                 integrator = integrator.cap_phase_on(index);
             }
@@ -326,6 +323,31 @@ pub fn build(
             Box::new(alpha)
         }
     }
+}
+
+/// The independent coordinates of the explicit error-controlled integrators (the rod's modal
+/// coordinates) and their error control: the local tolerance `solver.tolerance factor`, each
+/// coordinate's scale and its rate weighted by its circular frequency (at least 1 rad/s), error
+/// per unit step ([`ERROR_PER_UNIT_STEP_RK4`]).
+fn explicit_control(
+    solver: &SolverSpec,
+    rod: &dyn RodBody,
+    factor: f64,
+) -> (Vec<usize>, ErrorControl) {
+    let elastic = rod.elastic_coordinates().expect("modal coordinates");
+    let omega = rod
+        .elastic_circular_frequencies()
+        .expect("modal frequencies");
+    let control = ErrorControl {
+        tolerance: solver.tolerance * factor,
+        amplitude_floor: AMPLITUDE_FLOOR,
+        scales: elastic.clone().map(|i| rod.coordinate_scale(i)).collect(),
+        rate_weights: omega.iter().map(|w| w.max(1.0)).collect(),
+        initial_step: solver.step,
+        max_rejections: MAX_REJECTIONS,
+        per_unit_step: Some(ERROR_PER_UNIT_STEP_RK4 / factor),
+    };
+    (elastic.collect(), control)
 }
 
 /// The modal mass of mode `i` in the mechanism at the dead centres, where the rod lies on the
@@ -407,9 +429,11 @@ mod tests {
         }
     }
 
-    fn adaptive_rk(pair: Pair, exponential: bool) -> IntegratorChoice {
-        IntegratorChoice::AdaptiveRungeKutta { pair, exponential }
+    fn adaptive_rk(pair: Pair) -> IntegratorChoice {
+        IntegratorChoice::AdaptiveRungeKutta { pair }
     }
+
+    const ETDRK4: IntegratorChoice = IntegratorChoice::ExponentialRungeKutta;
 
     /// A frequency whose stability step is just above / below [`AUTO_EXPLICIT_MIN_STEP`].
     fn f_at_limit(factor: f64) -> f64 {
@@ -419,7 +443,7 @@ mod tests {
     #[test]
     fn auto_takes_the_exponential_form_where_the_modes_leave_the_pins() {
         let choice = choose(&solver(SolverMethod::Auto), &ffr(2000.0, true)).unwrap();
-        assert_eq!(choice, adaptive_rk(Pair::Rk43, true));
+        assert_eq!(choice, ETDRK4);
         assert_eq!(choice.max_step(&SolverSpec::default()), f64::INFINITY);
     }
 
@@ -428,17 +452,17 @@ mod tests {
         let auto = solver(SolverMethod::Auto);
         assert_eq!(
             choose(&auto, &ffr(2000.0, false)).unwrap(),
-            adaptive_rk(Pair::Rk43, false)
+            adaptive_rk(Pair::Rk43)
         );
         assert_eq!(
             choose(&auto, &ffr_general(2000.0)).unwrap(),
-            adaptive_rk(Pair::Rk43, false)
+            adaptive_rk(Pair::Rk43)
         );
     }
 
     /// Up to the stability step [`AUTO_EXPLICIT_MIN_STEP`] the explicit pair, beyond it (and
     /// for an overdamped rod, whose fastest eigenvalue is above its frequency) adaptive
-    /// generalized-alpha, as for the segment chain; the exponential form at any stiffness
+    /// generalized-alpha, as for the segment chain; ETDRK4 at any stiffness
     /// where the modes are the mechanism's oscillators.
     #[test]
     fn auto_takes_adaptive_generalized_alpha_for_stiff_rods_and_the_segment_chain() {
@@ -446,7 +470,7 @@ mod tests {
         let alpha = IntegratorChoice::GeneralizedAlpha { adaptive: true };
         assert_eq!(
             choose(&auto, &ffr(f_at_limit(0.999), false)).unwrap(),
-            adaptive_rk(Pair::Rk43, false)
+            adaptive_rk(Pair::Rk43)
         );
         assert_eq!(
             choose(&auto, &ffr(f_at_limit(1.001), false)).unwrap(),
@@ -454,7 +478,7 @@ mod tests {
         );
         assert_eq!(
             choose(&auto, &ffr(f_at_limit(100.0), true)).unwrap(),
-            adaptive_rk(Pair::Rk43, true)
+            ETDRK4
         );
         let overdamped = MechanismFacts {
             damping_ratio: 1.5,
@@ -464,27 +488,24 @@ mod tests {
         assert_eq!(choose(&auto, &overdamped).unwrap(), alpha);
         assert_eq!(choose(&auto, &segments(100.0)).unwrap(), alpha);
         assert_eq!(alpha.max_step(&auto), auto.step);
-        // The chain on its modes: the exponential form at any stiffness of its modes.
+        // The chain on its modes: ETDRK4 at any stiffness of its modes.
         for f in [100.0, f_at_limit(100.0)] {
-            assert_eq!(
-                choose(&auto, &modal_chain(f)).unwrap(),
-                adaptive_rk(Pair::Rk43, true)
-            );
+            assert_eq!(choose(&auto, &modal_chain(f)).unwrap(), ETDRK4);
         }
     }
 
     /// `dopri5` and `rk43` are the classic pairs wherever there are modal coordinates, also
-    /// where `auto` would take the exponential form or the implicit method.
+    /// where `auto` would take ETDRK4 or the implicit method.
     #[test]
     fn forced_pairs_are_classic() {
         for facts in [ffr(2000.0, true), ffr(1e6, true), ffr_general(2000.0)] {
             assert_eq!(
                 choose(&solver(SolverMethod::Dopri5), &facts).unwrap(),
-                adaptive_rk(Pair::DormandPrince, false)
+                adaptive_rk(Pair::DormandPrince)
             );
             assert_eq!(
                 choose(&solver(SolverMethod::Rk43), &facts).unwrap(),
-                adaptive_rk(Pair::Rk43, false)
+                adaptive_rk(Pair::Rk43)
             );
         }
     }
@@ -495,7 +516,7 @@ mod tests {
         for pinned in [true, false] {
             assert_eq!(
                 choose(&solver(SolverMethod::Exponential), &ffr(2000.0, pinned)).unwrap(),
-                adaptive_rk(Pair::Rk43, true)
+                ETDRK4
             );
         }
     }
