@@ -5,7 +5,8 @@
 //!
 //! with `n` coordinates `q`, `m` constraints and their multipliers `lambda`. Each integrator
 //! implements [`Integrator`], which is all the stepping driver sees; which one a scene gets is
-//! chosen from its solver settings by the mechanism (`mechanism::integrator_choice`).
+//! chosen from its solver settings by `mechanism::integrator_choice`, and the choice is passed
+//! to the mechanism when it is built.
 //!
 //! - [`GeneralizedAlpha`] ([`generalized_alpha`]): implicit, on the index-3 form, fixed steps or
 //!   adaptive ones. The method of Chung and Hulbert 1993 ("A time integration algorithm for

@@ -1,6 +1,7 @@
 //! Which integrator a mechanism gets: [`choose`] decides from the solver settings and the facts
-//! of the mechanism it needs ([`MechanismFacts`]), [`build`] makes the integrator of the
-//! [`IntegratorChoice`].
+//! of the mechanism it needs ([`MechanismFacts`], from [`super::MechanismParts`]); the caller
+//! passes the [`IntegratorChoice`] to [`super::Mechanism::new`], which makes the integrator
+//! with [`build`].
 //!
 //! - `solver.method = "auto"`: error-controlled steps. On the FFR rod's modal coordinates
 //!   while the explicit stability step `2.5 / |lambda|_max` of the retained modes is at least
@@ -196,6 +197,34 @@ fn exact_oscillators(facts: &MechanismFacts) -> bool {
         && facts.damping_ratio <= 1.0
 }
 
+/// The refusal of an explicit error-controlled method on a rod without modal coordinates.
+fn no_modal_coordinates() -> ModelError {
+    ModelError::InvalidParameter {
+        name: "solver.method",
+        value: 0.0,
+        allowed: "generalized_alpha, rk4 or auto with rod.model = segments (dopri5, rk43 and exponential integrate the FFR rod's modal coordinates)".into(),
+    }
+}
+
+/// Whether the rod gives its modal coordinates as oscillators for ETDRK4: the FFR rod's closed
+/// form exists, or the rod gives its modes ([`RodBody::modal_oscillators`]).
+fn has_oscillators(facts: &MechanismFacts) -> bool {
+    facts.kernel_oscillators.is_some() || facts.modal_oscillators
+}
+
+/// The refusal of ETDRK4 on a rod of `modes` modal coordinates without oscillators
+/// ([`has_oscillators`]).
+fn no_oscillators(modes: usize) -> ModelError {
+    ModelError::InvalidInteger {
+        name: "solver.method",
+        value: modes as i64,
+        allowed: format!(
+            "exponential with an FFR rod of 1 to {} modes (its closed form; this rod has more) or the chain on its modes, or auto, rk43, dopri5",
+            crate::rod::ffr::MAX_MODES
+        ),
+    }
+}
+
 /// The integrator for `solver` on a mechanism with `facts` (module documentation), or why
 /// the method asked for does not apply.
 pub fn choose(solver: &SolverSpec, facts: &MechanismFacts) -> Result<IntegratorChoice, ModelError> {
@@ -214,22 +243,11 @@ pub fn choose(solver: &SolverSpec, facts: &MechanismFacts) -> Result<IntegratorC
     match method {
         SolverMethod::Dopri5 | SolverMethod::Rk43 | SolverMethod::Exponential => {
             let Some(modes) = facts.modes else {
-                return Err(ModelError::InvalidParameter {
-                    name: "solver.method",
-                    value: 0.0,
-                    allowed: "generalized_alpha, rk4 or auto with rod.model = segments (dopri5, rk43 and exponential integrate the FFR rod's modal coordinates)".into(),
-                });
+                return Err(no_modal_coordinates());
             };
             let forced = method == SolverMethod::Exponential;
-            if forced && facts.kernel_oscillators.is_none() && !facts.modal_oscillators {
-                return Err(ModelError::InvalidInteger {
-                    name: "solver.method",
-                    value: modes as i64,
-                    allowed: format!(
-                        "exponential with an FFR rod of 1 to {} modes (its closed form; this rod has more) or the chain on its modes, or auto, rk43, dopri5",
-                        crate::rod::ffr::MAX_MODES
-                    ),
-                });
+            if forced && !has_oscillators(facts) {
+                return Err(no_oscillators(modes));
             }
             if method == SolverMethod::Dopri5 {
                 return Ok(IntegratorChoice::AdaptiveRungeKutta {
@@ -257,16 +275,28 @@ pub fn choose(solver: &SolverSpec, facts: &MechanismFacts) -> Result<IntegratorC
     }
 }
 
-/// The integrator of `choice` for `rod` in the mechanism `system`, with the settings of
-/// `solver`.
+/// The integrator of `choice` for `rod` (with `facts`) in the mechanism `system`, with the
+/// settings of `solver`; refused, as [`choose`] refuses it, where the choice does not apply to
+/// the rod (the explicit error-controlled methods without modal coordinates, ETDRK4 without
+/// their oscillators).
 pub fn build(
     choice: IntegratorChoice,
     solver: &SolverSpec,
     facts: &MechanismFacts,
     rod: &dyn RodBody,
     system: &dyn DaeSystem,
-) -> Box<dyn Integrator> {
-    match choice {
+) -> Result<Box<dyn Integrator>, ModelError> {
+    if let IntegratorChoice::AdaptiveRungeKutta { .. } | IntegratorChoice::ExponentialRungeKutta =
+        choice
+    {
+        let Some(modes) = facts.modes else {
+            return Err(no_modal_coordinates());
+        };
+        if choice == IntegratorChoice::ExponentialRungeKutta && !has_oscillators(facts) {
+            return Err(no_oscillators(modes));
+        }
+    }
+    Ok(match choice {
         IntegratorChoice::AdaptiveRungeKutta { pair } => {
             // The RK4(3) pair: four evaluations a step and 2.8 times the stable step on the
             // stiff mode (module documentation of `crate::integrator::adaptive_runge_kutta`).
@@ -322,7 +352,7 @@ pub fn build(
             }
             Box::new(alpha)
         }
-    }
+    })
 }
 
 /// The independent coordinates of the explicit error-controlled integrators (the rod's modal
