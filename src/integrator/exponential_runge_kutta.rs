@@ -10,14 +10,15 @@
 //!
 //! A mode's own oscillation then costs no steps, and neither does the forced response of a
 //! stiff mode: the step follows how fast the remainder `n` (the coupling to the rigid motion,
-//! the stiffening, the forcing) changes, up to the phase caps set at construction. `auto` takes
-//! it where the modes are the mechanism's own oscillators (they leave the pins in place, or they
-//! carry the slider as mass-loaded modes: `crate::mechanism::integrator_choice`).
+//! the stiffening, the forcing) changes, up to the largest step set at construction (the phase
+//! caps on the modes measured on this product's rods, where the integrator is chosen:
+//! `crate::mechanism::integrator_choice`, which also decides where `auto` takes it: where the
+//! modes are the mechanism's own oscillators, leaving the pins in place or carrying the slider
+//! as mass-loaded modes).
 //!
 //! The step control, the error norm and the workspace are those of the embedded pairs
 //! ([`super::step_control`]).
 
-use super::adaptive_runge_kutta::{axial_max_phase, damped_max_phase};
 use super::exponential::{self, EtdWeights, Oscillator, Propagator};
 use super::failure::{StepError, StepFailure};
 use super::state::{DaeState, StepAhead};
@@ -64,8 +65,7 @@ struct ExponentialForm {
     /// The free responses of the step's start, `E(h/2) y0` and `E(h) y0` (`z` and `z'` of
     /// each), which stages a, b and c, end share.
     free: Vec<[f64; 4]>,
-    /// [`damped_max_phase`] over the lowest oscillator's circular frequency, s, and
-    /// [`axial_max_phase`] over the axial oscillators' ([`ExponentialRungeKutta::cap_phase_on`]).
+    /// The largest step the caller allows, s ([`ExponentialRungeKutta::new`]).
     max_step: f64,
 }
 
@@ -75,23 +75,21 @@ impl ExponentialRungeKutta {
     /// remainder integrated against it with the phi functions; its embedded estimate
     /// `h f3(hA) e2 (N_c - N_end)` (the RK4(3) pair's `h (k_4 - k_5) / 6` for `A -> 0`; `N_end`
     /// the remainder at the new solution, first same as last). Dense output by the oscillator's
-    /// exact response to a quadratic remainder ([`Integrator::interpolate`]).
+    /// exact response to a quadratic remainder ([`Integrator::interpolate`]). The steps
+    /// proposed are at most `max_step`, s (and [`super::MAX_ADAPTIVE_STEP`]): the oscillators'
+    /// own motion does not bound the step, so the caller bounds what the embedded estimate does
+    /// not see (the phase `w h` over which the stages still sample the remainder's oscillating
+    /// terms).
     pub fn new(
         system: &dyn DaeSystem,
         independent: Vec<usize>,
         control: ErrorControl,
         oscillators: Vec<Oscillator>,
+        max_step: f64,
     ) -> ExponentialRungeKutta {
         let steps = EmbeddedSteps::new(system, independent, control);
         let k = steps.k;
         assert_eq!(oscillators.len(), k);
-        // The lowest oscillator's phase cap, with its damping (damped_max_phase).
-        let lowest = oscillators
-            .iter()
-            .min_by(|a, b| a.omega2.total_cmp(&b.omega2))
-            .expect("at least one oscillator");
-        let max_step = damped_max_phase(steps.control.tolerance, lowest.damping_ratio())
-            / lowest.omega2.sqrt();
         ExponentialRungeKutta {
             steps,
             form: ExponentialForm {
@@ -109,22 +107,8 @@ impl ExponentialRungeKutta {
         }
     }
 
-    /// The same with the phase `w h` of oscillator `index` (an axial mode) capped at
-    /// [`axial_max_phase`] too: its oscillation enters the bending modes' remainder through
-    /// the axial force, and above the cap the embedded estimate loses sight of that coupling's
-    /// error.
-    pub fn cap_phase_on(mut self, index: usize) -> ExponentialRungeKutta {
-        let cap = axial_max_phase(self.steps.control.tolerance);
-        let form = &mut self.form;
-        let omega = form.oscillators[index].omega2.sqrt();
-        if omega > 0.0 {
-            form.max_step = form.max_step.min(cap / omega);
-        }
-        self
-    }
-
-    /// The largest step proposed: [`super::MAX_ADAPTIVE_STEP`] and the phase caps
-    /// ([`damped_max_phase`] on the lowest oscillator, [`Self::cap_phase_on`]).
+    /// The largest step proposed: [`super::MAX_ADAPTIVE_STEP`] and the caller's `max_step`
+    /// ([`ExponentialRungeKutta::new`]).
     fn max_step(&self) -> f64 {
         self.form.max_step.min(super::MAX_ADAPTIVE_STEP)
     }

@@ -32,6 +32,12 @@
 //! constraints instead: their split-off oscillators are not the mechanism's, and ETDRK4 took
 //! twice the steps of the RK4(3) pair on the automotive rod with free modes (`cargo run
 //! --release --example exponential_choice`).
+//!
+//! ETDRK4's steps are bounded by phase caps measured on this product's rods, which the
+//! integrator receives as its largest step ([`exponential_max_step`]): `w_1 h` of the lowest
+//! mode at most [`EXPONENTIAL_MAX_PHASE`], tighter at tight tolerances against the drift of a
+//! long undamped run ([`exponential_max_phase`]) and as loose as the damping lets that drift
+//! settle ([`damped_max_phase`]), and `w_ax h` of the axial modes at most [`axial_max_phase`].
 
 use super::spec::{SolverMethod, SolverSpec};
 use crate::error::ModelError;
@@ -81,6 +87,107 @@ pub const AUTO_EXPLICIT_MIN_STEP: f64 = 5e-6;
 
 /// Rejected tries of one step of the error-controlled methods before it counts as failed.
 const MAX_REJECTIONS: usize = 40;
+
+/// Largest phase `w_min h` of the lowest mode over one step of ETDRK4
+/// ([`ExponentialRungeKutta`]). The remainder carries the modes' parametric terms (the
+/// axial stiffening moves the first mode's stiffness by about 10 % on the benchmark rod),
+/// which oscillate with the modes: over longer
+/// steps the stages no longer resolve them and the estimate misses the error (a random
+/// parameter set of `tests/error_control.rs` with `w_1 h` up to 2.4 was 1.6 times its
+/// tolerance off, 5 times at a tighter one). Measured with this constant set to 1, 1.25 and 1.5
+/// on the 30 random parameter sets of `tests/error_control.rs` damped at 5 % at tolerance 1e-2
+/// or 3e-3 (where the damping lifts the drift cap to 1.49 and 1.41): the largest error is 0.031,
+/// 0.031 and 0.054 of the tolerance; the four sets it binds are 0.007 to 0.012, 0.018 to 0.028
+/// and 0.036 to 0.054 of theirs and take 15 to 20 % fewer steps at 1.25 than at 1. A step
+/// landing on a communication point may stretch to 1.25 times it (`w_1 h` up to 1.56,
+/// [`Integrator::step`]). Below a local tolerance of [`EXPONENTIAL_DRIFT_TOLERANCE`] the cap is
+/// tighter ([`exponential_max_phase`]: 0.36 at the default scene's), and on a damped rod it is
+/// [`damped_max_phase`].
+pub const EXPONENTIAL_MAX_PHASE: f64 = 1.25;
+
+/// Largest phase `w_ax h` of an axial mode over one step of ETDRK4
+/// ([`ExponentialRungeKutta`]), at the local tolerance [`AXIAL_PHASE_TOLERANCE`] and above ([`axial_max_phase`]). An axial mode's
+/// oscillation enters the bending modes' remainder through the axial force; over longer steps
+/// the stages sample that coupling too coarsely and the embedded estimate misses its error.
+/// Measured with `axial_max_phase` returning one cap at every tolerance, over the 30 random
+/// parameter sets of `tests/error_control.rs` (abrupt starts, one revolution, the error against
+/// the same model at a thousandth of the tolerance): the largest error of the FFR sets is 0.21
+/// of their tolerance with the cap at 1, 0.33 at 2, 0.44 at 3 and 2.5 without a cap (an
+/// undamped set, tolerance 3e-3); and the automotive rod at tolerance 1e-3 (`cargo run
+/// --release --example exponential_choice`) is 2.5e-4 off at the cap 1 and 1.1e-3 at 2 (416
+/// and 317 steps). That missed error does not shrink with the tolerance, so the cap does.
+pub const AXIAL_MAX_PHASE: f64 = 2.0;
+
+/// The local tolerance (that of `solver.tolerance = 1e-2` in the RK4(3) pair) at and above
+/// which the axial modes' cap is [`AXIAL_MAX_PHASE`] ([`axial_max_phase`]).
+pub const AXIAL_PHASE_TOLERANCE: f64 = 3e-4;
+
+/// Smallest phase cap of an axial mode ([`axial_max_phase`] at tight tolerances): the cap at
+/// which the measurements at [`AXIAL_MAX_PHASE`] held the FFR sets to 0.21 of their tolerance.
+pub const AXIAL_MIN_PHASE: f64 = 1.0;
+
+/// The axial modes' phase cap at the local tolerance `tolerance`: [`AXIAL_MAX_PHASE`] times
+/// `(tolerance / AXIAL_PHASE_TOLERANCE)^(1/2)`, between [`AXIAL_MIN_PHASE`] and
+/// [`AXIAL_MAX_PHASE`]. The missed error grows about as the square of the phase (the
+/// automotive rod at tolerance 1e-3: 4.4 times from the cap 1 to 2), so the cap goes with the
+/// square root of the tolerance: 2 at `solver.tolerance = 1e-2`, 1.1 at 3e-3, 1 from 2.5e-3
+/// down.
+pub fn axial_max_phase(tolerance: f64) -> f64 {
+    let ratio = (tolerance / AXIAL_PHASE_TOLERANCE).min(1.0);
+    (AXIAL_MAX_PHASE * ratio.sqrt()).max(AXIAL_MIN_PHASE)
+}
+
+/// The local tolerance (relative to the amplitude scale) at which the undamped drift cap of the
+/// exponential form is `w_1 h = 1`; at other tolerances it is
+/// `(tolerance / EXPONENTIAL_DRIFT_TOLERANCE)^(1/5)` ([`exponential_max_phase`]).
+pub const EXPONENTIAL_DRIFT_TOLERANCE: f64 = 4.9e-3;
+
+/// The largest phase `w_min h` of ETDRK4 at the local tolerance `tolerance`:
+/// `(tolerance / EXPONENTIAL_DRIFT_TOLERANCE)^(1/5)`, at most [`EXPONENTIAL_MAX_PHASE`]. Over a
+/// long undamped run the local errors of the parametric and coupling terms of the remainder (the axial stiffening of the first mode and its coupling
+/// to the second, whose oscillation the stages sample at `w_2 h / 2`) do not cancel: they add
+/// up to a drift of the free vibration's amplitude that grows with the number of steps (a
+/// method that is not symmetric has no bounded energy error on a nearly integrable
+/// oscillatory system: Hairer, Lubich and Wanner, *Geometric Numerical Integration*, 2nd ed.,
+/// 2006, chapters X and XI). Measured on the undamped benchmark rod at fixed steps, the drift
+/// per revolution goes with `(w_1 h)^5` (33 times less at half the step); the cap makes it
+/// proportional to the tolerance, so the tolerance bounds the amplitude error over a stated
+/// number of revolutions rather than over a few (docs/solvers.md, "Long runs"). The error
+/// estimate sees no part of it: it measures the local error, whose part across the oscillation
+/// (the phase) outweighs the part along it (the amplitude) by far.
+pub fn exponential_max_phase(tolerance: f64) -> f64 {
+    (tolerance / EXPONENTIAL_DRIFT_TOLERANCE)
+        .powf(0.2)
+        .min(EXPONENTIAL_MAX_PHASE)
+}
+
+/// Relative drift of the lowest mode's free-vibration amplitude per period of that mode at the
+/// phase `w_1 h = 1` (docs/solvers.md, "Long runs"), an upper bound: the long-run table's drift
+/// at its largest phase (the default scene undamped at tolerance 1e-2, `w_1 h = 0.57`, over
+/// 10,000 revolutions) extrapolated along the table's own slope between its smallest and
+/// largest phase stays below it (`tests/long_run.rs`, `drift_per_period_bounds_the_long_run_table`,
+/// checks it against the generated table and prints the extrapolation). Below `w_1 h = 1`,
+/// `DRIFT_PER_PERIOD (w_1 h)^5` bounds the drift from above; between 1 and
+/// [`EXPONENTIAL_MAX_PHASE`] (damped rods only) it extrapolates the same power.
+pub const DRIFT_PER_PERIOD: f64 = 5.1e-6;
+
+/// The largest phase `w_1 h` of ETDRK4 at the local tolerance `tolerance` on a
+/// lowest mode with damping ratio `zeta`: the drift that [`exponential_max_phase`] bounds
+/// accumulates only while the free vibration lasts. Damped, a free amplitude loses the
+/// fraction `2 pi zeta` per period, so a drift `DRIFT_PER_PERIOD (w_1 h)^5` per period settles
+/// at `DRIFT_PER_PERIOD (w_1 h)^5 / (2 pi zeta)` of the amplitude, below `tolerance` for
+/// `w_1 h <= (2 pi zeta tolerance / DRIFT_PER_PERIOD)^(1/5)`. The larger of that and
+/// [`exponential_max_phase`], at most [`EXPONENTIAL_MAX_PHASE`] (the cap on the stages'
+/// sampling of the remainder's parametric terms, which holds whatever the damping).
+pub fn damped_max_phase(tolerance: f64, zeta: f64) -> f64 {
+    let undamped = exponential_max_phase(tolerance);
+    let damped = if zeta > 0.0 {
+        (2.0 * std::f64::consts::PI * zeta * tolerance / DRIFT_PER_PERIOD).powf(0.2)
+    } else {
+        0.0
+    };
+    undamped.max(damped).min(EXPONENTIAL_MAX_PHASE)
+}
 
 /// What the choice needs to know of the mechanism.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -314,7 +421,7 @@ pub fn build(
         }
         IntegratorChoice::ExponentialRungeKutta => {
             let (independent, control) = explicit_control(solver, rod, LOCAL_TOLERANCE_FACTOR_RK4);
-            let oscillators = match (rod.ffr_kernel(), rod.modal_oscillators()) {
+            let oscillators: Vec<Oscillator> = match (rod.ffr_kernel(), rod.modal_oscillators()) {
                 (Some(kernel), _) => (0..kernel.n)
                     .map(|i| {
                         let mass = effective_modal_mass(kernel, facts.slider_mass, i);
@@ -327,12 +434,15 @@ pub fn build(
                     .collect(),
                 (None, None) => unreachable!("ETDRK4 needs the rod's oscillators"),
             };
-            let mut integrator =
-                ExponentialRungeKutta::new(system, independent, control, oscillators);
-            for index in rod.axial_mode_indices() {
-                integrator = integrator.cap_phase_on(index);
-            }
-            Box::new(integrator)
+            let max_step =
+                exponential_max_step(&oscillators, &rod.axial_mode_indices(), control.tolerance);
+            Box::new(ExponentialRungeKutta::new(
+                system,
+                independent,
+                control,
+                oscillators,
+                max_step,
+            ))
         }
         IntegratorChoice::ExplicitRk4 { .. } => Box::new(ExplicitRk4::new(system)),
         IntegratorChoice::GeneralizedAlpha { adaptive } => {
@@ -353,6 +463,26 @@ pub fn build(
             Box::new(alpha)
         }
     })
+}
+
+/// The largest step of ETDRK4 on `oscillators` at the local tolerance `tolerance`, s: the
+/// lowest oscillator's phase cap with its damping ([`damped_max_phase`] over its circular
+/// frequency) and, on the axial oscillators at the indices `axial`, [`axial_max_phase`] over
+/// theirs.
+fn exponential_max_step(oscillators: &[Oscillator], axial: &[usize], tolerance: f64) -> f64 {
+    let lowest = oscillators
+        .iter()
+        .min_by(|a, b| a.omega2.total_cmp(&b.omega2))
+        .expect("at least one oscillator");
+    let mut max_step = damped_max_phase(tolerance, lowest.damping_ratio()) / lowest.omega2.sqrt();
+    let cap = axial_max_phase(tolerance);
+    for &index in axial {
+        let omega = oscillators[index].omega2.sqrt();
+        if omega > 0.0 {
+            max_step = max_step.min(cap / omega);
+        }
+    }
+    max_step
 }
 
 /// The independent coordinates of the explicit error-controlled integrators (the rod's modal
@@ -611,6 +741,30 @@ mod tests {
                 IntegratorChoice::GeneralizedAlpha { adaptive: false }
             );
             assert_eq!(choice.max_step(&alpha), alpha.step);
+        }
+    }
+
+    /// Undamped, the damped cap is the drift cap; at the default tolerance's local tolerance
+    /// (0.03 x 1e-3) a damping ratio of 2.7 % lifts it to `w_1 h = 1` and one of 8.3 % to
+    /// `EXPONENTIAL_MAX_PHASE` (docs/solvers.md, "Long runs"), and it grows with the damping in
+    /// between. The automotive scene's lowest mode (2 % damping, local tolerance 3e-4) has the
+    /// full cap; its piston-rod mode's axial cap, slightly tighter, sets its steps.
+    #[test]
+    fn damping_lifts_the_drift_cap() {
+        let tol = 3e-5;
+        assert_eq!(damped_max_phase(tol, 0.0), exponential_max_phase(tol));
+        assert!((exponential_max_phase(tol) - 0.36).abs() < 0.01);
+        assert!((damped_max_phase(tol, 0.0271) - 1.0).abs() < 1e-3);
+        assert_eq!(damped_max_phase(tol, 0.083), EXPONENTIAL_MAX_PHASE);
+        assert!(damped_max_phase(tol, 0.082) < EXPONENTIAL_MAX_PHASE);
+        let (low, mid) = (damped_max_phase(tol, 1e-3), damped_max_phase(tol, 3e-3));
+        assert!(exponential_max_phase(tol) < low && low < mid && mid < 1.0);
+        assert_eq!(damped_max_phase(3e-4, 0.02), EXPONENTIAL_MAX_PHASE);
+        // The drift it allows settles within the tolerance: D phi^5 / (2 pi zeta) <= tol.
+        for zeta in [1e-3, 3e-3, 6e-3, 0.02, 0.05] {
+            let phi = damped_max_phase(tol, zeta);
+            let settled = DRIFT_PER_PERIOD * phi.powi(5) / (2.0 * std::f64::consts::PI * zeta);
+            assert!(settled <= tol * (1.0 + 1e-12), "{zeta}: {settled}");
         }
     }
 }
