@@ -121,45 +121,18 @@ impl ShapeIntegrals {
         let length = mesh.section.length;
         let nn = extent.square_size(n);
 
-        let mut i1 = Vector2::zeros();
-        let mut i2 = DMatrix::zeros(2, n);
-        let mut i3 = 0.0;
-        let mut i4 = DVector::zeros(n);
-        let mut i5 = DVector::zeros(n);
-        let mut i_rot = DVector::zeros(n);
-        let mut s_tilde = DMatrix::zeros(nn, nn);
+        let mut sums = MassSums::new(n, nn);
         let mut g = [
             DMatrix::zeros(nn, nn),
             DMatrix::zeros(nn, nn),
             DMatrix::zeros(nn, nn),
         ];
-        let mut rotary_total = 0.0;
-        let mut m_uu = DMatrix::zeros(nn, nn);
 
         // The chord rotation row (v(L) - v(0)) / L.
         let s_b = point_shape(modes, 0.0);
         let s_c = point_shape(modes, length);
         let s_mid = point_shape(modes, 0.5 * length);
         let chord = (s_c.row(1) - s_b.row(1)) / length;
-
-        // Accumulate one mass point: mass `w`, body-frame x, modal shape rows (axial a, transverse b).
-        let mut add_point = |w: f64, x: f64, a: &DMatrix<f64>, b: &DMatrix<f64>| {
-            i1[0] += w * x;
-            i3 += w * x * x;
-            for j in 0..n {
-                i2[(0, j)] += w * a[(0, j)];
-                i2[(1, j)] += w * b[(0, j)];
-                i4[j] += w * x * a[(0, j)];
-                i5[j] -= w * x * b[(0, j)];
-            }
-            // S^T I~ S = -a^T b + b^T a; S^T S = a^T a + b^T b.
-            for i in 0..nn {
-                for j in 0..nn {
-                    s_tilde[(i, j)] += w * (b[(0, i)] * a[(0, j)] - a[(0, i)] * b[(0, j)]);
-                    m_uu[(i, j)] += w * (a[(0, i)] * a[(0, j)] + b[(0, i)] * b[(0, j)]);
-                }
-            }
-        };
 
         for e in 0..mesh.n_elements {
             let t = modes.element_shapes(e);
@@ -170,7 +143,7 @@ impl ShapeIntegrals {
                         let sh = el.shape(xi) * &t;
                         let a = sh.rows(0, 1).into_owned();
                         let b = sh.rows(1, 1).into_owned();
-                        add_point(w * l * rho_a, mesh.x_b + s0 + xi * l, &a, &b);
+                        sums.add_point(w * l * rho_a, mesh.x_b + s0 + xi * l, &a, &b);
                     }
                 }
                 MassKind::Lumped => {
@@ -179,11 +152,10 @@ impl ShapeIntegrals {
                     for (node_xi, node_row) in [(0.0, 0usize), (1.0, 3usize)] {
                         let a = t.rows(node_row, 1).into_owned();
                         let b = t.rows(node_row + 1, 1).into_owned();
-                        add_point(half, mesh.x_b + s0 + node_xi * l, &a, &b);
-                        for j in 0..n {
-                            i_rot[j] += j_rot * t[(node_row + 2, j)];
-                        }
-                        rotary_total += j_rot;
+                        sums.add_point(half, mesh.x_b + s0 + node_xi * l, &a, &b);
+                        // The nodal rotary inertia on the slope row (its part of `M_ff` comes
+                        // with the assembled lumped mass below).
+                        sums.add_rotary(j_rot, &t.rows(node_row + 2, 1).into_owned());
                     }
                 }
             }
@@ -198,7 +170,6 @@ impl ShapeIntegrals {
             }
         }
 
-        i3 += rotary_total;
         let m_ff = match modes.mass_kind {
             _ if extent == Extent::FirstOrder => DMatrix::zeros(0, 0),
             MassKind::Consistent => {
@@ -222,15 +193,15 @@ impl ShapeIntegrals {
 
         ShapeIntegrals {
             mass: rho_a * length,
-            i1,
-            i2,
-            i3,
-            i4,
-            i5,
-            i_rot,
+            i1: sums.i1,
+            i2: sums.i2,
+            i3: sums.i3 + sums.rotary_total,
+            i4: sums.i4,
+            i5: sums.i5,
+            i_rot: sums.i_rot,
             m_ff,
-            m_uu,
-            s_tilde,
+            m_uu: sums.m_uu,
+            s_tilde: sums.s_tilde,
             g,
             g_axial: None,
             s_b,
