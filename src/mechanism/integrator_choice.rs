@@ -25,7 +25,7 @@
 //! ([`modes_are_oscillators`]): the modes of the pinned rod are the mechanism's linear
 //! oscillators (the reduced mass is `M_ff` at the undeformed configuration, whatever the crank
 //! angle and the slider mass), and so are the mass-loaded modes that carry the slider
-//! (`crate::modal::loaded`) on the dead centres, and nearly so in between (the slider's share
+//! (`crate::modal::mass_loaded_modes`) on the dead centres, and nearly so in between (the slider's share
 //! of the reduced mass grows as `1 / cos^2` of the rod's angle to its line). Split off with their
 //! effective modal mass ([`effective_modal_mass`]), the remainder is smooth and the step is set
 //! by the accuracy of the response. Free axial modes that carry the piston couple through the
@@ -514,7 +514,7 @@ fn explicit_control(
 /// slider's line: the rod's own `M_ff,ii` and the slider, which moves with C's axial
 /// displacement, `m_s S_C,x,i^2` (the diagonal of the reduced mass `T^T M T` of
 /// `crate::mechanism::minimal` at the undeformed configuration there). For mass-loaded modes
-/// (`crate::modal::loaded`, the slider's mass added at C's axial coordinate) it is 1; for the
+/// (`crate::modal::mass_loaded_modes`, the slider's mass added at C's axial coordinate) it is 1; for the
 /// modes of the pinned rod `M_ff,ii` (the slider does not move with them).
 pub fn effective_modal_mass(
     kernel: &crate::rod::ffr::FfrKernel,
@@ -527,7 +527,7 @@ pub fn effective_modal_mass(
 /// Whether the kernel's modes are the mechanism's own linear oscillators at the undeformed
 /// configuration on the dead centres (reduced mass the identity there): the modes of the
 /// pinned rod ([`crate::rod::ffr::FfrKernel::pinned`]), and the modes whose
-/// [`effective_modal_mass`] is 1 (to 1e-6), the mass-loaded modes of `crate::modal::loaded`
+/// [`effective_modal_mass`] is 1 (to 1e-6), the mass-loaded modes of `crate::modal::mass_loaded_modes`
 /// that carry the slider.
 pub fn modes_are_oscillators(kernel: &crate::rod::ffr::FfrKernel, slider_mass: f64) -> bool {
     kernel.pinned

@@ -3,7 +3,7 @@
 
 pub mod crank;
 pub mod dae;
-pub mod frame_form;
+pub mod frame_coordinates_closed_form;
 pub mod gas_force;
 pub mod integrator_choice;
 pub mod minimal;

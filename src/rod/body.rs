@@ -65,7 +65,7 @@ pub trait RodBody: Send {
         None
     }
     /// The mechanism evaluates its equations on the independent coordinates in closed form on
-    /// the frame (`mechanism::frame_form`: frame coordinates at 0, 1, 2, the elastic ones after
+    /// the frame (`mechanism::frame_coordinates_closed_form`: frame coordinates at 0, 1, 2, the elastic ones after
     /// them) instead of the general partitioned evaluation.
     fn frame_form(&self) -> bool {
         false

@@ -48,7 +48,7 @@
 //! `M`) on its free end; `beta tan(beta) = m / M` with `m` the rod's mass, `f_ax = beta c /
 //! (2 pi L)`, `c = sqrt(E / rho)` (a bar with a tip mass: S. S. Rao, *Vibration of Continuous
 //! Systems*, 2007, section 9.4, case "fixed-mass"); `beta = pi / 2` without a mass at C. `auto`
-//! keeps it (FFR: as a mass-loaded mode, [`crate::modal::loaded`]; segments: the axial springs)
+//! keeps it (FFR: as a mass-loaded mode, [`crate::modal::mass_loaded_modes`]; segments: the axial springs)
 //! where it lies below [`AXIAL_BAND_FACTOR`] times the highest retained bending mode (the band
 //! the start, the gas force and the retained modes excite), or where the masses at C reach the
 //! rod's mass ([`super::spec::AXIAL_MODE_MASS_RATIO`]). With `auto`, an explicit `rod.axial_modes`

@@ -138,7 +138,7 @@ pub struct RodSpec {
     pub axial_in_addition: bool,
     /// Mass-loaded modes (FFR only): the slider's mass is added at C's axial coordinate in the
     /// eigenproblem (not in the dynamics), so that the retained modes include the slider-rod
-    /// axial mode at its frequency in the mechanism ([`crate::modal::loaded`]).
+    /// axial mode at its frequency in the mechanism ([`crate::modal::mass_loaded_modes`]).
     #[serde(default, skip_serializing_if = "is_false")]
     pub loaded_modes: bool,
     /// Keep every mode up to this frequency, Hz (FFR only), instead of the `modes` lowest:

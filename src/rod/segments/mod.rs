@@ -4,7 +4,7 @@
 //! rotational springs and dampers, optionally with prismatic joints carrying axial springs.
 //!
 //! - [`rod`]: the chain's data and construction ([`SegmentRod`]); [`kinematics`]: its points;
-//!   [`body`]: mass matrix, quadratic velocity vector, joint forces, energies (the derivation
+//!   [`dynamics`]: mass matrix, quadratic velocity vector, joint forces, energies (the derivation
 //!   follows below);
 //! - [`linear`]: the chain linearized about the straight configuration: pinned-pinned
 //!   bending and axial frequencies, and the free-free axial chain of Huston's convergence
@@ -146,11 +146,11 @@
 //! No allocation in the per-iteration methods: everything is precomputed in [`SegmentRod::new`]
 //! and the loops recompute `cos`/`sin` of the angles on the fly.
 
-pub mod body;
+pub mod dynamics;
 pub mod kinematics;
 pub mod linear;
 pub mod modal;
-mod modal_plain;
+mod modal_direct_evaluation;
 pub mod rod;
 
 pub use linear::axial_chain_frequencies_hz;

@@ -23,7 +23,7 @@ use faer::{Mat, MatMut};
 use nalgebra::Vector2;
 
 use super::linear::LinearizedChain;
-use super::modal_plain::{Plain, Trig, MAX_REDUCED};
+use super::modal_direct_evaluation::{Plain, Trig, MAX_REDUCED};
 use super::rod::SegmentRod;
 use crate::error::ModelError;
 use crate::rod::body::{RodBody, RodPoint};
@@ -76,7 +76,7 @@ pub struct ModalSegmentRod {
     /// unit modal mass), computed once at construction.
     modal_damping: Vec<f64>,
     /// The direct evaluation in reduced coordinates, for a chain without end body rotations
-    /// ([`super::modal_plain`]); the projection of the chain's own functions otherwise.
+    /// ([`super::modal_direct_evaluation`]); the projection of the chain's own functions otherwise.
     plain: Option<Plain>,
     scratch: RefCell<Scratch>,
 }
