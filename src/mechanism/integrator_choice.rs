@@ -60,13 +60,11 @@ pub const LOCAL_TOLERANCE_FACTOR: f64 = 0.01;
 /// [`ERROR_PER_UNIT_STEP_RK4`].
 pub const LOCAL_TOLERANCE_FACTOR_RK4: f64 = 0.03;
 
-/// Error per unit step of the explicit pairs ([`ErrorControl::per_unit_step`]; RK4(3) and,
-/// with the same constant, Dormand-Prince, whose free-running steps on the automotive rod
-/// otherwise added 0.4 % of the peak deflection at tolerance 1e-3): the local
-/// tolerance of a step `h` is at most `solver.tolerance c h / T` with `T` one crank
-/// revolution. Without it (error per step alone) a rod whose accuracy needs many small steps
-/// per revolution (an undamped stiff fourth mode: 1160 steps in one revolution) collected
-/// 6.8 times the stated tolerance (`cargo run --release --example error_control_case -- 19`).
+/// Error per unit step of the explicit pairs, RK4(3) and Dormand-Prince
+/// ([`ErrorControl::per_unit_step`]): the local tolerance of a step `h` is at most
+/// `solver.tolerance c h / T` with `T` one crank revolution, so that the local errors of a
+/// revolution's steps add up to a bounded error however many steps it takes. Measured in
+/// docs/solvers.md, "Dense output and the error per unit step".
 pub const ERROR_PER_UNIT_STEP_RK4: f64 = 2.5;
 
 /// The same for the adaptive generalized-alpha method (second order: its global error goes
@@ -78,52 +76,41 @@ pub const LOCAL_TOLERANCE_FACTOR_IMPLICIT: f64 = 0.0025;
 pub const AMPLITUDE_FLOOR: f64 = 1e-5;
 
 /// `auto` takes the explicit pair when its stability limit `2.5 / w_max` of the highest
-/// retained mode is at least this step, s (modes up to about 80 kHz). Measured on the
-/// automotive rod (tests/automotive_reference.rs): with 6 to 8 modes (16 to 32 kHz) the
-/// explicit pair is within 0.3 % of the shear beam for deflection, stress and pin forces at
-/// 90 to 130 ms, where the adaptive generalized-alpha method was 0.9 to 1.4 % off, the same
-/// at tolerances 1e-3 and 1e-4.
+/// retained mode is at least this step, s (modes up to about 80 kHz), else adaptive
+/// generalized-alpha. Measured on the automotive rod in docs/physics.md, "Sub-steps, halving
+/// and the choice of method".
 pub const AUTO_EXPLICIT_MIN_STEP: f64 = 5e-6;
 
 /// Rejected tries of one step of the error-controlled methods before it counts as failed.
 const MAX_REJECTIONS: usize = 40;
 
 /// Largest phase `w_min h` of the lowest mode over one step of ETDRK4
-/// ([`ExponentialRungeKutta`]). The remainder carries the modes' parametric terms (the
-/// axial stiffening moves the first mode's stiffness by about 10 % on the benchmark rod),
-/// which oscillate with the modes: over longer
-/// steps the stages no longer resolve them and the estimate misses the error (a random
-/// parameter set of `tests/error_control.rs` with `w_1 h` up to 2.4 was 1.6 times its
-/// tolerance off, 5 times at a tighter one). Measured with this constant set to 1, 1.25 and 1.5
-/// on the 30 random parameter sets of `tests/error_control.rs` damped at 5 % at tolerance 1e-2
-/// or 3e-3 (where the damping lifts the drift cap to 1.49 and 1.41): the largest error is 0.031,
-/// 0.031 and 0.054 of the tolerance; the four sets it binds are 0.007 to 0.012, 0.018 to 0.028
-/// and 0.036 to 0.054 of theirs and take 15 to 20 % fewer steps at 1.25 than at 1. A step
-/// landing on a communication point may stretch to 1.25 times it (`w_1 h` up to 1.56,
-/// [`Integrator::step`]). Below a local tolerance of [`EXPONENTIAL_DRIFT_TOLERANCE`] the cap is
-/// tighter ([`exponential_max_phase`]: 0.36 at the default scene's), and on a damped rod it is
-/// [`damped_max_phase`].
+/// ([`ExponentialRungeKutta`]): the remainder carries the modes' parametric terms, which
+/// oscillate with the modes, and over longer steps the stages no longer resolve them and the
+/// embedded estimate misses their error. A step landing on a communication point may stretch to
+/// 1.25 times it ([`Integrator::step`]); below a local tolerance of
+/// [`EXPONENTIAL_DRIFT_TOLERANCE`] the cap is tighter ([`exponential_max_phase`]), and on a
+/// damped rod it is [`damped_max_phase`]. Measured on the random parameter sets of
+/// `tests/error_control.rs` in docs/solvers.md, "The exponential integrator" (the limits on its
+/// steps).
 pub const EXPONENTIAL_MAX_PHASE: f64 = 1.25;
 
 /// Largest phase `w_ax h` of an axial mode over one step of ETDRK4
-/// ([`ExponentialRungeKutta`]), at the local tolerance [`AXIAL_PHASE_TOLERANCE`] and above ([`axial_max_phase`]). An axial mode's
-/// oscillation enters the bending modes' remainder through the axial force; over longer steps
-/// the stages sample that coupling too coarsely and the embedded estimate misses its error.
-/// Measured with `axial_max_phase` returning one cap at every tolerance, over the 30 random
-/// parameter sets of `tests/error_control.rs` (abrupt starts, one revolution, the error against
-/// the same model at a thousandth of the tolerance): the largest error of the FFR sets is 0.21
-/// of their tolerance with the cap at 1, 0.33 at 2, 0.44 at 3 and 2.5 without a cap (an
-/// undamped set, tolerance 3e-3); and the automotive rod at tolerance 1e-3 (`cargo run
-/// --release --example exponential_choice`) is 2.5e-4 off at the cap 1 and 1.1e-3 at 2 (416
-/// and 317 steps). That missed error does not shrink with the tolerance, so the cap does.
+/// ([`ExponentialRungeKutta`]), at the local tolerance [`AXIAL_PHASE_TOLERANCE`] and above
+/// ([`axial_max_phase`]): an axial mode's oscillation enters the bending modes' remainder
+/// through the axial force, and over longer steps the stages sample that coupling too coarsely
+/// for the embedded estimate to see its error, an error that does not shrink with the
+/// tolerance. Measured on the random parameter sets of `tests/error_control.rs` and the
+/// automotive rod in docs/solvers.md, "The exponential integrator" (the limits on its steps).
 pub const AXIAL_MAX_PHASE: f64 = 2.0;
 
 /// The local tolerance (that of `solver.tolerance = 1e-2` in the RK4(3) pair) at and above
 /// which the axial modes' cap is [`AXIAL_MAX_PHASE`] ([`axial_max_phase`]).
 pub const AXIAL_PHASE_TOLERANCE: f64 = 3e-4;
 
-/// Smallest phase cap of an axial mode ([`axial_max_phase`] at tight tolerances): the cap at
-/// which the measurements at [`AXIAL_MAX_PHASE`] held the FFR sets to 0.21 of their tolerance.
+/// Smallest phase cap of an axial mode ([`axial_max_phase`] at tight tolerances), at which the
+/// random FFR sets stay within a fraction of their tolerance (docs/solvers.md, "The exponential
+/// integrator").
 pub const AXIAL_MIN_PHASE: f64 = 1.0;
 
 /// The axial modes' phase cap at the local tolerance `tolerance`: [`AXIAL_MAX_PHASE`] times
@@ -137,24 +124,22 @@ pub fn axial_max_phase(tolerance: f64) -> f64 {
     (AXIAL_MAX_PHASE * ratio.sqrt()).max(AXIAL_MIN_PHASE)
 }
 
-/// The local tolerance (relative to the amplitude scale) at which the undamped drift cap of the
-/// exponential form is `w_1 h = 1`; at other tolerances it is
-/// `(tolerance / EXPONENTIAL_DRIFT_TOLERANCE)^(1/5)` ([`exponential_max_phase`]).
+/// The local tolerance (relative to the amplitude scale) at which the undamped drift cap of
+/// ETDRK4 is `w_1 h = 1`; at other tolerances it is
+/// `(tolerance / EXPONENTIAL_DRIFT_TOLERANCE)^(1/5)` ([`exponential_max_phase`];
+/// docs/solvers.md, "Long runs").
 pub const EXPONENTIAL_DRIFT_TOLERANCE: f64 = 4.9e-3;
 
 /// The largest phase `w_min h` of ETDRK4 at the local tolerance `tolerance`:
 /// `(tolerance / EXPONENTIAL_DRIFT_TOLERANCE)^(1/5)`, at most [`EXPONENTIAL_MAX_PHASE`]. Over a
-/// long undamped run the local errors of the parametric and coupling terms of the remainder (the axial stiffening of the first mode and its coupling
-/// to the second, whose oscillation the stages sample at `w_2 h / 2`) do not cancel: they add
-/// up to a drift of the free vibration's amplitude that grows with the number of steps (a
-/// method that is not symmetric has no bounded energy error on a nearly integrable
+/// long undamped run the local errors of the remainder's parametric and coupling terms do not
+/// cancel: they add up to a drift of the free vibration's amplitude that grows with the number
+/// of steps (a method that is not symmetric has no bounded energy error on a nearly integrable
 /// oscillatory system: Hairer, Lubich and Wanner, *Geometric Numerical Integration*, 2nd ed.,
-/// 2006, chapters X and XI). Measured on the undamped benchmark rod at fixed steps, the drift
-/// per revolution goes with `(w_1 h)^5` (33 times less at half the step); the cap makes it
-/// proportional to the tolerance, so the tolerance bounds the amplitude error over a stated
-/// number of revolutions rather than over a few (docs/solvers.md, "Long runs"). The error
-/// estimate sees no part of it: it measures the local error, whose part across the oscillation
-/// (the phase) outweighs the part along it (the amplitude) by far.
+/// 2006, chapters X and XI), and the error estimate, which sees the local error's phase part
+/// far more than its amplitude part, does not see it. The drift per revolution goes with
+/// `(w_1 h)^5`, so this cap makes it proportional to the tolerance (docs/solvers.md, "Long
+/// runs", where the drift is measured).
 pub fn exponential_max_phase(tolerance: f64) -> f64 {
     (tolerance / EXPONENTIAL_DRIFT_TOLERANCE)
         .powf(0.2)
@@ -162,13 +147,10 @@ pub fn exponential_max_phase(tolerance: f64) -> f64 {
 }
 
 /// Relative drift of the lowest mode's free-vibration amplitude per period of that mode at the
-/// phase `w_1 h = 1` (docs/solvers.md, "Long runs"), an upper bound: the long-run table's drift
-/// at its largest phase (the default scene undamped at tolerance 1e-2, `w_1 h = 0.57`, over
-/// 10,000 revolutions) extrapolated along the table's own slope between its smallest and
-/// largest phase stays below it (`tests/long_run.rs`, `drift_per_period_bounds_the_long_run_table`,
-/// checks it against the generated table and prints the extrapolation). Below `w_1 h = 1`,
-/// `DRIFT_PER_PERIOD (w_1 h)^5` bounds the drift from above; between 1 and
-/// [`EXPONENTIAL_MAX_PHASE`] (damped rods only) it extrapolates the same power.
+/// phase `w_1 h = 1`, an upper bound: `DRIFT_PER_PERIOD (w_1 h)^5` bounds the drift per period
+/// below `w_1 h = 1` and extrapolates it above (damped rods only). From the long-run table of
+/// docs/solvers.md, "Long runs", extrapolated along its own slope; `tests/long_run.rs`
+/// (`drift_per_period_bounds_the_long_run_table`) checks it against the table.
 pub const DRIFT_PER_PERIOD: f64 = 5.1e-6;
 
 /// The largest phase `w_1 h` of ETDRK4 at the local tolerance `tolerance` on a

@@ -163,9 +163,7 @@ use crate::error::ModelError;
 /// segment is the rigid rod: no joint, no natural frequency (an FMU that declares
 /// `rod.frequency[k]` refuses it at initialization; [`least_segments`] gives the count that
 /// leaves `K` frequencies). The largest is the FFR mesh's too (one declared range for
-/// `rod.elements`); tests/abuse.rs builds and runs it. Measured on the benchmark rod: the
-/// chain's frequencies (to 2e-10 of the closed form) and 40 ms of motion at 150 rad/s also come
-/// out at 512 segments, in 0.4 s.
+/// `rod.elements`); tests/abuse.rs builds and runs it (docs/robustness.md, "Limits").
 pub const SEGMENT_RANGE: (usize, usize) = (1, 128);
 
 /// The least number of segments whose uniform chain (no shear slides, no end bodies, which add

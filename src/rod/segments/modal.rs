@@ -30,10 +30,8 @@ use crate::rod::body::{RodBody, RodPoint};
 
 /// The chain on its modes keeps every bending mode up to this multiple of its first bending
 /// frequency (at least `rod.modes` of them): the response of the modes left out has no static
-/// correction here. On the random rods of docs/verification.md (smooth starts, 48 segments)
-/// three modes left stubby rods 0.4 % of the peak off, the modes to 20 or 30 times the first
-/// 0.19 % at most (tests/python/test_random_rods.py); the Euler-Bernoulli rod keeps four
-/// (`f_k = k^2 f_1`).
+/// correction here. Measured on the random rods in docs/physics.md, "Rod model 3: the segment
+/// chain on its modes".
 pub const BAND_FACTOR: f64 = 20.0;
 
 /// The number of bending modes the chain on its modes keeps: `modes`, or more, every pinned
