@@ -14,8 +14,7 @@
 //! exponential form's phase cap at each (`exponential_max_phase`), against a converged run.
 
 use flexrod::drive::CrankDrive;
-use flexrod::integrator::adaptive_runge_kutta::exponential_max_phase;
-use flexrod::mechanism::integrator_choice::LOCAL_TOLERANCE_FACTOR_RK4;
+use flexrod::mechanism::integrator_choice::{exponential_max_phase, LOCAL_TOLERANCE_FACTOR_RK4};
 use flexrod::{Scene, Simulation};
 
 const SPEED: f64 = 150.0;

@@ -273,7 +273,8 @@ impl Scene {
         Some(speed)
     }
 
-    /// The mechanism this scene describes (what [`crate::mechanism::Mechanism::new`] takes).
+    /// The mechanism this scene describes (what [`crate::mechanism::MechanismParts::new`]
+    /// takes).
     pub fn mechanism_spec(&self) -> MechanismSpec {
         let mut crank = self.crank.clone();
         if crank.design_speed == 0.0 && self.experiment.crank_speed.is_finite() {

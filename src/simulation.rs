@@ -10,8 +10,8 @@
 
 use crate::error::ModelError;
 use crate::mechanism::crank;
+use crate::mechanism::{integrator_choice, Mechanism, MechanismParts, MechanismState, Outputs};
 pub use crate::mechanism::{CrankInput, StepStats};
-use crate::mechanism::{Mechanism, MechanismState, Outputs};
 use crate::scene::Scene;
 
 /// A saved state: restoring it and replaying the same calls gives bit-identical outputs.
@@ -73,7 +73,9 @@ impl Simulation {
     /// Build the model of `scene`: validate the parameters, preprocess the rod (modes,
     /// shape integrals). Errors name the parameter and its allowed range.
     pub fn new(scene: &Scene) -> Result<Simulation, ModelError> {
-        let mechanism = Mechanism::new(&scene.mechanism_spec())?;
+        let parts = MechanismParts::new(&scene.mechanism_spec())?;
+        let choice = integrator_choice::choose(&parts.spec().solver, parts.facts())?;
+        let mechanism = Mechanism::new(parts, choice)?;
         let state = mechanism.initial_state(0.0, CrankInput::default(), 0.0)?;
         let built = format!(
             "{:016x} {} {}",

@@ -1,4 +1,4 @@
-//! Mass-loaded component modes (`rod.loaded_modes`, `flexrod::modal::loaded`) of the automotive
+//! Mass-loaded component modes (`rod.loaded_modes`, `flexrod::modal::mass_loaded_modes`) of the automotive
 //! rod (scenes/automotive_rod.toml) at the shipped mesh against exact frequencies of the same
 //! continuum (the section table's linear A, I and A_s, shear deformation, the end bodies):
 //!
@@ -20,7 +20,7 @@
 //! Each case prints its row (`--nocapture`).
 
 use flexrod::beam::SectionTable;
-use flexrod::modal::loaded::{axial_coordinate_at_c, AddedMass};
+use flexrod::modal::mass_loaded_modes::{axial_coordinate_at_c, AddedMass};
 use flexrod::modal::{ComponentModes, ModeSelection, ReferenceConditions};
 use flexrod::Scene;
 use std::f64::consts::PI;

@@ -5,7 +5,7 @@
 //! and the end of the run (the motion's amplitude there, whatever the phase of the rod's free
 //! vibration) is within 0.05 % of the converged run's (measured: 0.01 % at most). With the
 //! exponential form's phase cap at `w_1 h = 1` whatever the tolerance (instead of
-//! `exponential_max_phase` in src/integrator/adaptive_runge_kutta.rs) the amplitude drifts by
+//! `exponential_max_phase` in src/mechanism/integrator_choice.rs) the amplitude drifts by
 //! 1 % in these 2,000 revolutions, and by 10 % in 2,400 with the stages of Cox and Matthews
 //! instead of Krogstad's (the cause: docs/solvers.md, "Long runs"). The 100,000-revolution
 //! table: `cargo run --release --example long_run` (docs/generated/long-run.md).
@@ -14,7 +14,7 @@ mod common;
 use common::runs;
 
 use flexrod::drive::CrankDrive;
-use flexrod::integrator::adaptive_runge_kutta::{
+use flexrod::mechanism::integrator_choice::{
     damped_max_phase, DRIFT_PER_PERIOD, EXPONENTIAL_MAX_PHASE,
 };
 use flexrod::{Scene, Simulation};

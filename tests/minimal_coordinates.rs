@@ -3,7 +3,7 @@
 //! (`src/integrator/partitioned.rs`: Newton or closed-form dependent positions, LU solves of
 //! the constraint Jacobian, the reduced mass matrix from the full one), and whole runs against
 //! the constraint-based formulation at a converged step; the chain on its modes in closed form on
-//! its frame (`src/mechanism/frame_form.rs`) against the same general evaluation.
+//! its frame (`src/mechanism/frame_coordinates_closed_form.rs`) against the same general evaluation.
 
 mod common;
 
@@ -129,7 +129,7 @@ fn compare_with_general(
     }
 }
 
-/// The chain on its modes: its closed form on the frame (`src/mechanism/frame_form.rs`)
+/// The chain on its modes: its closed form on the frame (`src/mechanism/frame_coordinates_closed_form.rs`)
 /// against the general partitioned evaluation, with shear slides, end bodies (with and
 /// without rotation: the direct evaluation and the projection), a slider mass, gravity and an
 /// offset.

@@ -1,7 +1,9 @@
 //! Real connecting rods: the mechanism around the rod. Slider line offset
 //! and gravity against the closed-form rigid slider-crank inverse dynamics (`rod.modes = 0`).
 
-use flexrod::mechanism::Mechanism;
+use flexrod::mechanism::{
+    integrator_choice, IntegratorChoice, Mechanism, MechanismParts, MechanismSpec,
+};
 use flexrod::scene::Scene;
 use flexrod::CrankInput;
 use nalgebra::Vector2;
@@ -78,11 +80,18 @@ fn rigid_inverse_dynamics(
     (lb, lc, torque)
 }
 
+/// The mechanism of `spec` with the integrator its solver settings choose.
+fn mechanism(spec: &MechanismSpec) -> Mechanism {
+    let parts = MechanismParts::new(spec).unwrap();
+    let choice = integrator_choice::choose(&parts.spec().solver, parts.facts()).unwrap();
+    Mechanism::new(parts, choice).unwrap()
+}
+
 #[test]
 fn rigid_rod_with_end_masses_offset_and_gravity_matches_closed_form() {
     let scene = Scene::from_toml_str(RIGID, "RIGID").unwrap();
     let spec = scene.mechanism_spec();
-    let mech = Mechanism::new(&spec).unwrap();
+    let mech = mechanism(&spec);
     let rod = &scene.rod;
     let (r, l) = (scene.crank.length, rod.length);
     let e = scene.mechanism.slider_offset;
@@ -254,7 +263,7 @@ fn statics_midpoint_moment_axial_force_and_stress_match_beam_theory() {
     for offset in [0.0, 0.03] {
         let g = 9.81;
         let scene = statics_scene(offset, [0.0, -g], "ffr");
-        let mech = Mechanism::new(&scene.mechanism_spec()).unwrap();
+        let mech = mechanism(&scene.mechanism_spec());
         let state = mech.initial_state(0.0, rest, 0.0).unwrap();
         let o = state.outputs.section;
         let beta = (offset / l).asin();
@@ -273,7 +282,7 @@ fn statics_midpoint_moment_axial_force_and_stress_match_beam_theory() {
     }
     for force in [2.0e4, -2.0e4] {
         let scene = statics_scene(0.0, [0.0, 0.0], "ffr");
-        let mech = Mechanism::new(&scene.mechanism_spec()).unwrap();
+        let mech = mechanism(&scene.mechanism_spec());
         let state = mech.initial_state(0.0, rest, force).unwrap();
         let o = state.outputs.section;
         let e_n = (o.axial_force_mid - force).abs() / force.abs();
@@ -463,5 +472,29 @@ fn section_outputs_are_restored_with_a_serialized_state() {
         sim.restore_from_bytes(&saved).unwrap();
         assert_eq!(sim.outputs().section, at_save, "{model}");
         assert!(at_save.stress_max.is_finite() && at_save.stress_max > 0.0);
+    }
+}
+
+/// `Mechanism::new` refuses an integrator choice that does not apply to the rod as the choice
+/// itself refuses the method: the explicit error-controlled integrators on the segment chain
+/// (no modal coordinates).
+#[test]
+fn an_integrator_that_does_not_apply_is_refused() {
+    let scene = statics_scene(0.0, [0.0, 0.0], "segments");
+    for choice in [
+        IntegratorChoice::ExponentialRungeKutta,
+        IntegratorChoice::AdaptiveRungeKutta {
+            pair: integrator_choice::Pair::Rk43,
+        },
+    ] {
+        let parts = MechanismParts::new(&scene.mechanism_spec()).unwrap();
+        let Err(error) = Mechanism::new(parts, choice) else {
+            panic!("{choice:?} on the segment chain accepted");
+        };
+        let message = error.to_string();
+        assert!(
+            message.contains("solver.method") && message.contains("modal coordinates"),
+            "{message}"
+        );
     }
 }

@@ -5,7 +5,8 @@
 //!
 //! with `n` coordinates `q`, `m` constraints and their multipliers `lambda`. Each integrator
 //! implements [`Integrator`], which is all the stepping driver sees; which one a scene gets is
-//! chosen from its solver settings by the mechanism (`mechanism::integrator_choice`).
+//! chosen from its solver settings by `mechanism::integrator_choice`, and the choice is passed
+//! to the mechanism when it is built.
 //!
 //! - [`GeneralizedAlpha`] ([`generalized_alpha`]): implicit, on the index-3 form, fixed steps or
 //!   adaptive ones. The method of Chung and Hulbert 1993 ("A time integration algorithm for
@@ -22,44 +23,48 @@
 //! - [`AdaptiveRungeKutta`] ([`adaptive_runge_kutta`]): explicit embedded Runge-Kutta pairs
 //!   with error control on the independent coordinates of a partitioned system
 //!   ([`PartitionedRhs`]: Wehage and Haug 1982, the mechanism's own degrees of freedom), one
-//!   integrator parameterized by its [`Tableau`] and form:
+//!   integrator parameterized by its [`Tableau`]:
 //!   - [`DORMAND_PRINCE`], the 5(4) pair of Dormand and Prince 1980 ("A family of embedded
 //!     Runge-Kutta formulae", J. Comput. Appl. Math. 6);
-//!   - [`RK4_FSAL`], the classic RK4 (Kutta 1901) with an embedded third-order estimate;
-//!   - its exponential form, ETDRK4 (Cox and Matthews 2002, "Exponential time differencing for
-//!     stiff systems", J. Comput. Phys. 176) with the modal oscillators taken exactly
-//!     ([`exponential`]; Hochbruck and Ostermann 2010, "Exponential integrators", Acta
-//!     Numerica 19).
+//!   - [`RK4_FSAL`], the classic RK4 (Kutta 1901) with an embedded third-order estimate.
+//! - [`ExponentialRungeKutta`] ([`exponential_runge_kutta`]): ETDRK4 (Cox and Matthews 2002,
+//!   "Exponential time differencing for stiff systems", J. Comput. Phys. 176, in the stages of
+//!   Krogstad 2005) on the same independent coordinates with the modal oscillators taken
+//!   exactly ([`exponential`]; Hochbruck and Ostermann 2010, "Exponential integrators", Acta
+//!   Numerica 19), its embedded estimate that of the RK4(3) pair.
 //!
-//! Shared parts: [`ConstrainedSolve`], the saddle-point solve (accelerations and multipliers,
-//! projections on the constraints, the joint forces of the outputs); [`DenseLu`] and
-//! [`SmallLu`], the dense factorizations behind it and behind the partitioned evaluation, on
-//! buffers sized once; [`DaeState`] and [`StepAhead`], the state and the held step of dense
-//! output.
+//! Shared parts: [`step_control`], the step-size control, error norm and stage workspace of
+//! the two error-controlled explicit integrators ([`ErrorControl`]); [`ConstrainedSolve`], the
+//! saddle-point solve (accelerations and multipliers, projections on the constraints, the joint
+//! forces of the outputs); [`DenseLu`] and [`SmallLu`], the dense factorizations behind it and
+//! behind the partitioned evaluation, on buffers sized once; [`DaeState`] and [`StepAhead`],
+//! the state and the held step of dense output.
 
 pub mod adaptive_runge_kutta;
 pub mod constrained;
 pub mod dense_lu;
 pub mod exponential;
+pub mod exponential_runge_kutta;
 pub mod failure;
 pub mod generalized_alpha;
 pub mod partitioned;
 pub mod runge_kutta;
 pub mod small_lu;
 pub mod state;
+pub mod step_control;
 pub mod system;
 
-pub use adaptive_runge_kutta::{
-    AdaptiveRungeKutta, ErrorControl, Tableau, DORMAND_PRINCE, RK4_FSAL,
-};
+pub use adaptive_runge_kutta::{AdaptiveRungeKutta, Tableau, DORMAND_PRINCE, RK4_FSAL};
 pub use constrained::ConstrainedSolve;
 pub use dense_lu::DenseLu;
+pub use exponential_runge_kutta::ExponentialRungeKutta;
 pub use failure::{StepError, StepFailure};
 pub use generalized_alpha::GeneralizedAlpha;
 pub use partitioned::PartitionedRhs;
 pub use runge_kutta::ExplicitRk4;
 pub use small_lu::SmallLu;
 pub use state::{hermite5, DaeState, StepAhead};
+pub use step_control::ErrorControl;
 pub use system::{DaeSystem, GeneralPath};
 
 /// Largest internal step the error-controlled integrators propose, s (a step may be stretched by

@@ -326,7 +326,7 @@ impl DaeSystem for SliderCrankDae<'_> {
 
     /// The FFR rod's closed form on minimal coordinates ([`super::minimal`]); for a rod that
     /// asks for it ([`RodBody::frame_form`]: the chain on its modes) the closed form on its
-    /// frame ([`super::frame_form`]).
+    /// frame ([`super::frame_coordinates_closed_form`]).
     fn reduced_rhs(
         &self,
         t: f64,

@@ -1,44 +1,51 @@
 //! Which integrator a mechanism gets: [`choose`] decides from the solver settings and the facts
-//! of the mechanism it needs ([`MechanismFacts`]), [`build`] makes the integrator of the
-//! [`IntegratorChoice`].
+//! of the mechanism it needs ([`MechanismFacts`], from [`super::MechanismParts`]); the caller
+//! passes the [`IntegratorChoice`] to [`super::Mechanism::new`], which makes the integrator
+//! with [`build`].
 //!
 //! - `solver.method = "auto"`: error-controlled steps. On the FFR rod's modal coordinates
 //!   while the explicit stability step `2.5 / |lambda|_max` of the retained modes is at least
-//!   [`AUTO_EXPLICIT_MIN_STEP`]: the exponential form of the RK4(3) pair (ETDRK4 in
-//!   Krogstad's stages, 2005, with the weights of Cox and Matthews 2002) where the modes are the mechanism's own oscillators
-//!   ([`modes_are_oscillators`]) on the closed-form minimal coordinates, the
-//!   classic RK4(3) pair elsewhere. Else (the segment chain, many or very stiff modes) the
-//!   adaptive generalized-alpha method.
-//! - `"dopri5"`, `"rk43"`: that pair, classic form, on the modal coordinates; refused without
-//!   them (the segment chain).
-//! - The chain on its modes ([`RodBody::modal_oscillators`]): `auto` takes the exponential form
-//!   on its modal coordinates (the general partitioned evaluation), its pinned bending modes
-//!   and loaded axial mode the mechanism's own oscillators.
-//! - `"exponential"`: the exponential form wherever the closed form exists (an FFR rod of 1 to
+//!   [`AUTO_EXPLICIT_MIN_STEP`]: ETDRK4 ([`ExponentialRungeKutta`]: Krogstad's stages, 2005,
+//!   with the weights of Cox and Matthews 2002) where the modes are the mechanism's own
+//!   oscillators ([`modes_are_oscillators`]) on the closed-form minimal coordinates, the
+//!   RK4(3) pair ([`AdaptiveRungeKutta`]) elsewhere. Else (the segment chain, many or very
+//!   stiff modes) the adaptive generalized-alpha method.
+//! - `"dopri5"`, `"rk43"`: that pair on the modal coordinates; refused without them (the
+//!   segment chain).
+//! - The chain on its modes ([`RodBody::modal_oscillators`]): `auto` takes ETDRK4 on its modal
+//!   coordinates (the general partitioned evaluation), its pinned bending modes and loaded
+//!   axial mode the mechanism's own oscillators.
+//! - `"exponential"`: ETDRK4 wherever the closed form exists (an FFR rod of 1 to
 //!   [`crate::rod::ffr::MAX_MODES`] modes), also where `auto` would not take it; refused
 //!   elsewhere.
 //! - `"rk4"`: the fixed-step classic RK4 with projection, its step capped at the stability
 //!   step; `"generalized_alpha"`: fixed steps of `solver.step`.
 //!
-//! Why the exponential form only where the modes are the mechanism's own oscillators
+//! Why ETDRK4 only where the modes are the mechanism's own oscillators
 //! ([`modes_are_oscillators`]): the modes of the pinned rod are the mechanism's linear
 //! oscillators (the reduced mass is `M_ff` at the undeformed configuration, whatever the crank
 //! angle and the slider mass), and so are the mass-loaded modes that carry the slider
-//! (`crate::modal::loaded`) on the dead centres, and nearly so in between (the slider's share
+//! (`crate::modal::mass_loaded_modes`) on the dead centres, and nearly so in between (the slider's share
 //! of the reduced mass grows as `1 / cos^2` of the rod's angle to its line). Split off with their
 //! effective modal mass ([`effective_modal_mass`]), the remainder is smooth and the step is set
 //! by the accuracy of the response. Free axial modes that carry the piston couple through the
-//! constraints instead: their split-off oscillators are not the mechanism's, and the exponential
-//! form took twice the steps of the classic pair on the automotive rod with free modes
-//! (`cargo run --release --example exponential_choice`).
+//! constraints instead: their split-off oscillators are not the mechanism's, and ETDRK4 took
+//! twice the steps of the RK4(3) pair on the automotive rod with free modes (`cargo run
+//! --release --example exponential_choice`).
+//!
+//! ETDRK4's steps are bounded by phase caps measured on this product's rods, which the
+//! integrator receives as its largest step ([`exponential_max_step`]): `w_1 h` of the lowest
+//! mode at most [`EXPONENTIAL_MAX_PHASE`], tighter at tight tolerances against the drift of a
+//! long undamped run ([`exponential_max_phase`]) and as loose as the damping lets that drift
+//! settle ([`damped_max_phase`]), and `w_ax h` of the axial modes at most [`axial_max_phase`].
 
 use super::spec::{SolverMethod, SolverSpec};
 use crate::error::ModelError;
 use crate::integrator::exponential::Oscillator;
 use crate::integrator::generalized_alpha::AlphaErrorControl;
 use crate::integrator::{
-    AdaptiveRungeKutta, DaeSystem, ErrorControl, ExplicitRk4, GeneralizedAlpha, Integrator,
-    Tableau, DORMAND_PRINCE, RK4_FSAL,
+    AdaptiveRungeKutta, DaeSystem, ErrorControl, ExplicitRk4, ExponentialRungeKutta,
+    GeneralizedAlpha, Integrator, Tableau, DORMAND_PRINCE, RK4_FSAL,
 };
 use crate::rod::RodBody;
 
@@ -53,13 +60,11 @@ pub const LOCAL_TOLERANCE_FACTOR: f64 = 0.01;
 /// [`ERROR_PER_UNIT_STEP_RK4`].
 pub const LOCAL_TOLERANCE_FACTOR_RK4: f64 = 0.03;
 
-/// Error per unit step of the explicit pairs ([`ErrorControl::per_unit_step`]; RK4(3) and,
-/// with the same constant, Dormand-Prince, whose free-running steps on the automotive rod
-/// otherwise added 0.4 % of the peak deflection at tolerance 1e-3): the local
-/// tolerance of a step `h` is at most `solver.tolerance c h / T` with `T` one crank
-/// revolution. Without it (error per step alone) a rod whose accuracy needs many small steps
-/// per revolution (an undamped stiff fourth mode: 1160 steps in one revolution) collected
-/// 6.8 times the stated tolerance (`cargo run --release --example error_control_case -- 19`).
+/// Error per unit step of the explicit pairs, RK4(3) and Dormand-Prince
+/// ([`ErrorControl::per_unit_step`]): the local tolerance of a step `h` is at most
+/// `solver.tolerance c h / T` with `T` one crank revolution, so that the local errors of a
+/// revolution's steps add up to a bounded error however many steps it takes. Measured in
+/// docs/solvers.md, "Dense output and the error per unit step".
 pub const ERROR_PER_UNIT_STEP_RK4: f64 = 2.5;
 
 /// The same for the adaptive generalized-alpha method (second order: its global error goes
@@ -71,15 +76,100 @@ pub const LOCAL_TOLERANCE_FACTOR_IMPLICIT: f64 = 0.0025;
 pub const AMPLITUDE_FLOOR: f64 = 1e-5;
 
 /// `auto` takes the explicit pair when its stability limit `2.5 / w_max` of the highest
-/// retained mode is at least this step, s (modes up to about 80 kHz). Measured on the
-/// automotive rod (tests/automotive_reference.rs): with 6 to 8 modes (16 to 32 kHz) the
-/// explicit pair is within 0.3 % of the shear beam for deflection, stress and pin forces at
-/// 90 to 130 ms, where the adaptive generalized-alpha method was 0.9 to 1.4 % off, the same
-/// at tolerances 1e-3 and 1e-4.
+/// retained mode is at least this step, s (modes up to about 80 kHz), else adaptive
+/// generalized-alpha. Measured on the automotive rod in docs/physics.md, "Sub-steps, halving
+/// and the choice of method".
 pub const AUTO_EXPLICIT_MIN_STEP: f64 = 5e-6;
 
 /// Rejected tries of one step of the error-controlled methods before it counts as failed.
 const MAX_REJECTIONS: usize = 40;
+
+/// Largest phase `w_min h` of the lowest mode over one step of ETDRK4
+/// ([`ExponentialRungeKutta`]): the remainder carries the modes' parametric terms, which
+/// oscillate with the modes, and over longer steps the stages no longer resolve them and the
+/// embedded estimate misses their error. A step landing on a communication point may stretch to
+/// 1.25 times it ([`Integrator::step`]); below a local tolerance of
+/// [`EXPONENTIAL_DRIFT_TOLERANCE`] the cap is tighter ([`exponential_max_phase`]), and on a
+/// damped rod it is [`damped_max_phase`]. Measured on the random parameter sets of
+/// `tests/error_control.rs` in docs/solvers.md, "The exponential integrator" (the limits on its
+/// steps).
+pub const EXPONENTIAL_MAX_PHASE: f64 = 1.25;
+
+/// Largest phase `w_ax h` of an axial mode over one step of ETDRK4
+/// ([`ExponentialRungeKutta`]), at the local tolerance [`AXIAL_PHASE_TOLERANCE`] and above
+/// ([`axial_max_phase`]): an axial mode's oscillation enters the bending modes' remainder
+/// through the axial force, and over longer steps the stages sample that coupling too coarsely
+/// for the embedded estimate to see its error, an error that does not shrink with the
+/// tolerance. Measured on the random parameter sets of `tests/error_control.rs` and the
+/// automotive rod in docs/solvers.md, "The exponential integrator" (the limits on its steps).
+pub const AXIAL_MAX_PHASE: f64 = 2.0;
+
+/// The local tolerance (that of `solver.tolerance = 1e-2` in the RK4(3) pair) at and above
+/// which the axial modes' cap is [`AXIAL_MAX_PHASE`] ([`axial_max_phase`]).
+pub const AXIAL_PHASE_TOLERANCE: f64 = 3e-4;
+
+/// Smallest phase cap of an axial mode ([`axial_max_phase`] at tight tolerances), at which the
+/// random FFR sets stay within a fraction of their tolerance (docs/solvers.md, "The exponential
+/// integrator").
+pub const AXIAL_MIN_PHASE: f64 = 1.0;
+
+/// The axial modes' phase cap at the local tolerance `tolerance`: [`AXIAL_MAX_PHASE`] times
+/// `(tolerance / AXIAL_PHASE_TOLERANCE)^(1/2)`, between [`AXIAL_MIN_PHASE`] and
+/// [`AXIAL_MAX_PHASE`]. The missed error grows about as the square of the phase (the
+/// automotive rod at tolerance 1e-3: 4.4 times from the cap 1 to 2), so the cap goes with the
+/// square root of the tolerance: 2 at `solver.tolerance = 1e-2`, 1.1 at 3e-3, 1 from 2.5e-3
+/// down.
+pub fn axial_max_phase(tolerance: f64) -> f64 {
+    let ratio = (tolerance / AXIAL_PHASE_TOLERANCE).min(1.0);
+    (AXIAL_MAX_PHASE * ratio.sqrt()).max(AXIAL_MIN_PHASE)
+}
+
+/// The local tolerance (relative to the amplitude scale) at which the undamped drift cap of
+/// ETDRK4 is `w_1 h = 1`; at other tolerances it is
+/// `(tolerance / EXPONENTIAL_DRIFT_TOLERANCE)^(1/5)` ([`exponential_max_phase`];
+/// docs/solvers.md, "Long runs").
+pub const EXPONENTIAL_DRIFT_TOLERANCE: f64 = 4.9e-3;
+
+/// The largest phase `w_min h` of ETDRK4 at the local tolerance `tolerance`:
+/// `(tolerance / EXPONENTIAL_DRIFT_TOLERANCE)^(1/5)`, at most [`EXPONENTIAL_MAX_PHASE`]. Over a
+/// long undamped run the local errors of the remainder's parametric and coupling terms do not
+/// cancel: they add up to a drift of the free vibration's amplitude that grows with the number
+/// of steps (a method that is not symmetric has no bounded energy error on a nearly integrable
+/// oscillatory system: Hairer, Lubich and Wanner, *Geometric Numerical Integration*, 2nd ed.,
+/// 2006, chapters X and XI), and the error estimate, which sees the local error's phase part
+/// far more than its amplitude part, does not see it. The drift per revolution goes with
+/// `(w_1 h)^5`, so this cap makes it proportional to the tolerance (docs/solvers.md, "Long
+/// runs", where the drift is measured).
+pub fn exponential_max_phase(tolerance: f64) -> f64 {
+    (tolerance / EXPONENTIAL_DRIFT_TOLERANCE)
+        .powf(0.2)
+        .min(EXPONENTIAL_MAX_PHASE)
+}
+
+/// Relative drift of the lowest mode's free-vibration amplitude per period of that mode at the
+/// phase `w_1 h = 1`, an upper bound: `DRIFT_PER_PERIOD (w_1 h)^5` bounds the drift per period
+/// below `w_1 h = 1` and extrapolates it above (damped rods only). From the long-run table of
+/// docs/solvers.md, "Long runs", extrapolated along its own slope; `tests/long_run.rs`
+/// (`drift_per_period_bounds_the_long_run_table`) checks it against the table.
+pub const DRIFT_PER_PERIOD: f64 = 5.1e-6;
+
+/// The largest phase `w_1 h` of ETDRK4 at the local tolerance `tolerance` on a
+/// lowest mode with damping ratio `zeta`: the drift that [`exponential_max_phase`] bounds
+/// accumulates only while the free vibration lasts. Damped, a free amplitude loses the
+/// fraction `2 pi zeta` per period, so a drift `DRIFT_PER_PERIOD (w_1 h)^5` per period settles
+/// at `DRIFT_PER_PERIOD (w_1 h)^5 / (2 pi zeta)` of the amplitude, below `tolerance` for
+/// `w_1 h <= (2 pi zeta tolerance / DRIFT_PER_PERIOD)^(1/5)`. The larger of that and
+/// [`exponential_max_phase`], at most [`EXPONENTIAL_MAX_PHASE`] (the cap on the stages'
+/// sampling of the remainder's parametric terms, which holds whatever the damping).
+pub fn damped_max_phase(tolerance: f64, zeta: f64) -> f64 {
+    let undamped = exponential_max_phase(tolerance);
+    let damped = if zeta > 0.0 {
+        (2.0 * std::f64::consts::PI * zeta * tolerance / DRIFT_PER_PERIOD).powf(0.2)
+    } else {
+        0.0
+    };
+    undamped.max(damped).min(EXPONENTIAL_MAX_PHASE)
+}
 
 /// What the choice needs to know of the mechanism.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -158,9 +248,11 @@ pub enum Pair {
 /// The integrator chosen, with its settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum IntegratorChoice {
-    /// [`AdaptiveRungeKutta`] on the modal coordinates with `pair`; with `exponential` in its
-    /// exponential form (ETDRK4, only with [`Pair::Rk43`]).
-    AdaptiveRungeKutta { pair: Pair, exponential: bool },
+    /// [`AdaptiveRungeKutta`] on the modal coordinates with `pair`.
+    AdaptiveRungeKutta { pair: Pair },
+    /// [`ExponentialRungeKutta`] (ETDRK4) on the modal coordinates, with the local tolerance of
+    /// the RK4(3) pair.
+    ExponentialRungeKutta,
     /// [`ExplicitRk4`] with fixed steps of at most `max_step`, s.
     ExplicitRk4 { max_step: f64 },
     /// [`GeneralizedAlpha`]: error-controlled steps with `adaptive`, else fixed steps of
@@ -175,14 +267,15 @@ impl IntegratorChoice {
     /// generalized-alpha either way).
     pub fn max_step(&self, solver: &SolverSpec) -> f64 {
         match *self {
-            IntegratorChoice::AdaptiveRungeKutta { .. } => f64::INFINITY,
+            IntegratorChoice::AdaptiveRungeKutta { .. }
+            | IntegratorChoice::ExponentialRungeKutta => f64::INFINITY,
             IntegratorChoice::ExplicitRk4 { max_step } => max_step,
             IntegratorChoice::GeneralizedAlpha { .. } => solver.step,
         }
     }
 }
 
-/// `auto` takes the exponential form whatever the stability step of the explicit pair: the
+/// `auto` takes ETDRK4 whatever the stability step of the explicit pair: the
 /// closed form exists, its modes are the mechanism's own oscillators
 /// ([`modes_are_oscillators`]) and not overdamped (their propagator is exact, so the stiffest
 /// mode does not hold the step). Measured on the automotive rod with E and G times 1e4
@@ -191,6 +284,34 @@ impl IntegratorChoice {
 fn exact_oscillators(facts: &MechanismFacts) -> bool {
     (facts.closed_form && facts.kernel_oscillators == Some(true) || facts.modal_oscillators)
         && facts.damping_ratio <= 1.0
+}
+
+/// The refusal of an explicit error-controlled method on a rod without modal coordinates.
+fn no_modal_coordinates() -> ModelError {
+    ModelError::InvalidParameter {
+        name: "solver.method",
+        value: 0.0,
+        allowed: "generalized_alpha, rk4 or auto with rod.model = segments (dopri5, rk43 and exponential integrate the FFR rod's modal coordinates)".into(),
+    }
+}
+
+/// Whether the rod gives its modal coordinates as oscillators for ETDRK4: the FFR rod's closed
+/// form exists, or the rod gives its modes ([`RodBody::modal_oscillators`]).
+fn has_oscillators(facts: &MechanismFacts) -> bool {
+    facts.kernel_oscillators.is_some() || facts.modal_oscillators
+}
+
+/// The refusal of ETDRK4 on a rod of `modes` modal coordinates without oscillators
+/// ([`has_oscillators`]).
+fn no_oscillators(modes: usize) -> ModelError {
+    ModelError::InvalidInteger {
+        name: "solver.method",
+        value: modes as i64,
+        allowed: format!(
+            "exponential with an FFR rod of 1 to {} modes (its closed form; this rod has more) or the chain on its modes, or auto, rk43, dopri5",
+            crate::rod::ffr::MAX_MODES
+        ),
+    }
 }
 
 /// The integrator for `solver` on a mechanism with `facts` (module documentation), or why
@@ -211,27 +332,15 @@ pub fn choose(solver: &SolverSpec, facts: &MechanismFacts) -> Result<IntegratorC
     match method {
         SolverMethod::Dopri5 | SolverMethod::Rk43 | SolverMethod::Exponential => {
             let Some(modes) = facts.modes else {
-                return Err(ModelError::InvalidParameter {
-                    name: "solver.method",
-                    value: 0.0,
-                    allowed: "generalized_alpha, rk4 or auto with rod.model = segments (dopri5, rk43 and exponential integrate the FFR rod's modal coordinates)".into(),
-                });
+                return Err(no_modal_coordinates());
             };
             let forced = method == SolverMethod::Exponential;
-            if forced && facts.kernel_oscillators.is_none() && !facts.modal_oscillators {
-                return Err(ModelError::InvalidInteger {
-                    name: "solver.method",
-                    value: modes as i64,
-                    allowed: format!(
-                        "exponential with an FFR rod of 1 to {} modes (its closed form; this rod has more) or the chain on its modes, or auto, rk43, dopri5",
-                        crate::rod::ffr::MAX_MODES
-                    ),
-                });
+            if forced && !has_oscillators(facts) {
+                return Err(no_oscillators(modes));
             }
             if method == SolverMethod::Dopri5 {
                 return Ok(IntegratorChoice::AdaptiveRungeKutta {
                     pair: Pair::DormandPrince,
-                    exponential: false,
                 });
             }
             let minimal = auto && facts.closed_form;
@@ -239,9 +348,10 @@ pub fn choose(solver: &SolverSpec, facts: &MechanismFacts) -> Result<IntegratorC
                 Some(pinned) => forced || minimal && pinned,
                 None => (forced || auto) && facts.modal_oscillators,
             };
-            Ok(IntegratorChoice::AdaptiveRungeKutta {
-                pair: Pair::Rk43,
-                exponential,
+            Ok(if exponential {
+                IntegratorChoice::ExponentialRungeKutta
+            } else {
+                IntegratorChoice::AdaptiveRungeKutta { pair: Pair::Rk43 }
             })
         }
         SolverMethod::Rk4 => Ok(IntegratorChoice::ExplicitRk4 {
@@ -254,41 +364,46 @@ pub fn choose(solver: &SolverSpec, facts: &MechanismFacts) -> Result<IntegratorC
     }
 }
 
-/// The integrator of `choice` for `rod` in the mechanism `system`, with the settings of
-/// `solver`.
+/// The integrator of `choice` for `rod` (with `facts`) in the mechanism `system`, with the
+/// settings of `solver`; refused, as [`choose`] refuses it, where the choice does not apply to
+/// the rod (the explicit error-controlled methods without modal coordinates, ETDRK4 without
+/// their oscillators).
 pub fn build(
     choice: IntegratorChoice,
     solver: &SolverSpec,
     facts: &MechanismFacts,
     rod: &dyn RodBody,
     system: &dyn DaeSystem,
-) -> Box<dyn Integrator> {
-    match choice {
-        IntegratorChoice::AdaptiveRungeKutta { pair, exponential } => {
-            let elastic = rod.elastic_coordinates().expect("modal coordinates");
-            let omega = rod
-                .elastic_circular_frequencies()
-                .expect("modal frequencies");
+) -> Result<Box<dyn Integrator>, ModelError> {
+    if let IntegratorChoice::AdaptiveRungeKutta { .. } | IntegratorChoice::ExponentialRungeKutta =
+        choice
+    {
+        let Some(modes) = facts.modes else {
+            return Err(no_modal_coordinates());
+        };
+        if choice == IntegratorChoice::ExponentialRungeKutta && !has_oscillators(facts) {
+            return Err(no_oscillators(modes));
+        }
+    }
+    Ok(match choice {
+        IntegratorChoice::AdaptiveRungeKutta { pair } => {
             // The RK4(3) pair: four evaluations a step and 2.8 times the stable step on the
             // stiff mode (module documentation of `crate::integrator::adaptive_runge_kutta`).
             let (tableau, factor): (&'static Tableau, f64) = match pair {
                 Pair::Rk43 => (&RK4_FSAL, LOCAL_TOLERANCE_FACTOR_RK4),
                 Pair::DormandPrince => (&DORMAND_PRINCE, LOCAL_TOLERANCE_FACTOR),
             };
-            let control = ErrorControl {
-                tolerance: solver.tolerance * factor,
-                amplitude_floor: AMPLITUDE_FLOOR,
-                scales: elastic.clone().map(|i| rod.coordinate_scale(i)).collect(),
-                rate_weights: omega.iter().map(|w| w.max(1.0)).collect(),
-                initial_step: solver.step,
-                max_rejections: MAX_REJECTIONS,
-                per_unit_step: Some(ERROR_PER_UNIT_STEP_RK4 / factor),
-            };
-            let integrator = AdaptiveRungeKutta::new(system, elastic.collect(), control, tableau);
-            if !exponential {
-                return Box::new(integrator);
-            }
-            let oscillators = match (rod.ffr_kernel(), rod.modal_oscillators()) {
+            let (independent, control) = explicit_control(solver, rod, factor);
+            Box::new(AdaptiveRungeKutta::new(
+                system,
+                independent,
+                control,
+                tableau,
+            ))
+        }
+        IntegratorChoice::ExponentialRungeKutta => {
+            let (independent, control) = explicit_control(solver, rod, LOCAL_TOLERANCE_FACTOR_RK4);
+            let oscillators: Vec<Oscillator> = match (rod.ffr_kernel(), rod.modal_oscillators()) {
                 (Some(kernel), _) => (0..kernel.n)
                     .map(|i| {
                         let mass = effective_modal_mass(kernel, facts.slider_mass, i);
@@ -299,13 +414,17 @@ pub fn build(
                     .into_iter()
                     .map(|(omega2, damping)| Oscillator::new(omega2, damping))
                     .collect(),
-                (None, None) => unreachable!("the exponential form needs the rod's oscillators"),
+                (None, None) => unreachable!("ETDRK4 needs the rod's oscillators"),
             };
-            let mut integrator = integrator.exponential(oscillators);
-            for index in rod.axial_mode_indices() {
-                integrator = integrator.cap_phase_on(index);
-            }
-            Box::new(integrator)
+            let max_step =
+                exponential_max_step(&oscillators, &rod.axial_mode_indices(), control.tolerance);
+            Box::new(ExponentialRungeKutta::new(
+                system,
+                independent,
+                control,
+                oscillators,
+                max_step,
+            ))
         }
         IntegratorChoice::ExplicitRk4 { .. } => Box::new(ExplicitRk4::new(system)),
         IntegratorChoice::GeneralizedAlpha { adaptive } => {
@@ -325,14 +444,59 @@ pub fn build(
             }
             Box::new(alpha)
         }
+    })
+}
+
+/// The largest step of ETDRK4 on `oscillators` at the local tolerance `tolerance`, s: the
+/// lowest oscillator's phase cap with its damping ([`damped_max_phase`] over its circular
+/// frequency) and, on the axial oscillators at the indices `axial`, [`axial_max_phase`] over
+/// theirs.
+fn exponential_max_step(oscillators: &[Oscillator], axial: &[usize], tolerance: f64) -> f64 {
+    let lowest = oscillators
+        .iter()
+        .min_by(|a, b| a.omega2.total_cmp(&b.omega2))
+        .expect("at least one oscillator");
+    let mut max_step = damped_max_phase(tolerance, lowest.damping_ratio()) / lowest.omega2.sqrt();
+    let cap = axial_max_phase(tolerance);
+    for &index in axial {
+        let omega = oscillators[index].omega2.sqrt();
+        if omega > 0.0 {
+            max_step = max_step.min(cap / omega);
+        }
     }
+    max_step
+}
+
+/// The independent coordinates of the explicit error-controlled integrators (the rod's modal
+/// coordinates) and their error control: the local tolerance `solver.tolerance factor`, each
+/// coordinate's scale and its rate weighted by its circular frequency (at least 1 rad/s), error
+/// per unit step ([`ERROR_PER_UNIT_STEP_RK4`]).
+fn explicit_control(
+    solver: &SolverSpec,
+    rod: &dyn RodBody,
+    factor: f64,
+) -> (Vec<usize>, ErrorControl) {
+    let elastic = rod.elastic_coordinates().expect("modal coordinates");
+    let omega = rod
+        .elastic_circular_frequencies()
+        .expect("modal frequencies");
+    let control = ErrorControl {
+        tolerance: solver.tolerance * factor,
+        amplitude_floor: AMPLITUDE_FLOOR,
+        scales: elastic.clone().map(|i| rod.coordinate_scale(i)).collect(),
+        rate_weights: omega.iter().map(|w| w.max(1.0)).collect(),
+        initial_step: solver.step,
+        max_rejections: MAX_REJECTIONS,
+        per_unit_step: Some(ERROR_PER_UNIT_STEP_RK4 / factor),
+    };
+    (elastic.collect(), control)
 }
 
 /// The modal mass of mode `i` in the mechanism at the dead centres, where the rod lies on the
 /// slider's line: the rod's own `M_ff,ii` and the slider, which moves with C's axial
 /// displacement, `m_s S_C,x,i^2` (the diagonal of the reduced mass `T^T M T` of
 /// `crate::mechanism::minimal` at the undeformed configuration there). For mass-loaded modes
-/// (`crate::modal::loaded`, the slider's mass added at C's axial coordinate) it is 1; for the
+/// (`crate::modal::mass_loaded_modes`, the slider's mass added at C's axial coordinate) it is 1; for the
 /// modes of the pinned rod `M_ff,ii` (the slider does not move with them).
 pub fn effective_modal_mass(
     kernel: &crate::rod::ffr::FfrKernel,
@@ -345,7 +509,7 @@ pub fn effective_modal_mass(
 /// Whether the kernel's modes are the mechanism's own linear oscillators at the undeformed
 /// configuration on the dead centres (reduced mass the identity there): the modes of the
 /// pinned rod ([`crate::rod::ffr::FfrKernel::pinned`]), and the modes whose
-/// [`effective_modal_mass`] is 1 (to 1e-6), the mass-loaded modes of `crate::modal::loaded`
+/// [`effective_modal_mass`] is 1 (to 1e-6), the mass-loaded modes of `crate::modal::mass_loaded_modes`
 /// that carry the slider.
 pub fn modes_are_oscillators(kernel: &crate::rod::ffr::FfrKernel, slider_mass: f64) -> bool {
     kernel.pinned
@@ -407,9 +571,11 @@ mod tests {
         }
     }
 
-    fn adaptive_rk(pair: Pair, exponential: bool) -> IntegratorChoice {
-        IntegratorChoice::AdaptiveRungeKutta { pair, exponential }
+    fn adaptive_rk(pair: Pair) -> IntegratorChoice {
+        IntegratorChoice::AdaptiveRungeKutta { pair }
     }
+
+    const ETDRK4: IntegratorChoice = IntegratorChoice::ExponentialRungeKutta;
 
     /// A frequency whose stability step is just above / below [`AUTO_EXPLICIT_MIN_STEP`].
     fn f_at_limit(factor: f64) -> f64 {
@@ -419,7 +585,7 @@ mod tests {
     #[test]
     fn auto_takes_the_exponential_form_where_the_modes_leave_the_pins() {
         let choice = choose(&solver(SolverMethod::Auto), &ffr(2000.0, true)).unwrap();
-        assert_eq!(choice, adaptive_rk(Pair::Rk43, true));
+        assert_eq!(choice, ETDRK4);
         assert_eq!(choice.max_step(&SolverSpec::default()), f64::INFINITY);
     }
 
@@ -428,17 +594,17 @@ mod tests {
         let auto = solver(SolverMethod::Auto);
         assert_eq!(
             choose(&auto, &ffr(2000.0, false)).unwrap(),
-            adaptive_rk(Pair::Rk43, false)
+            adaptive_rk(Pair::Rk43)
         );
         assert_eq!(
             choose(&auto, &ffr_general(2000.0)).unwrap(),
-            adaptive_rk(Pair::Rk43, false)
+            adaptive_rk(Pair::Rk43)
         );
     }
 
     /// Up to the stability step [`AUTO_EXPLICIT_MIN_STEP`] the explicit pair, beyond it (and
     /// for an overdamped rod, whose fastest eigenvalue is above its frequency) adaptive
-    /// generalized-alpha, as for the segment chain; the exponential form at any stiffness
+    /// generalized-alpha, as for the segment chain; ETDRK4 at any stiffness
     /// where the modes are the mechanism's oscillators.
     #[test]
     fn auto_takes_adaptive_generalized_alpha_for_stiff_rods_and_the_segment_chain() {
@@ -446,7 +612,7 @@ mod tests {
         let alpha = IntegratorChoice::GeneralizedAlpha { adaptive: true };
         assert_eq!(
             choose(&auto, &ffr(f_at_limit(0.999), false)).unwrap(),
-            adaptive_rk(Pair::Rk43, false)
+            adaptive_rk(Pair::Rk43)
         );
         assert_eq!(
             choose(&auto, &ffr(f_at_limit(1.001), false)).unwrap(),
@@ -454,7 +620,7 @@ mod tests {
         );
         assert_eq!(
             choose(&auto, &ffr(f_at_limit(100.0), true)).unwrap(),
-            adaptive_rk(Pair::Rk43, true)
+            ETDRK4
         );
         let overdamped = MechanismFacts {
             damping_ratio: 1.5,
@@ -464,27 +630,24 @@ mod tests {
         assert_eq!(choose(&auto, &overdamped).unwrap(), alpha);
         assert_eq!(choose(&auto, &segments(100.0)).unwrap(), alpha);
         assert_eq!(alpha.max_step(&auto), auto.step);
-        // The chain on its modes: the exponential form at any stiffness of its modes.
+        // The chain on its modes: ETDRK4 at any stiffness of its modes.
         for f in [100.0, f_at_limit(100.0)] {
-            assert_eq!(
-                choose(&auto, &modal_chain(f)).unwrap(),
-                adaptive_rk(Pair::Rk43, true)
-            );
+            assert_eq!(choose(&auto, &modal_chain(f)).unwrap(), ETDRK4);
         }
     }
 
     /// `dopri5` and `rk43` are the classic pairs wherever there are modal coordinates, also
-    /// where `auto` would take the exponential form or the implicit method.
+    /// where `auto` would take ETDRK4 or the implicit method.
     #[test]
     fn forced_pairs_are_classic() {
         for facts in [ffr(2000.0, true), ffr(1e6, true), ffr_general(2000.0)] {
             assert_eq!(
                 choose(&solver(SolverMethod::Dopri5), &facts).unwrap(),
-                adaptive_rk(Pair::DormandPrince, false)
+                adaptive_rk(Pair::DormandPrince)
             );
             assert_eq!(
                 choose(&solver(SolverMethod::Rk43), &facts).unwrap(),
-                adaptive_rk(Pair::Rk43, false)
+                adaptive_rk(Pair::Rk43)
             );
         }
     }
@@ -495,7 +658,7 @@ mod tests {
         for pinned in [true, false] {
             assert_eq!(
                 choose(&solver(SolverMethod::Exponential), &ffr(2000.0, pinned)).unwrap(),
-                adaptive_rk(Pair::Rk43, true)
+                ETDRK4
             );
         }
     }
@@ -560,6 +723,30 @@ mod tests {
                 IntegratorChoice::GeneralizedAlpha { adaptive: false }
             );
             assert_eq!(choice.max_step(&alpha), alpha.step);
+        }
+    }
+
+    /// Undamped, the damped cap is the drift cap; at the default tolerance's local tolerance
+    /// (0.03 x 1e-3) a damping ratio of 2.7 % lifts it to `w_1 h = 1` and one of 8.3 % to
+    /// `EXPONENTIAL_MAX_PHASE` (docs/solvers.md, "Long runs"), and it grows with the damping in
+    /// between. The automotive scene's lowest mode (2 % damping, local tolerance 3e-4) has the
+    /// full cap; its piston-rod mode's axial cap, slightly tighter, sets its steps.
+    #[test]
+    fn damping_lifts_the_drift_cap() {
+        let tol = 3e-5;
+        assert_eq!(damped_max_phase(tol, 0.0), exponential_max_phase(tol));
+        assert!((exponential_max_phase(tol) - 0.36).abs() < 0.01);
+        assert!((damped_max_phase(tol, 0.0271) - 1.0).abs() < 1e-3);
+        assert_eq!(damped_max_phase(tol, 0.083), EXPONENTIAL_MAX_PHASE);
+        assert!(damped_max_phase(tol, 0.082) < EXPONENTIAL_MAX_PHASE);
+        let (low, mid) = (damped_max_phase(tol, 1e-3), damped_max_phase(tol, 3e-3));
+        assert!(exponential_max_phase(tol) < low && low < mid && mid < 1.0);
+        assert_eq!(damped_max_phase(3e-4, 0.02), EXPONENTIAL_MAX_PHASE);
+        // The drift it allows settles within the tolerance: D phi^5 / (2 pi zeta) <= tol.
+        for zeta in [1e-3, 3e-3, 6e-3, 0.02, 0.05] {
+            let phi = damped_max_phase(tol, zeta);
+            let settled = DRIFT_PER_PERIOD * phi.powi(5) / (2.0 * std::f64::consts::PI * zeta);
+            assert!(settled <= tol * (1.0 + 1e-12), "{zeta}: {settled}");
         }
     }
 }

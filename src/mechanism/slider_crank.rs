@@ -1,6 +1,9 @@
-//! The slider-crank model: the rod, the prescribed crank, the slider, and the integrator the
-//! solver settings choose ([`super::integrator_choice`]). Starting is in [`super::start`], stepping in [`super::stepping`],
-//! the outputs in [`super::outputs`].
+//! The slider-crank model: the rod, the prescribed crank, the slider, and its integrator.
+//! [`MechanismParts`] is the mechanism before its integrator (the rod built and preprocessed,
+//! and the facts the integrator choice needs); the caller chooses the integrator
+//! ([`super::integrator_choice::choose`]) and [`Mechanism::new`] puts the two together.
+//! Starting is in [`super::start`], stepping in [`super::stepping`], the outputs in
+//! [`super::outputs`].
 
 use std::cell::Cell;
 
@@ -9,7 +12,7 @@ use nalgebra::Vector2;
 use super::crank::{CrankInput, CrankLaw};
 use super::dae::{PinAt, SliderCrankDae};
 use super::gas_force::GasForce;
-use super::integrator_choice::{self, MechanismFacts};
+use super::integrator_choice::{self, IntegratorChoice, MechanismFacts};
 use super::spec::MechanismSpec;
 use super::state::MechanismState;
 use crate::error::ModelError;
@@ -123,43 +126,101 @@ fn evaluation_cost(rod: &dyn RodBody) -> Result<f64, ModelError> {
     })
 }
 
-impl Mechanism {
-    /// Validate `spec`, build and preprocess the rod, choose the integrator
-    /// ([`super::integrator_choice`]).
-    pub fn new(spec: &MechanismSpec) -> Result<Mechanism, ModelError> {
+/// A mechanism before its integrator: the spec with the rod's `auto` settings resolved, the
+/// rod built and preprocessed, and what the integrator choice needs to know of it.
+pub struct MechanismParts {
+    /// The spec with the rod's `auto` settings resolved ([`crate::rod::physics_choice`]).
+    spec: MechanismSpec,
+    /// What the `auto` settings chose, and the model's share of the error estimate.
+    physics: PhysicsChoice,
+    rod: Box<dyn RodBody>,
+    /// What [`integrator_choice::choose`] needs to know of the mechanism.
+    facts: MechanismFacts,
+    /// Work units of one evaluation ([`evaluation_cost`]).
+    evaluation_cost: f64,
+}
+
+/// The mechanism's DAE for probing its shape and facts: the rod with the crank at rest at
+/// time 0, no slider force, no gas force.
+fn probe<'a>(
+    rod: &'a dyn RodBody,
+    spec: &MechanismSpec,
+    pins: &'a Cell<PinAt>,
+) -> SliderCrankDae<'a> {
+    SliderCrankDae {
+        rod,
+        crank: CrankLaw {
+            length: spec.crank.length,
+            t_k: 0.0,
+            input: CrankInput::default(),
+        },
+        slider_mass: spec.slider.mass,
+        slider_force: 0.0,
+        gas: None,
+        slider_offset: spec.mechanism.slider_offset,
+        gravity: Vector2::from(spec.mechanism.gravity),
+        pin_cache: pins,
+    }
+}
+
+impl MechanismParts {
+    /// Validate `spec`, build and preprocess the rod, and collect the facts of the mechanism
+    /// the integrator choice needs ([`MechanismFacts::of`]).
+    pub fn new(spec: &MechanismSpec) -> Result<MechanismParts, ModelError> {
         spec.validate()?;
         let (rod_spec, physics) = spec.choose_physics()?;
-        let spec = &MechanismSpec {
+        let spec = MechanismSpec {
             rod: rod_spec,
             ..spec.clone()
         };
         let rod = crate::rod::build(&spec.rod, spec.slider.mass)?;
         let evaluation_cost = evaluation_cost(rod.as_ref())?;
-        let n = rod.n_coordinates() + 1;
         let probe_pins = Cell::default();
-        let probe = SliderCrankDae {
-            rod: rod.as_ref(),
-            crank: CrankLaw {
-                length: spec.crank.length,
-                t_k: 0.0,
-                input: CrankInput::default(),
-            },
-            slider_mass: spec.slider.mass,
-            slider_force: 0.0,
-            gas: None,
-            slider_offset: spec.mechanism.slider_offset,
-            gravity: Vector2::from(spec.mechanism.gravity),
-            pin_cache: &probe_pins,
-        };
         let facts = MechanismFacts::of(
             rod.as_ref(),
             spec.rod.damping_ratio,
             spec.slider.mass,
-            &probe,
+            &probe(rod.as_ref(), &spec, &probe_pins),
         );
-        let choice = integrator_choice::choose(&spec.solver, &facts)?;
+        Ok(MechanismParts {
+            spec,
+            physics,
+            rod,
+            facts,
+            evaluation_cost,
+        })
+    }
+
+    /// The spec with the rod's `auto` settings resolved (its `solver` is what the integrator
+    /// choice takes).
+    pub fn spec(&self) -> &MechanismSpec {
+        &self.spec
+    }
+
+    /// What the integrator choice needs to know of the mechanism.
+    pub fn facts(&self) -> &MechanismFacts {
+        &self.facts
+    }
+}
+
+impl Mechanism {
+    /// The mechanism of `parts` with the integrator `choice` (made by the caller, usually
+    /// [`integrator_choice::choose`] on the solver settings of [`MechanismParts::spec`] and
+    /// [`MechanismParts::facts`]), built with those solver settings. Refused where the choice does not apply to the rod
+    /// ([`integrator_choice::build`]) or the gas force is invalid.
+    pub fn new(parts: MechanismParts, choice: IntegratorChoice) -> Result<Mechanism, ModelError> {
+        let MechanismParts {
+            spec,
+            physics,
+            rod,
+            facts,
+            evaluation_cost,
+        } = parts;
+        let n = rod.n_coordinates() + 1;
+        let probe_pins = Cell::default();
+        let probe = probe(rod.as_ref(), &spec, &probe_pins);
         let integrator =
-            integrator_choice::build(choice, &spec.solver, &facts, rod.as_ref(), &probe);
+            integrator_choice::build(choice, &spec.solver, &facts, rod.as_ref(), &probe)?;
         let max_step = choice.max_step(&spec.solver);
         let m = probe.n_constraints();
         let backup = DaeState::zeros(n, m);
@@ -170,9 +231,13 @@ impl Mechanism {
         } else {
             0
         };
+        let gas = spec
+            .slider
+            .gas_force
+            .as_ref()
+            .map(GasForce::new)
+            .transpose()?;
         Ok(Mechanism {
-            spec: spec.clone(),
-            physics,
             crank_length: spec.crank.length,
             slider_mass: spec.slider.mass,
             max_step,
@@ -184,14 +249,11 @@ impl Mechanism {
             backup,
             rod,
             pin_cache: Cell::default(),
-            gas: spec
-                .slider
-                .gas_force
-                .as_ref()
-                .map(GasForce::new)
-                .transpose()?,
+            gas,
             call_deadline: std::time::Instant::now(),
             evaluation_cost,
+            spec,
+            physics,
         })
     }
 

@@ -362,13 +362,13 @@ fn foreshortening_inertia(modes: &ComponentModes, axial: &[usize]) -> Vec<f64> {
 mod tests {
     use super::*;
     use crate::beam::MassKind;
-    use crate::modal::loaded::{axial_coordinate_at_c, AddedMass};
+    use crate::modal::mass_loaded_modes::{axial_coordinate_at_c, AddedMass};
     use crate::modal::{ModeSelection, ReferenceConditions, ReferenceKind};
 
     /// A steel rod, 0.15 m, with a small end; `slider` kg at C in the eigenproblem (2 kg
     /// brings the slider-rod axial mode to about 1.8 kHz, below the first bending mode).
     fn modes(shear: bool, slider: f64, count: usize) -> ComponentModes {
-        let mut def = crate::modal::loaded::tests::rod();
+        let mut def = crate::modal::mass_loaded_modes::tests::rod();
         if shear {
             def.shear_modulus = Some(2e11 / 2.6);
         }

@@ -41,7 +41,7 @@
 //!   (field [`ShapeIntegrals::g_axial`]; for the plain rod they are `rho A (G_1 - L G_0)` and
 //!   the quadratic `n0 G_0 + n1 G_1 + n2 G_2` at `phi' = 1`, kept in that original form).
 
-use nalgebra::{DMatrix, DVector, Vector2};
+use nalgebra::{DMatrix, DVector, RowDVector, Vector2};
 
 use super::component_modes::ComponentModes;
 use crate::beam::quadrature::GAUSS4;
@@ -121,45 +121,18 @@ impl ShapeIntegrals {
         let length = mesh.section.length;
         let nn = extent.square_size(n);
 
-        let mut i1 = Vector2::zeros();
-        let mut i2 = DMatrix::zeros(2, n);
-        let mut i3 = 0.0;
-        let mut i4 = DVector::zeros(n);
-        let mut i5 = DVector::zeros(n);
-        let mut i_rot = DVector::zeros(n);
-        let mut s_tilde = DMatrix::zeros(nn, nn);
+        let mut sums = MassSums::new(n, nn);
         let mut g = [
             DMatrix::zeros(nn, nn),
             DMatrix::zeros(nn, nn),
             DMatrix::zeros(nn, nn),
         ];
-        let mut rotary_total = 0.0;
-        let mut m_uu = DMatrix::zeros(nn, nn);
 
         // The chord rotation row (v(L) - v(0)) / L.
         let s_b = point_shape(modes, 0.0);
         let s_c = point_shape(modes, length);
         let s_mid = point_shape(modes, 0.5 * length);
         let chord = (s_c.row(1) - s_b.row(1)) / length;
-
-        // Accumulate one mass point: mass `w`, body-frame x, modal shape rows (axial a, transverse b).
-        let mut add_point = |w: f64, x: f64, a: &DMatrix<f64>, b: &DMatrix<f64>| {
-            i1[0] += w * x;
-            i3 += w * x * x;
-            for j in 0..n {
-                i2[(0, j)] += w * a[(0, j)];
-                i2[(1, j)] += w * b[(0, j)];
-                i4[j] += w * x * a[(0, j)];
-                i5[j] -= w * x * b[(0, j)];
-            }
-            // S^T I~ S = -a^T b + b^T a; S^T S = a^T a + b^T b.
-            for i in 0..nn {
-                for j in 0..nn {
-                    s_tilde[(i, j)] += w * (b[(0, i)] * a[(0, j)] - a[(0, i)] * b[(0, j)]);
-                    m_uu[(i, j)] += w * (a[(0, i)] * a[(0, j)] + b[(0, i)] * b[(0, j)]);
-                }
-            }
-        };
 
         for e in 0..mesh.n_elements {
             let t = modes.element_shapes(e);
@@ -170,7 +143,7 @@ impl ShapeIntegrals {
                         let sh = el.shape(xi) * &t;
                         let a = sh.rows(0, 1).into_owned();
                         let b = sh.rows(1, 1).into_owned();
-                        add_point(w * l * rho_a, mesh.x_b + s0 + xi * l, &a, &b);
+                        sums.add_point(w * l * rho_a, mesh.x_b + s0 + xi * l, &a, &b);
                     }
                 }
                 MassKind::Lumped => {
@@ -179,11 +152,10 @@ impl ShapeIntegrals {
                     for (node_xi, node_row) in [(0.0, 0usize), (1.0, 3usize)] {
                         let a = t.rows(node_row, 1).into_owned();
                         let b = t.rows(node_row + 1, 1).into_owned();
-                        add_point(half, mesh.x_b + s0 + node_xi * l, &a, &b);
-                        for j in 0..n {
-                            i_rot[j] += j_rot * t[(node_row + 2, j)];
-                        }
-                        rotary_total += j_rot;
+                        sums.add_point(half, mesh.x_b + s0 + node_xi * l, &a, &b);
+                        // The nodal rotary inertia on the slope row (its part of `M_ff` comes
+                        // with the assembled lumped mass below).
+                        sums.add_rotary(j_rot, &t.rows(node_row + 2, 1).into_owned());
                     }
                 }
             }
@@ -198,7 +170,6 @@ impl ShapeIntegrals {
             }
         }
 
-        i3 += rotary_total;
         let m_ff = match modes.mass_kind {
             _ if extent == Extent::FirstOrder => DMatrix::zeros(0, 0),
             MassKind::Consistent => {
@@ -222,15 +193,15 @@ impl ShapeIntegrals {
 
         ShapeIntegrals {
             mass: rho_a * length,
-            i1,
-            i2,
-            i3,
-            i4,
-            i5,
-            i_rot,
+            i1: sums.i1,
+            i2: sums.i2,
+            i3: sums.i3 + sums.rotary_total,
+            i4: sums.i4,
+            i5: sums.i5,
+            i_rot: sums.i_rot,
             m_ff,
-            m_uu,
-            s_tilde,
+            m_uu: sums.m_uu,
+            s_tilde: sums.s_tilde,
             g,
             g_axial: None,
             s_b,
@@ -246,148 +217,43 @@ impl ShapeIntegrals {
     fn general(modes: &ComponentModes, extent: Extent) -> ShapeIntegrals {
         let mesh = &modes.mesh;
         let def = &mesh.definition;
-        let table = mesh.section_table().expect("not plain");
         let n = modes.n_modes();
         let nn = extent.square_size(n);
-        let l = mesh.element_length();
-        let rho = mesh.section.density;
         let length = mesh.section.length;
         let x_b = mesh.x_b;
-
-        let mut i1 = Vector2::zeros();
-        let mut i2 = DMatrix::zeros(2, n);
-        let mut i3 = 0.0;
-        let mut i4 = DVector::zeros(n);
-        let mut i5 = DVector::zeros(n);
-        let mut i_rot = DVector::zeros(n);
-        let mut s_tilde = DMatrix::zeros(nn, nn);
-        let mut m_uu = DMatrix::zeros(nn, nn);
-        let mut m_rot = DMatrix::zeros(nn, nn);
-        let mut g = [
-            DMatrix::zeros(nn, nn),
-            DMatrix::zeros(nn, nn),
-            DMatrix::zeros(nn, nn),
-        ];
-        let mut g_a = DMatrix::zeros(nn, nn);
-        let mut g_v = DMatrix::zeros(nn, nn);
 
         let s_b = point_shape(modes, 0.0);
         let s_c = point_shape(modes, length);
         let s_mid = point_shape(modes, 0.5 * length);
         let chord = (s_c.row(1) - s_b.row(1)) / length;
 
-        let mut add_point = |w: f64, x: f64, a: &DMatrix<f64>, b: &DMatrix<f64>| {
-            i1[0] += w * x;
-            i3 += w * x * x;
-            for j in 0..n {
-                i2[(0, j)] += w * a[(0, j)];
-                i2[(1, j)] += w * b[(0, j)];
-                i4[j] += w * x * a[(0, j)];
-                i5[j] -= w * x * b[(0, j)];
-            }
-            for i in 0..nn {
-                for j in 0..nn {
-                    s_tilde[(i, j)] += w * (b[(0, i)] * a[(0, j)] - a[(0, i)] * b[(0, j)]);
-                    m_uu[(i, j)] += w * (a[(0, i)] * a[(0, j)] + b[(0, i)] * b[(0, j)]);
-                }
-            }
-        };
-        // Rotary inertia `j` on the rotation row `theta` (1 x n).
-        let mut rotary_total = 0.0;
-        let mut add_rotary = |j: f64, theta: &DMatrix<f64>| {
-            rotary_total += j;
-            for a in 0..n {
-                i_rot[a] += j * theta[(0, a)];
-                for b in 0..nn {
-                    m_rot[(a, b)] += j * theta[(0, a)] * theta[(0, b)];
-                }
-            }
-        };
-        let small = def.small_end.mass;
-
+        let mut sums = MassSums::new(n, nn);
+        let mut stiffness = GeometricMoments::new(nn);
         for e in 0..mesh.n_elements {
-            let t = modes.element_shapes(e);
-            let el = mesh.section_element(e).expect("not plain");
-            let s0 = e as f64 * l;
-            let bubbles = el.n_bubbles() > 0;
-            // Integrands up to degree 2 p + 1 = 7 (rho A v^2 on a linear piece; mu D^T D with
-            // the quadratic mu is 2 (p - 1) + 2): exact with 4-point Gauss per piece.
-            for (s, sec, w) in table.quadrature_points(s0, s0 + l) {
-                let xi = (s - s0) / l;
-                let sh = if bubbles {
-                    el.shape_full(xi) * &t
-                } else {
-                    dynamic(el.shape(xi) * &t)
-                };
-                let a = sh.rows(0, 1).into_owned();
-                let b = sh.rows(1, 1).into_owned();
-                add_point(w * rho * sec.area, x_b + s, &a, &b);
-                let psi = def.shear_modulus.map(|_| {
-                    if bubbles {
-                        el.rotation_full(xi) * &t
-                    } else {
-                        dynamic(el.rotation(xi) * &t)
-                    }
-                });
-                if let Some(psi) = &psi {
-                    add_rotary(
-                        w * rho * sec.area_moment,
-                        &DMatrix::from_fn(1, n, |_, j| psi[(0, j)]),
-                    );
-                }
-                if extent == Extent::FirstOrder {
-                    continue;
-                }
-                // Geometric stiffness: slopes of the element's v interpolation.
-                let slope = if bubbles {
-                    el.slope_full(xi) * &t
-                } else {
-                    dynamic(el.slope(xi) * &t)
-                };
-                let d = slope - &chord;
-                // The foreshortening's integrand: `v'^2` (Euler-Bernoulli), `2 v' psi - psi^2 =
-                // v'^2 - gamma^2` for the shear-deformable rod (module documentation).
-                let dtd = match &psi {
-                    None => d.transpose() * &d,
-                    Some(psi) => {
-                        let dpsi = psi - &chord;
-                        let cross = d.transpose() * &dpsi;
-                        &cross + cross.transpose() - dpsi.transpose() * &dpsi
-                    }
-                };
-                for (k, gk) in g.iter_mut().enumerate() {
-                    *gk += &dtd * (w * s.powi(k as i32));
-                }
-                let (tail_a, tail_m) = table.tail_integrals(s);
-                let mu = rho * tail_a + small;
-                let nu = rho * (x_b * tail_a + tail_m) + small * (x_b + length);
-                g_a -= &dtd * (w * mu);
-                g_v += &dtd * (w * nu);
-            }
+            general_element(modes, e, extent, &chord, &mut sums, &mut stiffness);
         }
         // End bodies: point masses and rotary inertias at the end nodes.
         let last = mesh.n_elements;
         for (node, body) in [(0usize, def.big_end), (last, def.small_end)] {
             let row = |k: usize| DMatrix::from_fn(1, n, |_, j| modes.shapes[(3 * node + k, j)]);
-            add_point(body.mass, mesh.node_x(node), &row(0), &row(1));
-            add_rotary(body.inertia, &row(2));
+            sums.add_point(body.mass, mesh.node_x(node), &row(0), &row(1));
+            sums.add_rotary(body.inertia, &row(2));
         }
-        i3 += rotary_total;
-        let m_ff = &m_uu + &m_rot;
+        let m_ff = &sums.m_uu + &sums.m_rot;
 
         ShapeIntegrals {
             mass: def.total_mass(),
-            i1,
-            i2,
-            i3,
-            i4,
-            i5,
-            i_rot,
+            i1: sums.i1,
+            i2: sums.i2,
+            i3: sums.i3 + sums.rotary_total,
+            i4: sums.i4,
+            i5: sums.i5,
+            i_rot: sums.i_rot,
             m_ff,
-            m_uu,
-            s_tilde,
-            g,
-            g_axial: Some([g_a, g_v]),
+            m_uu: sums.m_uu,
+            s_tilde: sums.s_tilde,
+            g: stiffness.g,
+            g_axial: Some([stiffness.g_a, stiffness.g_v]),
             s_b,
             s_c,
             s_mid,
@@ -395,6 +261,179 @@ impl ShapeIntegrals {
             x_c: x_b + length,
             x_mid: x_b + 0.5 * length,
         }
+    }
+}
+
+/// The integrals over the rod's mass, summed over mass points (the quadrature points with
+/// their weight times `rho A`, the lumped masses, the end bodies) and rotary inertias (module
+/// documentation): `I1` to `I5`, `I_rot`, `S~`, `M_uu` and the rotary part of `M_ff`; `n`
+/// modes, `nn` the side of the n x n integrals ([`Extent::square_size`]).
+struct MassSums {
+    n: usize,
+    nn: usize,
+    i1: Vector2<f64>,
+    i2: DMatrix<f64>,
+    /// `int rho xbar.xbar` of the mass points (the rotary inertias are in `rotary_total`).
+    i3: f64,
+    i4: DVector<f64>,
+    i5: DVector<f64>,
+    i_rot: DVector<f64>,
+    s_tilde: DMatrix<f64>,
+    m_uu: DMatrix<f64>,
+    /// `sum J Theta^T Theta` over the rotary inertias `J` on their rotation rows `Theta`.
+    m_rot: DMatrix<f64>,
+    /// `sum J`, kg m^2.
+    rotary_total: f64,
+}
+
+impl MassSums {
+    fn new(n: usize, nn: usize) -> MassSums {
+        MassSums {
+            n,
+            nn,
+            i1: Vector2::zeros(),
+            i2: DMatrix::zeros(2, n),
+            i3: 0.0,
+            i4: DVector::zeros(n),
+            i5: DVector::zeros(n),
+            i_rot: DVector::zeros(n),
+            s_tilde: DMatrix::zeros(nn, nn),
+            m_uu: DMatrix::zeros(nn, nn),
+            m_rot: DMatrix::zeros(nn, nn),
+            rotary_total: 0.0,
+        }
+    }
+
+    /// One mass point: mass `w` (kg), body-frame x (m), modal shape rows `a` (axial) and `b`
+    /// (transverse), 1 x n each. `S^T I~ S = -a^T b + b^T a`; `S^T S = a^T a + b^T b`.
+    fn add_point(&mut self, w: f64, x: f64, a: &DMatrix<f64>, b: &DMatrix<f64>) {
+        self.i1[0] += w * x;
+        self.i3 += w * x * x;
+        for j in 0..self.n {
+            self.i2[(0, j)] += w * a[(0, j)];
+            self.i2[(1, j)] += w * b[(0, j)];
+            self.i4[j] += w * x * a[(0, j)];
+            self.i5[j] -= w * x * b[(0, j)];
+        }
+        for i in 0..self.nn {
+            for j in 0..self.nn {
+                self.s_tilde[(i, j)] += w * (b[(0, i)] * a[(0, j)] - a[(0, i)] * b[(0, j)]);
+                self.m_uu[(i, j)] += w * (a[(0, i)] * a[(0, j)] + b[(0, i)] * b[(0, j)]);
+            }
+        }
+    }
+
+    /// Rotary inertia `j` (kg m^2) on the rotation row `theta` (1 x n): `I3 += j`,
+    /// `I_rot += j Theta`, `M_ff += j Theta^T Theta`.
+    fn add_rotary(&mut self, j: f64, theta: &DMatrix<f64>) {
+        self.rotary_total += j;
+        for a in 0..self.n {
+            self.i_rot[a] += j * theta[(0, a)];
+            for b in 0..self.nn {
+                self.m_rot[(a, b)] += j * theta[(0, a)] * theta[(0, b)];
+            }
+        }
+    }
+}
+
+/// The geometric stiffness moments of a rod that is not plain (module documentation): `G_0`,
+/// `G_1`, `G_2` and `G_a`, `G_v`, nn x nn each.
+struct GeometricMoments {
+    g: [DMatrix<f64>; 3],
+    g_a: DMatrix<f64>,
+    g_v: DMatrix<f64>,
+}
+
+impl GeometricMoments {
+    fn new(nn: usize) -> GeometricMoments {
+        GeometricMoments {
+            g: [
+                DMatrix::zeros(nn, nn),
+                DMatrix::zeros(nn, nn),
+                DMatrix::zeros(nn, nn),
+            ],
+            g_a: DMatrix::zeros(nn, nn),
+            g_v: DMatrix::zeros(nn, nn),
+        }
+    }
+}
+
+/// The quadrature points of element `e` of a rod that is not plain, into `sums` (mass and the
+/// section's rotary inertia on the rotation `psi` of the shear-deformable rod) and, for
+/// [`Extent::Full`], `stiffness` (the foreshortening's integrand `D^T D` against `s^k`, `-mu`
+/// and `nu`, module documentation; `chord` the chord rotation row).
+fn general_element(
+    modes: &ComponentModes,
+    e: usize,
+    extent: Extent,
+    chord: &RowDVector<f64>,
+    sums: &mut MassSums,
+    stiffness: &mut GeometricMoments,
+) {
+    let mesh = &modes.mesh;
+    let def = &mesh.definition;
+    let table = mesh.section_table().expect("not plain");
+    let n = modes.n_modes();
+    let l = mesh.element_length();
+    let rho = mesh.section.density;
+    let (length, x_b, small) = (mesh.section.length, mesh.x_b, def.small_end.mass);
+    let t = modes.element_shapes(e);
+    let el = mesh.section_element(e).expect("not plain");
+    let s0 = e as f64 * l;
+    let bubbles = el.n_bubbles() > 0;
+    // Integrands up to degree 2 p + 1 = 7 (rho A v^2 on a linear piece; mu D^T D with the
+    // quadratic mu is 2 (p - 1) + 2): exact with 4-point Gauss per piece.
+    for (s, sec, w) in table.quadrature_points(s0, s0 + l) {
+        let xi = (s - s0) / l;
+        let sh = if bubbles {
+            el.shape_full(xi) * &t
+        } else {
+            dynamic(el.shape(xi) * &t)
+        };
+        let a = sh.rows(0, 1).into_owned();
+        let b = sh.rows(1, 1).into_owned();
+        sums.add_point(w * rho * sec.area, x_b + s, &a, &b);
+        let psi = def.shear_modulus.map(|_| {
+            if bubbles {
+                el.rotation_full(xi) * &t
+            } else {
+                dynamic(el.rotation(xi) * &t)
+            }
+        });
+        if let Some(psi) = &psi {
+            sums.add_rotary(
+                w * rho * sec.area_moment,
+                &DMatrix::from_fn(1, n, |_, j| psi[(0, j)]),
+            );
+        }
+        if extent == Extent::FirstOrder {
+            continue;
+        }
+        // Geometric stiffness: slopes of the element's v interpolation.
+        let slope = if bubbles {
+            el.slope_full(xi) * &t
+        } else {
+            dynamic(el.slope(xi) * &t)
+        };
+        let d = slope - chord;
+        // The foreshortening's integrand: `v'^2` (Euler-Bernoulli), `2 v' psi - psi^2 =
+        // v'^2 - gamma^2` for the shear-deformable rod (module documentation).
+        let dtd = match &psi {
+            None => d.transpose() * &d,
+            Some(psi) => {
+                let dpsi = psi - chord;
+                let cross = d.transpose() * &dpsi;
+                &cross + cross.transpose() - dpsi.transpose() * &dpsi
+            }
+        };
+        for (k, gk) in stiffness.g.iter_mut().enumerate() {
+            *gk += &dtd * (w * s.powi(k as i32));
+        }
+        let (tail_a, tail_m) = table.tail_integrals(s);
+        let mu = rho * tail_a + small;
+        let nu = rho * (x_b * tail_a + tail_m) + small * (x_b + length);
+        stiffness.g_a -= &dtd * (w * mu);
+        stiffness.g_v += &dtd * (w * nu);
     }
 }
 

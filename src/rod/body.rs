@@ -47,13 +47,13 @@ pub trait RodBody: Send {
     }
     /// The elastic coordinates as oscillators of unit modal mass, `(w^2, c)` each (1/s^2, 1/s),
     /// where the model's elastic coordinates are modes that leave the pins in place (the pinned
-    /// modes of the chain on its modes): the integrator's exponential form takes them exactly.
+    /// modes of the chain on its modes): the exponential integrator (ETDRK4) takes them exactly.
     /// The FFR rod gives its own through [`RodBody::ffr_kernel`]; `None` elsewhere.
     fn modal_oscillators(&self) -> Option<Vec<(f64, f64)>> {
         None
     }
     /// Indices among the elastic coordinates of the retained axial modes (the FFR rod's; none
-    /// elsewhere): the integrator's exponential form caps its phase on them.
+    /// elsewhere): the exponential integrator (ETDRK4) caps its phase on them.
     fn axial_mode_indices(&self) -> Vec<usize> {
         Vec::new()
     }
@@ -65,7 +65,7 @@ pub trait RodBody: Send {
         None
     }
     /// The mechanism evaluates its equations on the independent coordinates in closed form on
-    /// the frame (`mechanism::frame_form`: frame coordinates at 0, 1, 2, the elastic ones after
+    /// the frame (`mechanism::frame_coordinates_closed_form`: frame coordinates at 0, 1, 2, the elastic ones after
     /// them) instead of the general partitioned evaluation.
     fn frame_form(&self) -> bool {
         false

@@ -26,10 +26,8 @@ use crate::error::ModelError;
 pub const WORK_BUDGET: f64 = 2.5e10;
 
 /// Work units of one evaluation beyond its dense terms (the constraint rows, the crank law,
-/// the bookkeeping of a step, the segment chain's kinematics per segment): measured up to
-/// about 3.6 us per evaluation of small models (8 segments under generalized-alpha with
-/// failing Newton iterations; the chain on its modes at 2.2 us), whose dense terms are a few
-/// thousand units (`examples/cost_calibration.rs`).
+/// the bookkeeping of a step, the segment chain's kinematics per segment), calibrated by
+/// `examples/cost_calibration.rs` on small models (docs/robustness.md, "Limits").
 pub const EVALUATION_OVERHEAD: f64 = 4.0e4;
 
 /// Work units per term of the axial coupling's evaluation (`na n^2 (na + 3)` terms): the

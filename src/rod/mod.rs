@@ -23,7 +23,7 @@ pub use sections::SectionLoads;
 pub use spec::{DeflectionPolicy, PhysicsSwitch, RodModelKind, RodSpec};
 
 use crate::error::ModelError;
-use crate::modal::loaded::{axial_coordinate_at_c, AddedMass};
+use crate::modal::mass_loaded_modes::{axial_coordinate_at_c, AddedMass};
 use crate::modal::{ComponentModes, ModeSelection, ReferenceConditions};
 
 /// The FFR rod's choice of modes: which modes it retains (`rod.mode_band_hz`, else the

@@ -48,7 +48,7 @@
 //! `M`) on its free end; `beta tan(beta) = m / M` with `m` the rod's mass, `f_ax = beta c /
 //! (2 pi L)`, `c = sqrt(E / rho)` (a bar with a tip mass: S. S. Rao, *Vibration of Continuous
 //! Systems*, 2007, section 9.4, case "fixed-mass"); `beta = pi / 2` without a mass at C. `auto`
-//! keeps it (FFR: as a mass-loaded mode, [`crate::modal::loaded`]; segments: the axial springs)
+//! keeps it (FFR: as a mass-loaded mode, [`crate::modal::mass_loaded_modes`]; segments: the axial springs)
 //! where it lies below [`AXIAL_BAND_FACTOR`] times the highest retained bending mode (the band
 //! the start, the gas force and the retained modes excite), or where the masses at C reach the
 //! rod's mass ([`super::spec::AXIAL_MODE_MASS_RATIO`]). With `auto`, an explicit `rod.axial_modes`
@@ -61,13 +61,10 @@ use crate::error::ModelError;
 use std::f64::consts::PI;
 
 /// The slider-rod axial mode is kept by `auto` below this multiple of the highest retained
-/// bending frequency. Over random rods (slenderness 8 to 60, smooth and abrupt starts) the
-/// axial mode changed `v_mid` by 3e-3 to 1e-2 of its peak where it lay below 1.2 times the
-/// third bending mode, and by 2e-4 to 1e-3 between 1.5 and 2 times it. Not higher: an axial
-/// mode makes the crank torque ring at its frequency, which a co-simulation master that holds
-/// the torque over its step (the engine example of docs/coupling.md, 1e-4 s) cannot follow
-/// at 4 kHz: the benchmark rod with four modes (axial mode at 1.9 times the fourth) ran it
-/// unstable.
+/// bending frequency: below it the axial mode moves `v_mid` measurably, above it the crank
+/// torque rings at a frequency a co-simulation master does not follow. Measured over random
+/// rods and on the benchmark rod in docs/physics.md, "Model class chosen by the physics"
+/// (axial dynamics).
 pub const AXIAL_BAND_FACTOR: f64 = 1.5;
 
 /// The integration's share of the error estimate, as a multiple of `solver.tolerance`: the error
@@ -82,28 +79,18 @@ pub const MAX_ERROR_ESTIMATE: f64 = 1e3;
 /// The coefficient `C` of the share of what the FFR rod's linear modes with axial stiffening
 /// leave out at large deflection, `C d^2 sqrt(h / L)` (`d` the forced deflection,
 /// [`forced_deflection`]; `h = sqrt(12) r`, the depth of the rectangle of the same radius of
-/// gyration), calibrated on the 44 random rods against the geometrically exact shear beam
-/// (docs/verification.md, "Any rod") with what their comparison measures: after smooth starts
-/// the pointwise error, after abrupt starts the forced motion pointwise and the free
-/// vibration's spectral heights (its phase after many cycles measures nothing physical), and
-/// on the abrupt starts again from a quarter revolution, against the chain on its modes: the
-/// estimate is within a factor 3 of each.
+/// gyration). Calibrated on the 44 random rods against the geometrically exact shear beam:
+/// docs/physics.md, "Model class chosen by the physics" (the error estimate).
 pub const NONLINEAR_COEFFICIENT: f64 = 40.0;
 
 /// The coefficient `C` of the segment chains' discretization share of the error estimate,
-/// `C / N^2` for `N` segments (the chain converges at second order in `1 / N`): the chain on
-/// its modes against the geometrically exact shear beam at 300 rad/s (abrupt start), 8, 16 and
-/// 24 segments, gives `C_N = (e_N - 0.1 %) N^2` of 0.8 to 1.3
-/// (tests/modal_segments.rs, `discretization_share_of_the_estimate`).
+/// `C / N^2` for `N` segments (the chain converges at second order in `1 / N`). Measured against
+/// the geometrically exact shear beam in docs/physics.md, "Model class chosen by the physics".
 pub const CHAIN_DISCRETIZATION_COEFFICIENT: f64 = 1.4;
 
 /// `rod.model = auto` takes the chain on its modes where the FFR rod's nonlinear share of the
-/// error estimate at the predicted peak exceeds this (module docs, "Rod model"). On the random
-/// rods (tests/python/test_random_rods.py) it takes the two smooth starts the FFR rod follows
-/// least well, past 0.5 % of the peak (rods 22 and 34), onto the chain
-/// and leaves the next ones (the FFR rod within 0.5 % there and its estimate
-/// within a factor 3 of the error) to the faster FFR rod. On the benchmark rod the switch lies
-/// near 210 rad/s.
+/// error estimate at the predicted peak exceeds this (module docs, "Rod model"). Chosen on the
+/// random rods: docs/physics.md, "Model class chosen by the physics".
 pub const LARGE_DEFLECTION_SHARE: f64 = 8.5e-3;
 
 /// The deflection of the forced motion, `|v_mid / L|`, from the peak so far and the amplitude of

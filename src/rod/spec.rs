@@ -138,7 +138,7 @@ pub struct RodSpec {
     pub axial_in_addition: bool,
     /// Mass-loaded modes (FFR only): the slider's mass is added at C's axial coordinate in the
     /// eigenproblem (not in the dynamics), so that the retained modes include the slider-rod
-    /// axial mode at its frequency in the mechanism ([`crate::modal::loaded`]).
+    /// axial mode at its frequency in the mechanism ([`crate::modal::mass_loaded_modes`]).
     #[serde(default, skip_serializing_if = "is_false")]
     pub loaded_modes: bool,
     /// Keep every mode up to this frequency, Hz (FFR only), instead of the `modes` lowest:
@@ -492,12 +492,10 @@ pub const MAX_AXIAL_MODES: usize = 8;
 
 /// With `rod.axial_modes` absent, the first axial mode is kept when the masses at C (slider
 /// and small end) reach this multiple of the rod's mass (end bodies included): a heavy piston,
-/// whose axial mode with the rod carries sudden slider forces into the pin forces (the
-/// automotive rod's pin forces at firing were 2.6 % of peak off without it; 0.6 kg at C,
-/// 0.52 kg rod). Not lower: at 0.1, three of the 30 random parameter sets of
-/// tests/error_control.rs (light sliders, undamped) missed their tolerance by up to 1.6 times
-/// with the axial mode kept, so the error control with axial modes is established for heavy
-/// pistons only.
+/// whose axial mode with the rod carries sudden slider forces into the pin forces. The error
+/// control with axial modes is established for such pistons only. Measured on the automotive
+/// rod and the random parameter sets in docs/real-rods.md, "Modes chosen for the mechanism:
+/// mass-loaded modes and the mode band".
 pub const AXIAL_MODE_MASS_RATIO: f64 = 1.0;
 
 impl RodSpec {

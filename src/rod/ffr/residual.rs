@@ -20,7 +20,7 @@
 
 use nalgebra::Vector2;
 
-use super::kernel::PINNED_MOBILITY;
+use super::fixed_size_integrals::PINNED_MOBILITY;
 use crate::modal::{ComponentModes, ShapeIntegrals};
 
 /// One left-out mode's data.

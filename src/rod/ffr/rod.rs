@@ -46,7 +46,7 @@ pub struct FfrRod {
     pub(super) sampling: super::sections::Sampling,
     /// The shape integrals in fixed-size arrays (at most `MAX_MODES` modes), for the
     /// minimal-coordinate right-hand side.
-    pub(super) kernel: Option<Box<super::kernel::FfrKernel>>,
+    pub(super) kernel: Option<Box<super::fixed_size_integrals::FfrKernel>>,
     /// Left-out modes whose quasi-static response the midpoint deflection adds
     /// ([`super::residual`]; empty: none).
     pub(super) residual: Vec<super::residual::ResidualMode>,
@@ -121,7 +121,7 @@ impl FfrRod {
             kernel: None,
             residual: Vec::new(),
         };
-        rod.kernel = super::kernel::FfrKernel::new(&rod).map(Box::new);
+        rod.kernel = super::fixed_size_integrals::FfrKernel::new(&rod).map(Box::new);
         rod
     }
 
@@ -252,7 +252,7 @@ impl RodBody for FfrRod {
         Some([0, 1, 2])
     }
 
-    fn ffr_kernel(&self) -> Option<&super::kernel::FfrKernel> {
+    fn ffr_kernel(&self) -> Option<&super::fixed_size_integrals::FfrKernel> {
         self.kernel.as_deref()
     }
 
@@ -401,7 +401,7 @@ impl RodBody for FfrRod {
 
     /// In the body frame (`ubar` of B, C and the midpoint): the distance from the chord does
     /// not change with the frame's rotation. With the kernel, its fixed-size sums in the same
-    /// order ([`super::kernel::FfrKernel::mid_deflection`]).
+    /// order ([`super::fixed_size_integrals::FfrKernel::mid_deflection`]).
     fn mid_deflection(&self, q: &[f64]) -> f64 {
         if let Some(kernel) = &self.kernel {
             return kernel.mid_deflection(&q[3..]);

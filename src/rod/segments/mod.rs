@@ -4,7 +4,7 @@
 //! rotational springs and dampers, optionally with prismatic joints carrying axial springs.
 //!
 //! - [`rod`]: the chain's data and construction ([`SegmentRod`]); [`kinematics`]: its points;
-//!   [`body`]: mass matrix, quadratic velocity vector, joint forces, energies (the derivation
+//!   [`dynamics`]: mass matrix, quadratic velocity vector, joint forces, energies (the derivation
 //!   follows below);
 //! - [`linear`]: the chain linearized about the straight configuration: pinned-pinned
 //!   bending and axial frequencies, and the free-free axial chain of Huston's convergence
@@ -146,11 +146,11 @@
 //! No allocation in the per-iteration methods: everything is precomputed in [`SegmentRod::new`]
 //! and the loops recompute `cos`/`sin` of the angles on the fly.
 
-pub mod body;
+pub mod dynamics;
 pub mod kinematics;
 pub mod linear;
 pub mod modal;
-mod modal_plain;
+mod modal_direct_evaluation;
 pub mod rod;
 
 pub use linear::axial_chain_frequencies_hz;
@@ -163,9 +163,7 @@ use crate::error::ModelError;
 /// segment is the rigid rod: no joint, no natural frequency (an FMU that declares
 /// `rod.frequency[k]` refuses it at initialization; [`least_segments`] gives the count that
 /// leaves `K` frequencies). The largest is the FFR mesh's too (one declared range for
-/// `rod.elements`); tests/abuse.rs builds and runs it. Measured on the benchmark rod: the
-/// chain's frequencies (to 2e-10 of the closed form) and 40 ms of motion at 150 rad/s also come
-/// out at 512 segments, in 0.4 s.
+/// `rod.elements`); tests/abuse.rs builds and runs it (docs/robustness.md, "Limits").
 pub const SEGMENT_RANGE: (usize, usize) = (1, 128);
 
 /// The least number of segments whose uniform chain (no shear slides, no end bodies, which add

@@ -23,17 +23,15 @@ use faer::{Mat, MatMut};
 use nalgebra::Vector2;
 
 use super::linear::LinearizedChain;
-use super::modal_plain::{Plain, Trig, MAX_REDUCED};
+use super::modal_direct_evaluation::{Plain, Trig, MAX_REDUCED};
 use super::rod::SegmentRod;
 use crate::error::ModelError;
 use crate::rod::body::{RodBody, RodPoint};
 
 /// The chain on its modes keeps every bending mode up to this multiple of its first bending
 /// frequency (at least `rod.modes` of them): the response of the modes left out has no static
-/// correction here. On the random rods of docs/verification.md (smooth starts, 48 segments)
-/// three modes left stubby rods 0.4 % of the peak off, the modes to 20 or 30 times the first
-/// 0.19 % at most (tests/python/test_random_rods.py); the Euler-Bernoulli rod keeps four
-/// (`f_k = k^2 f_1`).
+/// correction here. Measured on the random rods in docs/physics.md, "Rod model 3: the segment
+/// chain on its modes".
 pub const BAND_FACTOR: f64 = 20.0;
 
 /// The number of bending modes the chain on its modes keeps: `modes`, or more, every pinned
@@ -76,7 +74,7 @@ pub struct ModalSegmentRod {
     /// unit modal mass), computed once at construction.
     modal_damping: Vec<f64>,
     /// The direct evaluation in reduced coordinates, for a chain without end body rotations
-    /// ([`super::modal_plain`]); the projection of the chain's own functions otherwise.
+    /// ([`super::modal_direct_evaluation`]); the projection of the chain's own functions otherwise.
     plain: Option<Plain>,
     scratch: RefCell<Scratch>,
 }

@@ -28,7 +28,7 @@ use nalgebra::Vector2;
 
 use super::dae::SliderCrankDae;
 use crate::integrator::{DaeSystem, StepFailure};
-use crate::rod::RodPoint;
+use crate::rod::{RodBody, RodPoint};
 
 /// Largest number of coordinates (rod and slider) of the closed form; a larger system takes the
 /// general partitioned evaluation (the chain on its modes has at most 20).
@@ -60,7 +60,9 @@ impl SliderCrankDae<'_> {
         Some(self.frame_form_evaluate(t, q, v, qdd, lambda))
     }
 
-    #[allow(clippy::needless_range_loop)]
+    /// The closed form at positions `q` on the constraints (module documentation): velocities
+    /// into `v` (the dependent ones from the independent ones), accelerations into `qdd`,
+    /// with `lambda` the multipliers.
     fn frame_form_evaluate(
         &self,
         t: f64,
@@ -70,54 +72,11 @@ impl SliderCrankDae<'_> {
         lambda: Option<&mut [f64]>,
     ) -> Result<(), StepFailure> {
         let nr = self.rod.n_coordinates();
-        let (n, k) = (nr + 1, nr - 3);
-        let (mut jb, mut jc) = ([0.0; 2 * FRAME_FORM_MAX], [0.0; 2 * FRAME_FORM_MAX]);
-        self.rod.point_jacobian(
-            RodPoint::B,
-            q,
-            MatMut::from_column_major_slice_mut(&mut jb[..2 * nr], 2, nr),
-        );
-        self.rod.point_jacobian(
-            RodPoint::C,
-            q,
-            MatMut::from_column_major_slice_mut(&mut jc[..2 * nr], 2, nr),
-        );
-        let (jba, jca) = (Vector2::new(jb[4], jb[5]), Vector2::new(jc[4], jc[5]));
-        let chord_x = jca.y - jba.y;
-        if !(chord_x.abs() > 0.0 && chord_x.is_finite()) {
-            return Err(StepFailure::SingularMatrix);
-        }
-        // G (n x k): its dependent rows x, y, alpha, x_s (row-major, `g[row * k + a]` with row
-        // 3 for x_s); the identity on p.
-        let mut g = [0.0; 4 * K_MAX];
-        for a in 0..k {
-            let c = 3 + a;
-            let (jbx, jby, jcx, jcy) = (jb[2 * c], jb[2 * c + 1], jc[2 * c], jc[2 * c + 1]);
-            let ga = -(jcy - jby) / chord_x;
-            let gx = -jba.x * ga - jbx;
-            let gy = -jba.y * ga - jby;
-            g[a] = gx;
-            g[k + a] = gy;
-            g[2 * k + a] = ga;
-            g[3 * k + a] = gx + jca.x * ga + jcx;
-        }
-        // Velocities.
+        let n = nr + 1;
+        let pins = PinJacobians::new(self.rod, q)?;
+        let g = pins.velocity_map();
         let (_, pin_v, pin_a) = self.pin_at(t);
-        let mut alpha_v = -pin_v.y / chord_x;
-        for a in 0..k {
-            alpha_v += g[2 * k + a] * v[3 + a];
-        }
-        let mut xy_v = pin_v - jba * alpha_v;
-        let mut c_x = jca.x * alpha_v;
-        for a in 0..k {
-            let c = 3 + a;
-            xy_v -= Vector2::new(jb[2 * c], jb[2 * c + 1]) * v[c];
-            c_x += jc[2 * c] * v[c];
-        }
-        v[0] = xy_v.x;
-        v[1] = xy_v.y;
-        v[2] = alpha_v;
-        v[nr] = xy_v.x + c_x;
+        pins.velocities(&g, pin_v, v);
         // M and Q (the rod's in one pass, which leaves C's velocity products for the next
         // call), then the accelerations q'' = G p'' + b.
         let mut m = [0.0; FRAME_FORM_MAX * FRAME_FORM_MAX];
@@ -129,21 +88,150 @@ impl SliderCrankDae<'_> {
             MatMut::from_column_major_slice_mut(&mut m[..n * n], n, n),
             &mut r[..n],
         );
-        let beta_b = self.rod.point_bias_acceleration(RodPoint::B, q, v);
-        let beta_c = self.rod.point_bias_acceleration(RodPoint::C, q, v);
-        let b_alpha = (beta_b.y - beta_c.y - pin_a.y) / chord_x;
-        let b_xy = pin_a - beta_b - jba * b_alpha;
-        let mut b = [0.0; FRAME_FORM_MAX];
-        b[0] = b_xy.x;
-        b[1] = b_xy.y;
-        b[2] = b_alpha;
-        b[nr] = b_xy.x + jca.x * b_alpha + beta_c.x;
+        let b = pins.bias(self.rod, q, v, pin_a);
         // Q - M b, M G, the reduced system.
         for (j, bj) in [(0, b[0]), (1, b[1]), (2, b[2]), (nr, b[nr])] {
             for i in 0..n {
                 r[i] -= m[j * n + i] * bj;
             }
         }
+        let mg = pins.mass_times_map(&m, &g);
+        let (mut reduced, mut pdd) = pins.reduced_system(&mg, &g, &r);
+        let k = pins.k;
+        solve(&mut reduced[..k * k], &mut pdd[..k], k)?;
+        pins.accelerations(&g, &b, &pdd, qdd);
+        if let Some(lambda) = lambda {
+            pins.multipliers(&mg, &r, &pdd, lambda);
+        }
+        if qdd[..n].iter().any(|x| !x.is_finite()) {
+            return Err(StepFailure::NonFinite);
+        }
+        Ok(())
+    }
+}
+
+/// The pins' Jacobians at the positions `q` (module documentation): the columns `j_B`, `j_C`
+/// of the frame angle `alpha` and those of the other coordinates, and the chord's x extent `X`.
+struct PinJacobians {
+    /// The rod's coordinates `nr` (the slider is coordinate `nr`) and the independent ones `k`.
+    nr: usize,
+    k: usize,
+    /// `J_B`, `J_C` (2 x nr, column-major).
+    jb: [f64; 2 * FRAME_FORM_MAX],
+    jc: [f64; 2 * FRAME_FORM_MAX],
+    /// Their columns of `alpha`, `j_B` and `j_C` (m/rad).
+    jba: Vector2<f64>,
+    jca: Vector2<f64>,
+    /// `X = j_C,y - j_B,y`, m.
+    chord_x: f64,
+}
+
+impl PinJacobians {
+    /// The Jacobians of `rod`'s pins at `q`; refused where the chord is perpendicular to the
+    /// slider's line (`X = 0`: not assembled) or not finite.
+    #[inline(always)]
+    fn new(rod: &dyn RodBody, q: &[f64]) -> Result<PinJacobians, StepFailure> {
+        let nr = rod.n_coordinates();
+        let (mut jb, mut jc) = ([0.0; 2 * FRAME_FORM_MAX], [0.0; 2 * FRAME_FORM_MAX]);
+        rod.point_jacobian(
+            RodPoint::B,
+            q,
+            MatMut::from_column_major_slice_mut(&mut jb[..2 * nr], 2, nr),
+        );
+        rod.point_jacobian(
+            RodPoint::C,
+            q,
+            MatMut::from_column_major_slice_mut(&mut jc[..2 * nr], 2, nr),
+        );
+        let (jba, jca) = (Vector2::new(jb[4], jb[5]), Vector2::new(jc[4], jc[5]));
+        let chord_x = jca.y - jba.y;
+        if !(chord_x.abs() > 0.0 && chord_x.is_finite()) {
+            return Err(StepFailure::SingularMatrix);
+        }
+        Ok(PinJacobians {
+            nr,
+            k: nr - 3,
+            jb,
+            jc,
+            jba,
+            jca,
+            chord_x,
+        })
+    }
+
+    /// G (n x k): its dependent rows x, y, alpha, x_s (row-major, `g[row * k + a]` with row
+    /// 3 for x_s); the identity on p.
+    #[inline(always)]
+    fn velocity_map(&self) -> [f64; 4 * K_MAX] {
+        let (k, jb, jc, jba, jca) = (self.k, &self.jb, &self.jc, self.jba, self.jca);
+        let mut g = [0.0; 4 * K_MAX];
+        for a in 0..k {
+            let c = 3 + a;
+            let (jbx, jby, jcx, jcy) = (jb[2 * c], jb[2 * c + 1], jc[2 * c], jc[2 * c + 1]);
+            let ga = -(jcy - jby) / self.chord_x;
+            let gx = -jba.x * ga - jbx;
+            let gy = -jba.y * ga - jby;
+            g[a] = gx;
+            g[k + a] = gy;
+            g[2 * k + a] = ga;
+            g[3 * k + a] = gx + jca.x * ga + jcx;
+        }
+        g
+    }
+
+    /// The dependent velocities `x'`, `y'`, `alpha'`, `x_s'` into `v` from its independent
+    /// ones and the pin's velocity `pin_v`.
+    #[inline(always)]
+    fn velocities(&self, g: &[f64; 4 * K_MAX], pin_v: Vector2<f64>, v: &mut [f64]) {
+        let (k, nr, jb, jc) = (self.k, self.nr, &self.jb, &self.jc);
+        let mut alpha_v = -pin_v.y / self.chord_x;
+        for a in 0..k {
+            alpha_v += g[2 * k + a] * v[3 + a];
+        }
+        let mut xy_v = pin_v - self.jba * alpha_v;
+        let mut c_x = self.jca.x * alpha_v;
+        for a in 0..k {
+            let c = 3 + a;
+            xy_v -= Vector2::new(jb[2 * c], jb[2 * c + 1]) * v[c];
+            c_x += jc[2 * c] * v[c];
+        }
+        v[0] = xy_v.x;
+        v[1] = xy_v.y;
+        v[2] = alpha_v;
+        v[nr] = xy_v.x + c_x;
+    }
+
+    /// The velocity-product part `b` of `q'' = G p'' + b` (module documentation), from the
+    /// pins' velocity products of `rod` at `(q, v)` and the pin's acceleration `pin_a`.
+    #[inline(always)]
+    fn bias(
+        &self,
+        rod: &dyn RodBody,
+        q: &[f64],
+        v: &[f64],
+        pin_a: Vector2<f64>,
+    ) -> [f64; FRAME_FORM_MAX] {
+        let beta_b = rod.point_bias_acceleration(RodPoint::B, q, v);
+        let beta_c = rod.point_bias_acceleration(RodPoint::C, q, v);
+        let b_alpha = (beta_b.y - beta_c.y - pin_a.y) / self.chord_x;
+        let b_xy = pin_a - beta_b - self.jba * b_alpha;
+        let mut b = [0.0; FRAME_FORM_MAX];
+        b[0] = b_xy.x;
+        b[1] = b_xy.y;
+        b[2] = b_alpha;
+        b[self.nr] = b_xy.x + self.jca.x * b_alpha + beta_c.x;
+        b
+    }
+
+    /// `M G` (n x k, row-major) of the mass matrix `m` (n x n, column-major).
+    #[inline(always)]
+    fn mass_times_map(
+        &self,
+        m: &[f64; FRAME_FORM_MAX * FRAME_FORM_MAX],
+        g: &[f64; 4 * K_MAX],
+    ) -> [f64; FRAME_FORM_MAX * K_MAX] {
+        let (k, nr) = (self.k, self.nr);
+        let n = nr + 1;
         let mut mg = [0.0; FRAME_FORM_MAX * K_MAX];
         for i in 0..n {
             for a in 0..k {
@@ -156,6 +244,19 @@ impl SliderCrankDae<'_> {
                 mg[i * k + a] = s;
             }
         }
+        mg
+    }
+
+    /// The reduced system `(G^T M G) p'' = G^T (Q - M b)` (k x k, row-major, and its right-hand
+    /// side) from `M G` and `r = Q - M b`.
+    #[inline(always)]
+    fn reduced_system(
+        &self,
+        mg: &[f64; FRAME_FORM_MAX * K_MAX],
+        g: &[f64; 4 * K_MAX],
+        r: &[f64; FRAME_FORM_MAX],
+    ) -> ([f64; K_MAX * K_MAX], [f64; FRAME_FORM_MAX]) {
+        let (k, nr) = (self.k, self.nr);
         let mut reduced = [0.0; K_MAX * K_MAX];
         let mut pdd = [0.0; FRAME_FORM_MAX];
         for a in 0..k {
@@ -172,8 +273,20 @@ impl SliderCrankDae<'_> {
             }
             pdd[a] = s;
         }
-        solve(&mut reduced[..k * k], &mut pdd[..k], k)?;
-        for i in 0..n {
+        (reduced, pdd)
+    }
+
+    /// The accelerations `q'' = G p'' + b` into `qdd` from the independent ones `pdd`.
+    #[inline(always)]
+    fn accelerations(
+        &self,
+        g: &[f64; 4 * K_MAX],
+        b: &[f64; FRAME_FORM_MAX],
+        pdd: &[f64; FRAME_FORM_MAX],
+        qdd: &mut [f64],
+    ) {
+        let (k, nr) = (self.k, self.nr);
+        for i in 0..nr + 1 {
             let row = match i {
                 0..=2 => Some(i),
                 _ if i == nr => Some(3),
@@ -190,28 +303,35 @@ impl SliderCrankDae<'_> {
                 None => pdd[i - 3],
             };
         }
-        if let Some(lambda) = lambda {
-            // (Q - M q'') on the dependent coordinates: (Q - M b) - M G p''.
-            let residual = |i: usize| {
-                let mut s = r[i];
-                for a in 0..k {
-                    s -= mg[i * k + a] * pdd[a];
-                }
-                s
-            };
-            let (rx, ry, ra, rs) = (residual(0), residual(1), residual(2), residual(nr));
-            let c_x = -rs;
-            let b_x = rx - c_x;
-            let c_y = (ra - jba.x * b_x - jca.x * c_x - jba.y * ry) / chord_x;
-            lambda[0] = b_x;
-            lambda[1] = ry - c_y;
-            lambda[2] = c_x;
-            lambda[3] = c_y;
-        }
-        if qdd[..n].iter().any(|x| !x.is_finite()) {
-            return Err(StepFailure::NonFinite);
-        }
-        Ok(())
+    }
+
+    /// The multipliers (module documentation) into `lambda` from `(Q - M q'')` on the
+    /// dependent coordinates: `(Q - M b) - M G p''` with `r = Q - M b`.
+    #[inline(always)]
+    fn multipliers(
+        &self,
+        mg: &[f64; FRAME_FORM_MAX * K_MAX],
+        r: &[f64; FRAME_FORM_MAX],
+        pdd: &[f64; FRAME_FORM_MAX],
+        lambda: &mut [f64],
+    ) {
+        let k = self.k;
+        let residual = |i: usize| {
+            let mut s = r[i];
+            for a in 0..k {
+                s -= mg[i * k + a] * pdd[a];
+            }
+            s
+        };
+        let (rx, ry, ra, rs) = (residual(0), residual(1), residual(2), residual(self.nr));
+        let (jba, jca) = (self.jba, self.jca);
+        let c_x = -rs;
+        let b_x = rx - c_x;
+        let c_y = (ra - jba.x * b_x - jca.x * c_x - jba.y * ry) / self.chord_x;
+        lambda[0] = b_x;
+        lambda[1] = ry - c_y;
+        lambda[2] = c_x;
+        lambda[3] = c_y;
     }
 }
 
