@@ -1,8 +1,9 @@
 //! The `flexrod` command line as a user meets it: `--help` everywhere, bad command lines refused
 //! with exit code 2 and a message that names the value and what is allowed (never a panic,
 //! never a run of unbounded length), the stress columns of the CSV when the scene asks for
-//! stress outputs, the warning when an `--input` table ends before the stop time, and plots
-//! against the crank angle in degrees with plain tick labels.
+//! stress outputs, the warning when an `--input` table ends before the stop time, plots
+//! against the crank angle in degrees with plain tick labels, and README.md's command lines run
+//! as written.
 
 use std::path::PathBuf;
 use std::process::{Command, Output};
@@ -362,4 +363,62 @@ fn modes_lists_what_the_simulation_uses() {
         default.contains("37 bending modes left out as static corrections"),
         "{default}"
     );
+}
+
+/// The `cargo run --release --bin flexrod -- ...` lines of README.md's command-line quick start
+/// run as written (the files they write go to a scratch folder) and print their summaries.
+#[test]
+fn readme_command_lines_run() {
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md"))
+        .expect("read README.md");
+    let prefix = "cargo run --release --bin flexrod -- ";
+    let lines: Vec<&str> = readme
+        .lines()
+        .filter_map(|l| l.trim().strip_prefix(prefix))
+        .collect();
+    let commands: Vec<&str> = lines
+        .iter()
+        .filter_map(|l| l.split_whitespace().next())
+        .collect();
+    assert!(
+        commands.contains(&"simulate") && commands.contains(&"modes"),
+        "README.md shows no `{prefix}simulate` and `modes` line: {lines:?}"
+    );
+    let dir = scratch("readme");
+    for line in lines {
+        let mut args: Vec<String> = Vec::new();
+        let mut written = Vec::new();
+        let mut words = line.split_whitespace().peekable();
+        while let Some(word) = words.next() {
+            args.push(word.to_string());
+            if matches!(word, "--out" | "--plot") {
+                let value = words.next().expect("a value after --out or --plot");
+                let path = dir.join(value);
+                args.push(path.display().to_string());
+                written.push((word, path));
+            }
+        }
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let out = flexrod(&args);
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "README.md: {line}\n{}",
+            text(&out.stderr)
+        );
+        let stdout = text(&out.stdout);
+        assert!(stdout.contains("scene "), "{line}:\n{stdout}");
+        for (flag, path) in written {
+            let files = match flag {
+                "--plot" => vec![
+                    PathBuf::from(format!("{}_deflection.svg", path.display())),
+                    PathBuf::from(format!("{}_forces.svg", path.display())),
+                ],
+                _ => vec![path],
+            };
+            for file in files {
+                assert!(file.is_file(), "{line}: {} not written", file.display());
+            }
+        }
+    }
 }

@@ -860,3 +860,30 @@ fn test_comments_are_read_as_written() {
         ]
     );
 }
+
+/// README.md opens with exactly two commands for a fresh machine (the first fenced block:
+/// build the default scene's FMU and run it, run every test) and stays at most 250 lines.
+#[test]
+fn readme_opens_with_two_commands_and_stays_short() {
+    let text = std::fs::read_to_string(repository().join("README.md")).expect("read README.md");
+    let lines = text.lines().count();
+    assert!(lines <= 250, "README.md has {lines} lines: at most 250");
+    let (code, _) = code_and_links(&text);
+    let first = code
+        .iter()
+        .find(|c| c.contains('\n'))
+        .expect("README.md has a fenced block");
+    let commands: Vec<&str> = first
+        .lines()
+        .map(|l| l.split('#').next().unwrap_or("").trim())
+        .filter(|l| !l.is_empty())
+        .collect();
+    assert_eq!(
+        commands,
+        [
+            "cargo run --release -p fmu -- --simulate",
+            "bash tests/run_all.sh"
+        ],
+        "README.md's first block"
+    );
+}
