@@ -2,11 +2,15 @@
 //! with exit code 2 and a message that names the value and what is allowed (never a panic,
 //! never a run of unbounded length), the stress columns of the CSV when the scene asks for
 //! stress outputs, the warning when an `--input` table ends before the stop time, plots
-//! against the crank angle in degrees with plain tick labels, and README.md's command lines run
-//! as written.
+//! against the crank angle in degrees with plain tick labels, summaries in the scene's words
+//! (never a Rust name), and README.md's command lines run as written.
 
 use std::path::PathBuf;
 use std::process::{Command, Output};
+
+mod common;
+
+use common::summary::{rust_names, shipped_scenes};
 
 fn flexrod(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_flexrod"))
@@ -418,6 +422,72 @@ fn readme_command_lines_run() {
             };
             for file in files {
                 assert!(file.is_file(), "{line}: {} not written", file.display());
+            }
+        }
+    }
+}
+
+#[test]
+fn rust_names_are_found() {
+    let scene = flexrod::Scene::benchmark();
+    let text = format!(
+        "scene {}: Ffr rod, 8 elements, SimplySupported; Consistent mass, ffr, simply_supported, \
+         rod.mode_band_hz, RK4(3), ETDRK4, FFR rod, Runge-Kutta",
+        scene.name
+    );
+    assert_eq!(
+        rust_names(&text, &scene),
+        ["Ffr", "SimplySupported", "Consistent"]
+    );
+}
+
+/// The summaries of `flexrod simulate` and `flexrod modes` of every shipped scene speak the
+/// scene's words: the rod model built and the one set (`rod.model = ...`), the reference
+/// conditions and the element mass of the FFR rod as the scene spells them, and no Rust name.
+#[test]
+fn summaries_of_the_shipped_scenes_use_the_scenes_words() {
+    for path in shipped_scenes(common::repository()) {
+        let scene = flexrod::Scene::from_file(&path).expect("a shipped scene reads");
+        let built = flexrod::Simulation::new(&scene)
+            .expect("a shipped scene builds")
+            .mechanism()
+            .spec
+            .rod
+            .clone();
+        let file = path.display().to_string();
+        let ffr = built.model == flexrod::rod::RodModelKind::Ffr;
+        for command in ["simulate", "modes"] {
+            let out = flexrod(&[command, &file]);
+            assert_eq!(out.status.code(), Some(0), "{command} {file}");
+            let stdout = text(&out.stdout);
+            let summary = stdout
+                .lines()
+                .take_while(|l| !l.starts_with("mode  frequency_hz"))
+                .collect::<Vec<_>>()
+                .join("\n");
+            let names = rust_names(&summary, &scene);
+            assert!(
+                names.is_empty(),
+                "{command} {file}: Rust names {names:?} in\n{summary}"
+            );
+            let mut words = vec![format!("scene {}", scene.name)];
+            if command == "simulate" {
+                words.push(format!("rod.model = {}", built.model.name()));
+                if scene.rod.model != built.model {
+                    words.push(format!("rod.model = {}", scene.rod.model.name()));
+                }
+            }
+            if ffr {
+                words.push(format!("rod.reference = {}", scene.rod.reference.name()));
+            }
+            if ffr && command == "modes" {
+                words.push(format!("rod.mass = {}", scene.rod.mass.name()));
+            }
+            for word in words {
+                assert!(
+                    summary.contains(&word),
+                    "{command} {file}: '{word}' not in\n{summary}"
+                );
             }
         }
     }

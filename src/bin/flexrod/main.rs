@@ -253,11 +253,11 @@ fn modes(args: &ModesArgs) -> Result<(), Failure> {
         ),
     };
     println!(
-        "scene {}: {} elements, {:?} reference conditions, {:?} mass, {eigenproblem}; {} modes retained of {} ({chosen})",
+        "scene {}: rod.elements = {}, rod.reference = {}, rod.mass = {}, {eigenproblem}; {} modes retained of {} ({chosen})",
         scene.name,
         rod.elements,
-        rod.reference,
-        rod.mass,
+        rod.reference.name(),
+        rod.mass.name(),
         kept.len(),
         all.all_frequencies_hz.len(),
     );
@@ -445,14 +445,18 @@ fn simulate(args: &SimulateArgs) -> Result<(), Failure> {
     let built = &sim.mechanism().spec.rod;
     let chosen = match scene.rod.model {
         RodModelKind::Auto => format!(
-            " (rod.model = auto at {} rad/s)",
+            " (chosen by rod.model = auto at {} rad/s)",
             number(scene.crank.design_speed)
         ),
         _ => String::new(),
     };
     println!(
-        "scene {}: {:?} rod{chosen}, {} elements, {} modes, {:?}",
-        scene.name, built.model, built.elements, built.modes, built.reference
+        "scene {}: rod.model = {}{chosen}, rod.elements = {}, {} modes, rod.reference = {}",
+        scene.name,
+        built.model.name(),
+        built.elements,
+        built.modes,
+        built.reference.name()
     );
     let (integrator, counted) = sim.mechanism().integrator_name();
     // The revolutions the crank turned, from the recorded crank angles (whatever drove it).
