@@ -492,3 +492,42 @@ fn summaries_of_the_shipped_scenes_use_the_scenes_words() {
         }
     }
 }
+
+/// The number in "N modes retained" of a summary.
+fn retained(text: &str) -> Option<usize> {
+    let at = text.find(" modes retained")?;
+    text[..at].rsplit(' ').next()?.parse().ok()
+}
+
+/// `flexrod simulate` and `flexrod modes` of every shipped scene agree on how many modes the
+/// FFR rod retains (the table of `modes` marks them); the automotive rod's band: its three
+/// modes up to rod.mode_band_hz = 6000 Hz (2012 Hz bending, 3269 Hz axial, 5162 Hz bending),
+/// with the band's limit named as such where the axial dynamics are chosen against it.
+#[test]
+fn simulate_and_modes_agree_on_the_retained_modes() {
+    for path in shipped_scenes(common::repository()) {
+        let file = path.display().to_string();
+        let simulate = text(&flexrod(&["simulate", &file]).stdout);
+        let modes = text(&flexrod(&["modes", &file]).stdout);
+        let rows = modes.lines().filter(|l| l.ends_with(" retained")).count();
+        let (in_simulate, in_modes) = (retained(&simulate), retained(&modes));
+        assert!(in_simulate.is_some(), "{file}: simulate says\n{simulate}");
+        assert_eq!(in_simulate, in_modes, "{file}:\n{simulate}\n{modes}");
+        assert_eq!(in_modes, Some(rows), "{file}:\n{modes}");
+    }
+    let automotive = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/automotive_rod.toml");
+    let simulate = text(&flexrod(&["simulate", automotive]).stdout);
+    for part in [
+        "3 modes retained (2 bending, 1 axial), every mode up to rod.mode_band_hz = 6000 Hz",
+        "modes kept: 2012 Hz bending, 3269 Hz axial, 5162 Hz bending",
+    ] {
+        assert!(simulate.contains(part), "'{part}' not in\n{simulate}");
+    }
+    let modes = text(&flexrod(&["modes", automotive]).stdout);
+    let class = modes.lines().next().unwrap_or_default();
+    assert!(
+        class.contains("against 1.5 x the mode band's limit rod.mode_band_hz = 6000 Hz"),
+        "{class}"
+    );
+    assert!(!class.contains("retained bending mode"), "{class}");
+}

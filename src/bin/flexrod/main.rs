@@ -442,22 +442,14 @@ fn simulate(args: &SimulateArgs) -> Result<(), Failure> {
         .iter()
         .map(|o| magnitude(o.pin_c_force))
         .fold(0.0, f64::max);
-    let built = &sim.mechanism().spec.rod;
     let chosen = match scene.rod.model {
         RodModelKind::Auto => format!(
-            " (chosen by rod.model = auto at {} rad/s)",
+            " (rod.model = auto at {} rad/s)",
             number(scene.crank.design_speed)
         ),
         _ => String::new(),
     };
-    println!(
-        "scene {}: rod.model = {}{chosen}, rod.elements = {}, {} modes, rod.reference = {}",
-        scene.name,
-        built.model.name(),
-        built.elements,
-        built.modes,
-        built.reference.name()
-    );
+    println!("scene {}{chosen}: {}", scene.name, sim.rod_summary());
     let (integrator, counted) = sim.mechanism().integrator_name();
     // The revolutions the crank turned, from the recorded crank angles (whatever drove it).
     let ran = record.times.last().map_or(0.0, |t| t - t0);
