@@ -887,3 +887,136 @@ fn readme_opens_with_two_commands_and_stays_short() {
         "README.md's first block"
     );
 }
+
+/// Phrases that tell how the code came to be rather than what it is (matched in lower case,
+/// at word boundaries). Plain "previous" and "used to" are not among them: "the previous step",
+/// "the previous law", "used to check" say what is.
+const HISTORY_PHRASES: &[&str] = &[
+    "previous default",
+    "previous version",
+    "previously",
+    "formerly",
+    "used to be",
+    "no longer",
+    "not anymore",
+    "anymore",
+    "any longer",
+    "before this change",
+    "after this change",
+    "until now",
+    "until recently",
+    "in earlier versions",
+    "the old default",
+    "the new default",
+    "now defaults",
+    "is now",
+    "are now",
+    "now uses",
+    "was changed",
+    "were changed",
+    "has been changed",
+    "have been changed",
+    "was replaced",
+    "were replaced",
+    "has been replaced",
+    "was renamed",
+    "has been renamed",
+    "was removed",
+    "has been removed",
+];
+
+/// The history phrases in `text`: (byte offset, phrase).
+fn history_phrases(text: &str) -> Vec<(usize, &'static str)> {
+    let lower = text.to_lowercase();
+    let b = lower.as_bytes();
+    let word = |i: usize| b[i].is_ascii_alphanumeric() || b[i] == b'_';
+    let mut hits = Vec::new();
+    for phrase in HISTORY_PHRASES {
+        for (at, _) in lower.match_indices(phrase) {
+            let end = at + phrase.len();
+            if (at == 0 || !word(at - 1)) && (end == b.len() || !word(end)) {
+                hits.push((at, *phrase));
+            }
+        }
+    }
+    hits.sort();
+    hits
+}
+
+#[test]
+fn history_phrases_are_found() {
+    let found = |t: &str| {
+        history_phrases(t)
+            .into_iter()
+            .map(|(_, p)| p)
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(
+        found("h 3e-4 (the Previous default); it Was Replaced, and is now faster."),
+        ["previous default", "was replaced", "is now"]
+    );
+    for clean in [
+        "the previous step's acceleration",
+        "the value the previous law has",
+        "used to check, never as a dependency",
+        "thesis now", // "is now" inside a word
+        "a nowhere-dense set",
+    ] {
+        assert!(found(clean).is_empty(), "{clean}: {:?}", found(clean));
+    }
+}
+
+/// README.md and every Markdown file under docs/ (generated fragments and reports included)
+/// say what is: none has a phrase of [`HISTORY_PHRASES`].
+#[test]
+fn readme_and_docs_say_what_is() {
+    let mut files = vec![repository().join("README.md")];
+    files.extend(files_under(&repository().join("docs"), &["md"]));
+    let mut failures = Vec::new();
+    for file in files {
+        let text = std::fs::read_to_string(&file).expect("read a Markdown file");
+        for (at, phrase) in history_phrases(&text) {
+            let line = text[..at].matches('\n').count() + 1;
+            failures.push(format!("{}:{line}: \"{phrase}\"", relative(&file)));
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} phrase(s) in README.md or docs/ that tell how something came to be (say what is; \
+         a generated fragment: change the program or test that writes it):\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+/// docs/README.md says no document there points outside the repository: no Markdown file
+/// under docs/ has an http(s) address (a link, an autolink or a bare address).
+#[test]
+fn docs_point_nowhere_outside_the_repository() {
+    let index =
+        std::fs::read_to_string(repository().join("docs/README.md")).expect("read docs/README.md");
+    assert!(
+        index.contains("no document points outside the repository"),
+        "docs/README.md no longer says so: remove this test or restore the statement"
+    );
+    let mut failures = Vec::new();
+    for file in files_under(&repository().join("docs"), &["md"]) {
+        let text = std::fs::read_to_string(&file).expect("read a Markdown file");
+        for (at, _) in text.match_indices("http") {
+            let rest = &text[at..];
+            if rest.starts_with("http://") || rest.starts_with("https://") {
+                let line = text[..at].matches('\n').count() + 1;
+                let address: String = rest
+                    .chars()
+                    .take_while(|c| !c.is_whitespace() && *c != ')')
+                    .collect();
+                failures.push(format!("{}:{line}: {address}", relative(&file)));
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "addresses outside the repository in docs/ (docs/README.md says there are none):\n{}",
+        failures.join("\n")
+    );
+}

@@ -34,7 +34,7 @@ fn stiffened_modes_match_the_geometrically_exact_peak() {
             0.0025,
         ),
         (
-            "RK4, 8 el, 3 modes, h 3e-4 (the previous default)",
+            "RK4, 8 el, 3 modes, h 3e-4",
             with(Rk4, 3, 3e-4, true),
             3e-4,
             true,
