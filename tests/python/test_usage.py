@@ -5,18 +5,24 @@
   `cargo run --release -p fmu`), with TMPDIR in a scratch folder; it writes nothing but the
   temporary folder it makes, and the CSV it writes there has the outputs at every
   communication point.
+- examples/fmi3_fmpy.py, the FMI 3.0 FMU through FMPy with the crank acceleration and jerk as
+  inputs: FMPy finds every input in its table (no "missing input" warning), it prints what
+  docs/usage.md shows, and its outputs are the core's own run of the same crank law.
 """
 
+import importlib.util
 import os
 import re
 import subprocess
+import sys
 
 import numpy as np
 import pytest
-from helpers import ROOT, cargo
+from helpers import ROOT, assert_close, cargo, reference
 
 FMU_DIR = ROOT / "target" / "fmu"
 USAGE = ROOT / "docs" / "usage.md"
+EXAMPLE = ROOT / "examples" / "fmi3_fmpy.py"
 
 FENCE = re.compile(r"^[ \t]*```(\w*)[^\n]*\n(.*?)^[ \t]*```[ \t]*$", re.M | re.S)
 
@@ -83,3 +89,55 @@ def test_c_master_snippet_runs_in_a_temporary_folder(checkout_view, tmp_path):
     assert values.shape == (839, 3), values.shape
     assert np.isclose(values[-1, 0], 0.0838)
     assert np.isfinite(values).all() and np.abs(values[:, 1]).max() > 1e-4
+
+
+def load_example():
+    """examples/fmi3_fmpy.py as a module."""
+    spec = importlib.util.spec_from_file_location("fmi3_fmpy", EXAMPLE)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_fmi3_example_sets_every_input_and_prints_what_usage_md_shows(fmu_dir):
+    """examples/fmi3_fmpy.py gives FMPy every input of the FMI 3.0 FMU (no "missing input"
+    warning, no warning of the FMU), and prints what docs/usage.md shows under its command."""
+    fmu3 = fmu_dir / "FlexibleSliderCrank-fmi3.fmu"
+    result = subprocess.run(
+        [sys.executable, str(EXAMPLE), str(fmu3)], cwd=ROOT, capture_output=True, text=True
+    )
+    assert result.returncode == 0, result.stdout + result.stderr
+    output = result.stdout + result.stderr
+    assert "missing input" not in output, output
+    assert "WARNING" not in output, output
+    text = USAGE.read_text()
+    command = ".venv/bin/python examples/fmi3_fmpy.py"
+    fence = text.index("```text", text.index(command))
+    shown = blocks(text[text.rfind("\n", 0, fence) + 1 :], "text")[0]
+    assert result.stdout == shown, (
+        f"the example prints\n{result.stdout}\ndocs/usage.md shows\n{shown}"
+    )
+
+
+def test_fmi3_example_runs_the_cores_constant_acceleration(fmu_dir, tmp_path):
+    """The example's run through FMPy and the FMI 3.0 inputs equals the core's own run of the
+    same crank law (the packager's --simulate --accel, from rest, the same design speed) to
+    1e-9 of each output's peak."""
+    example = load_example()
+    result = example.run(fmu_dir / "FlexibleSliderCrank-fmi3.fmu")
+    end_speed = example.SPEED + example.ACCELERATION * example.STOP
+    scene = (ROOT / "scenes" / "benchmark.toml").read_text()
+    assert "crank_speed = 150.0" in scene and "[crank]\n" in scene
+    scene = scene.replace("crank_speed = 150.0", f"crank_speed = {example.SPEED!r}")
+    scene = scene.replace("[crank]\n", f"[crank]\ndesign_speed = {end_speed!r}\n")
+    path = tmp_path / "from_rest.toml"
+    path.write_text(scene)
+    core = reference(tmp_path / "core.csv", accel=example.ACCELERATION, scene=path)
+    assert len(result) == len(core["time"]) == round(example.STOP / example.STEP) + 1
+    np.testing.assert_allclose(result["time"], core["time"], rtol=0, atol=1e-12)
+    for name in ["rod.deflection_rel", "pinB.force_x", "pinB.force_y"]:
+        assert_close(result[name], core[name], rtol=1e-9, what=name)
+    shape = result["rod.shape"]
+    assert shape.shape == (len(result), 11)
+    # The shape's midpoint is rod.deflection_rel times the rod's length (0.3048 m).
+    np.testing.assert_allclose(shape[:, 5], result["rod.deflection_rel"] * 0.3048, atol=1e-12)
