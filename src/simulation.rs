@@ -109,6 +109,44 @@ impl Simulation {
         )
     }
 
+    /// The rod as built, in the scene's words: the rod model and its settings (`auto`
+    /// resolved) and what it keeps. The FFR rod: how many modes it retains, bending and axial,
+    /// and what chose them (the band `rod.mode_band_hz`, else `rod.modes`), then the retained
+    /// modes themselves (`"rod.model = ffr, rod.elements = 8, rod.reference = simply_supported,
+    /// rod.mass = consistent; 3 modes retained (2 bending, 1 axial), every mode up to
+    /// rod.mode_band_hz = 6000 Hz; FFR rod, modes kept: 2012 Hz bending, ..."`).
+    pub fn rod_summary(&self) -> String {
+        let spec = &self.mechanism.spec.rod;
+        let rod = &self.mechanism.rod;
+        let mut text = format!(
+            "rod.model = {}, rod.elements = {}",
+            spec.model.name(),
+            spec.elements
+        );
+        if spec.model == crate::rod::RodModelKind::Ffr {
+            let kept = rod.elastic_coordinates().map_or(0, |r| r.len());
+            let axial = rod.axial_mode_indices().len();
+            let chosen = match spec.mode_band_hz {
+                Some(band) => format!(
+                    "every mode up to rod.mode_band_hz = {} Hz",
+                    crate::text::number(band)
+                ),
+                None if spec.axial_in_addition => format!(
+                    "rod.modes = {} bending modes, the axial in addition",
+                    spec.modes
+                ),
+                None => format!("rod.modes = {}", spec.modes),
+            };
+            text += &format!(
+                ", rod.reference = {}, rod.mass = {}; {kept} modes retained ({} bending, {axial} axial), {chosen}",
+                spec.reference.name(),
+                spec.mass.name(),
+                kept - axial,
+            );
+        }
+        format!("{text}; {}", rod.describe())
+    }
+
     /// Consistent start at `t0`: rod undeformed, rigid coordinates and velocities
     /// consistent with the crank input, accelerations and joint forces consistent too.
     pub fn start(

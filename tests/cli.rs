@@ -1,11 +1,16 @@
 //! The `flexrod` command line as a user meets it: `--help` everywhere, bad command lines refused
 //! with exit code 2 and a message that names the value and what is allowed (never a panic,
 //! never a run of unbounded length), the stress columns of the CSV when the scene asks for
-//! stress outputs, the warning when an `--input` table ends before the stop time, and plots
-//! against the crank angle in degrees with plain tick labels.
+//! stress outputs, the warning when an `--input` table ends before the stop time, plots
+//! against the crank angle in degrees with plain tick labels, summaries in the scene's words
+//! (never a Rust name), and README.md's command lines run as written.
 
 use std::path::PathBuf;
 use std::process::{Command, Output};
+
+mod common;
+
+use common::summary::{rust_names, shipped_scenes};
 
 fn flexrod(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_flexrod"))
@@ -362,4 +367,167 @@ fn modes_lists_what_the_simulation_uses() {
         default.contains("37 bending modes left out as static corrections"),
         "{default}"
     );
+}
+
+/// The `cargo run --release --bin flexrod -- ...` lines of README.md's command-line quick start
+/// run as written (the files they write go to a scratch folder) and print their summaries.
+#[test]
+fn readme_command_lines_run() {
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md"))
+        .expect("read README.md");
+    let prefix = "cargo run --release --bin flexrod -- ";
+    let lines: Vec<&str> = readme
+        .lines()
+        .filter_map(|l| l.trim().strip_prefix(prefix))
+        .collect();
+    let commands: Vec<&str> = lines
+        .iter()
+        .filter_map(|l| l.split_whitespace().next())
+        .collect();
+    assert!(
+        commands.contains(&"simulate") && commands.contains(&"modes"),
+        "README.md shows no `{prefix}simulate` and `modes` line: {lines:?}"
+    );
+    let dir = scratch("readme");
+    for line in lines {
+        let mut args: Vec<String> = Vec::new();
+        let mut written = Vec::new();
+        let mut words = line.split_whitespace().peekable();
+        while let Some(word) = words.next() {
+            args.push(word.to_string());
+            if matches!(word, "--out" | "--plot") {
+                let value = words.next().expect("a value after --out or --plot");
+                let path = dir.join(value);
+                args.push(path.display().to_string());
+                written.push((word, path));
+            }
+        }
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let out = flexrod(&args);
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "README.md: {line}\n{}",
+            text(&out.stderr)
+        );
+        let stdout = text(&out.stdout);
+        assert!(stdout.contains("scene "), "{line}:\n{stdout}");
+        for (flag, path) in written {
+            let files = match flag {
+                "--plot" => vec![
+                    PathBuf::from(format!("{}_deflection.svg", path.display())),
+                    PathBuf::from(format!("{}_forces.svg", path.display())),
+                ],
+                _ => vec![path],
+            };
+            for file in files {
+                assert!(file.is_file(), "{line}: {} not written", file.display());
+            }
+        }
+    }
+}
+
+#[test]
+fn rust_names_are_found() {
+    let scene = flexrod::Scene::benchmark();
+    let text = format!(
+        "scene {}: Ffr rod, 8 elements, SimplySupported; Consistent mass, ffr, simply_supported, \
+         rod.mode_band_hz, RK4(3), ETDRK4, FFR rod, Runge-Kutta",
+        scene.name
+    );
+    assert_eq!(
+        rust_names(&text, &scene),
+        ["Ffr", "SimplySupported", "Consistent"]
+    );
+}
+
+/// The summaries of `flexrod simulate` and `flexrod modes` of every shipped scene speak the
+/// scene's words: the rod model built and the one set (`rod.model = ...`), the reference
+/// conditions and the element mass of the FFR rod as the scene spells them, and no Rust name.
+#[test]
+fn summaries_of_the_shipped_scenes_use_the_scenes_words() {
+    for path in shipped_scenes(common::repository()) {
+        let scene = flexrod::Scene::from_file(&path).expect("a shipped scene reads");
+        let built = flexrod::Simulation::new(&scene)
+            .expect("a shipped scene builds")
+            .mechanism()
+            .spec
+            .rod
+            .clone();
+        let file = path.display().to_string();
+        let ffr = built.model == flexrod::rod::RodModelKind::Ffr;
+        for command in ["simulate", "modes"] {
+            let out = flexrod(&[command, &file]);
+            assert_eq!(out.status.code(), Some(0), "{command} {file}");
+            let stdout = text(&out.stdout);
+            let summary = stdout
+                .lines()
+                .take_while(|l| !l.starts_with("mode  frequency_hz"))
+                .collect::<Vec<_>>()
+                .join("\n");
+            let names = rust_names(&summary, &scene);
+            assert!(
+                names.is_empty(),
+                "{command} {file}: Rust names {names:?} in\n{summary}"
+            );
+            let mut words = vec![format!("scene {}", scene.name)];
+            if command == "simulate" {
+                words.push(format!("rod.model = {}", built.model.name()));
+                if scene.rod.model != built.model {
+                    words.push(format!("rod.model = {}", scene.rod.model.name()));
+                }
+            }
+            if ffr {
+                words.push(format!("rod.reference = {}", scene.rod.reference.name()));
+            }
+            if ffr && command == "modes" {
+                words.push(format!("rod.mass = {}", scene.rod.mass.name()));
+            }
+            for word in words {
+                assert!(
+                    summary.contains(&word),
+                    "{command} {file}: '{word}' not in\n{summary}"
+                );
+            }
+        }
+    }
+}
+
+/// The number in "N modes retained" of a summary.
+fn retained(text: &str) -> Option<usize> {
+    let at = text.find(" modes retained")?;
+    text[..at].rsplit(' ').next()?.parse().ok()
+}
+
+/// `flexrod simulate` and `flexrod modes` of every shipped scene agree on how many modes the
+/// FFR rod retains (the table of `modes` marks them); the automotive rod's band: its three
+/// modes up to rod.mode_band_hz = 6000 Hz (2012 Hz bending, 3269 Hz axial, 5162 Hz bending),
+/// with the band's limit named as such where the axial dynamics are chosen against it.
+#[test]
+fn simulate_and_modes_agree_on_the_retained_modes() {
+    for path in shipped_scenes(common::repository()) {
+        let file = path.display().to_string();
+        let simulate = text(&flexrod(&["simulate", &file]).stdout);
+        let modes = text(&flexrod(&["modes", &file]).stdout);
+        let rows = modes.lines().filter(|l| l.ends_with(" retained")).count();
+        let (in_simulate, in_modes) = (retained(&simulate), retained(&modes));
+        assert!(in_simulate.is_some(), "{file}: simulate says\n{simulate}");
+        assert_eq!(in_simulate, in_modes, "{file}:\n{simulate}\n{modes}");
+        assert_eq!(in_modes, Some(rows), "{file}:\n{modes}");
+    }
+    let automotive = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/automotive_rod.toml");
+    let simulate = text(&flexrod(&["simulate", automotive]).stdout);
+    for part in [
+        "3 modes retained (2 bending, 1 axial), every mode up to rod.mode_band_hz = 6000 Hz",
+        "modes kept: 2012 Hz bending, 3269 Hz axial, 5162 Hz bending",
+    ] {
+        assert!(simulate.contains(part), "'{part}' not in\n{simulate}");
+    }
+    let modes = text(&flexrod(&["modes", automotive]).stdout);
+    let class = modes.lines().next().unwrap_or_default();
+    assert!(
+        class.contains("against 1.5 x the mode band's limit rod.mode_band_hz = 6000 Hz"),
+        "{class}"
+    );
+    assert!(!class.contains("retained bending mode"), "{class}");
 }

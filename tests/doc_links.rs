@@ -11,6 +11,13 @@
 //!   ("seed 000", `000_<16 hex>`) or `../shared`. Hits in files written by programs and tests
 //!   outside this test's reach are listed in [`KNOWN_HITS`] with the command that rewrites them;
 //!   the test also fails when such a listed hit is gone, so the list only shrinks.
+//! - The comments of the tests (`//` lines of tests/**/*.rs and fmu/tests/*.rs; `#` lines and
+//!   triple-quoted strings of tests/python/**/*.py) name README.md and docs/ pages that exist:
+//!   a page's section (`docs/fmu.md, "Time per call"`, `README.md, "Variables"`) begins a
+//!   heading of that page, a fragment named by its id (the word fragment, then the id in
+//!   backticks) is a file of docs/generated,
+//!   and a page named before the fragment in its sentence, or in parentheses right after it,
+//!   embeds it.
 
 mod common;
 
@@ -483,4 +490,533 @@ fn readme_scene_examples_are_scenes_that_build() {
         }
     }
     assert!(scenes >= 1, "README.md shows no complete scene");
+}
+
+/// The headings of a Markdown text (outside fenced blocks), without the `#` marks.
+fn headings(text: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut in_fence = false;
+    for line in text.lines() {
+        let trimmed = line.trim_start();
+        if trimmed.starts_with("```") || trimmed.starts_with("~~~") {
+            in_fence = !in_fence;
+            continue;
+        }
+        if in_fence || !line.starts_with('#') {
+            continue;
+        }
+        let title = line.trim_start_matches('#');
+        if title.starts_with(' ') {
+            out.push(title.trim().to_string());
+        }
+    }
+    out
+}
+
+/// The comments of a test source, each run of comment lines joined into one text, with the
+/// line it starts on. Rust: lines that start with `//` (`///` and `//!` too); Python: lines
+/// that start with `#`, and triple-quoted strings (docstrings).
+fn comments(text: &str, python: bool) -> Vec<(usize, String)> {
+    let mut out: Vec<(usize, String)> = Vec::new();
+    let mut block: Option<(usize, String)> = None;
+    // An open triple-quoted string: its first line, its quotes, its text so far.
+    let mut docstring: Option<(usize, &str, String)> = None;
+    for (k, line) in text.lines().enumerate() {
+        let number = k + 1;
+        if let Some((start, quotes, mut doc)) = docstring.take() {
+            let (piece, closed) = match line.find(quotes) {
+                Some(end) => (&line[..end], true),
+                None => (line, false),
+            };
+            if !piece.trim().is_empty() {
+                doc.push(' ');
+                doc.push_str(piece.trim());
+            }
+            if closed {
+                out.push((start, doc));
+            } else {
+                docstring = Some((start, quotes, doc));
+            }
+            continue;
+        }
+        let trimmed = line.trim_start();
+        let comment = if python {
+            trimmed.strip_prefix('#')
+        } else {
+            trimmed
+                .strip_prefix("//")
+                .map(|c| c.trim_start_matches(['/', '!']))
+        };
+        if let Some(c) = comment {
+            let b = block.get_or_insert_with(|| (number, String::new()));
+            if !b.1.is_empty() {
+                b.1.push(' ');
+            }
+            b.1.push_str(c.trim());
+            continue;
+        }
+        out.extend(block.take());
+        if python {
+            for quotes in ["\"\"\"", "'''"] {
+                if let Some(start) = line.find(quotes) {
+                    let rest = &line[start + 3..];
+                    match rest.find(quotes) {
+                        Some(end) => out.push((number, rest[..end].trim().to_string())),
+                        None => docstring = Some((number, quotes, rest.trim().to_string())),
+                    }
+                    break;
+                }
+            }
+        }
+    }
+    out.extend(block.take());
+    out.extend(docstring.map(|(start, _, doc)| (start, doc)));
+    out
+}
+
+/// What a comment names: a README.md or docs/ page, or a fragment.
+#[derive(Debug, PartialEq)]
+enum Named {
+    /// A page (relative to the repository root; `README` is README.md) at a byte offset of the
+    /// sentence, with the section quoted after it (`docs/fmu.md, "Time per call"`).
+    Page {
+        at: usize,
+        page: String,
+        section: Option<String>,
+    },
+    /// A fragment named by its id in backticks after the word fragment, at a byte offset of
+    /// the sentence; `end` is the offset after the id's closing backtick.
+    Fragment { at: usize, end: usize, id: String },
+}
+
+/// The sentences of a comment: split after `.`, `!` or `?` followed by a space and a capital.
+fn sentences(text: &str) -> Vec<&str> {
+    let b = text.as_bytes();
+    let mut out = Vec::new();
+    let mut start = 0;
+    for i in 0..b.len() {
+        if matches!(b[i], b'.' | b'!' | b'?')
+            && b.get(i + 1) == Some(&b' ')
+            && b.get(i + 2).is_some_and(u8::is_ascii_uppercase)
+        {
+            out.push(&text[start..=i]);
+            start = i + 2;
+        }
+    }
+    out.push(&text[start..]);
+    out
+}
+
+/// The pages and fragments a sentence names, in order.
+fn named_in(sentence: &str) -> Vec<Named> {
+    let b = sentence.as_bytes();
+    let path_char = |c: u8| c.is_ascii_alphanumeric() || b"_./-#".contains(&c);
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < b.len() {
+        let boundary = i == 0 || !(path_char(b[i - 1]) || b[i - 1] == b'$');
+        let rest = &sentence[i..];
+        let page = if !boundary {
+            None
+        } else if rest.starts_with("README.md") {
+            Some(("README.md".to_string(), i + "README.md".len()))
+        } else if rest.starts_with("README")
+            && b.get(i + 6)
+                .is_none_or(|&c| !(c.is_ascii_alphanumeric() || c == b'_'))
+        {
+            Some(("README.md".to_string(), i + "README".len()))
+        } else if rest.starts_with("docs/") {
+            let mut j = i + 5;
+            while j < b.len() && path_char(b[j]) {
+                j += 1;
+            }
+            let word = sentence[i..j].trim_end_matches('.');
+            // `docs/generated/<id>.md`, `docs/figures/{name}.py`: patterns, not pages.
+            (!matches!(b.get(j), Some(b'<' | b'{' | b'*')))
+                .then(|| (word.to_string(), i + word.len()))
+        } else {
+            None
+        };
+        if let Some((page, end)) = page {
+            let section = sentence[end..]
+                .strip_prefix(',')
+                .map(str::trim_start)
+                .and_then(|a| a.strip_prefix('"'))
+                .and_then(|a| a.find('"').map(|q| a[..q].to_string()));
+            out.push(Named::Page {
+                at: i,
+                page,
+                section,
+            });
+            i = end;
+            continue;
+        }
+        if boundary && rest.starts_with("fragment `") {
+            let id_start = i + "fragment `".len();
+            if let Some(len) = sentence[id_start..].find('`') {
+                out.push(Named::Fragment {
+                    at: i,
+                    end: id_start + len + 1,
+                    id: sentence[id_start..id_start + len].to_string(),
+                });
+                i = id_start + len + 1;
+                continue;
+            }
+        }
+        i += 1;
+    }
+    out
+}
+
+/// Whether `section`, named in a comment, begins one of the headings of `page_text` (compared
+/// in lower case, without backticks).
+fn section_exists(page_text: &str, section: &str) -> bool {
+    let plain = |s: &str| s.replace('`', "").to_lowercase();
+    let section = plain(section);
+    headings(page_text)
+        .iter()
+        .any(|h| plain(h).starts_with(&section))
+}
+
+/// What is wrong with the pages, sections and fragments a comment names.
+fn comment_problems(text: &str) -> Vec<String> {
+    let mut problems = Vec::new();
+    for sentence in sentences(text) {
+        let named = named_in(sentence);
+        for (k, n) in named.iter().enumerate() {
+            match n {
+                Named::Page { page, section, .. } => {
+                    let (file, anchor) = match page.split_once('#') {
+                        Some((f, a)) => (f, Some(a)),
+                        None => (page.as_str(), None),
+                    };
+                    let path = repository().join(file);
+                    if !path.exists() {
+                        problems.push(format!("{file} does not exist"));
+                        continue;
+                    }
+                    if !file.ends_with(".md") {
+                        continue;
+                    }
+                    let page_text = std::fs::read_to_string(&path).unwrap_or_default();
+                    if anchor.is_some_and(|a| !anchors(&page_text).contains(a)) {
+                        problems.push(format!("{page}: no heading with this anchor"));
+                    }
+                    if let Some(section) = section {
+                        if !section_exists(&page_text, section) {
+                            problems.push(format!("{file}, \"{section}\": no such heading"));
+                        }
+                    }
+                }
+                Named::Fragment { end, id, .. } => {
+                    // Not an id (a file name pattern such as `docs/generated/<id>.md`).
+                    if !common::is_fragment_id(id) {
+                        continue;
+                    }
+                    if !common::fragment_path(id).is_file() {
+                        problems.push(format!(
+                            "fragment `{id}`: docs/generated/{id}.md does not exist"
+                        ));
+                        continue;
+                    }
+                    // The pages named before the fragment in its sentence, and the one in
+                    // parentheses right after it, embed it.
+                    let right_after = named.get(k + 1).filter(|m| {
+                        matches!(m, Named::Page { at, .. } if sentence[*end..*at].trim() == "(")
+                    });
+                    let marker = format!("<!-- generated: {id} -->");
+                    for m in named[..k].iter().chain(right_after) {
+                        let Named::Page { page, .. } = m else {
+                            continue;
+                        };
+                        let file = page.split('#').next().unwrap_or(page);
+                        if !file.ends_with(".md") || file.starts_with("docs/generated/") {
+                            continue;
+                        }
+                        let embeds = std::fs::read_to_string(repository().join(file))
+                            .is_ok_and(|t| t.contains(&marker));
+                        if !embeds {
+                            problems.push(format!("{file} does not embed the fragment `{id}`"));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    problems
+}
+
+/// The test sources whose comments are checked: tests/**/*.rs (tests/python/**/*.py among
+/// them) and fmu/tests/*.rs.
+fn test_sources() -> Vec<PathBuf> {
+    let mut files = files_under(&repository().join("tests"), &["rs", "py"]);
+    files.extend(files_under(&repository().join("fmu/tests"), &["rs"]));
+    files
+}
+
+#[test]
+fn test_comments_name_pages_sections_and_fragments_that_exist() {
+    let mut failures = Vec::new();
+    let mut checked = 0;
+    for file in test_sources() {
+        let name = relative(&file);
+        let Ok(text) = std::fs::read_to_string(&file) else {
+            continue;
+        };
+        let python = file.extension().is_some_and(|e| e == "py");
+        for (line, comment) in comments(&text, python) {
+            checked += sentences(&comment)
+                .iter()
+                .map(|s| named_in(s).len())
+                .sum::<usize>();
+            for problem in comment_problems(&comment) {
+                failures.push(format!("{name}:{line}: {problem}"));
+            }
+        }
+    }
+    println!("{checked} pages, sections and fragments named in test comments checked");
+    assert!(
+        checked > 50,
+        "only {checked} references found in the test comments"
+    );
+    assert!(
+        failures.is_empty(),
+        "{} reference(s) in the tests' comments to what does not exist (name the docs/ page \
+         and its heading that holds the text):\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+#[test]
+fn test_comments_are_read_as_written() {
+    let rust = "let x = 1; // not a comment line\n/// README, \"Dynamics\": the table\n\
+                /// (generated fragment\n/// `dynamics-checks`).\nfn f() {}\n//! docs/fmu.md\n";
+    assert_eq!(
+        comments(rust, false),
+        [
+            (
+                2,
+                "README, \"Dynamics\": the table (generated fragment `dynamics-checks`)."
+                    .to_string()
+            ),
+            (6, "docs/fmu.md".to_string()),
+        ]
+    );
+    let python = "\"\"\"The model (docs/fmu.md,\n\"Time per call\").\"\"\"\nx = 1  # trailing\n\
+                  # a README.md, \"Variables\" line\n";
+    assert_eq!(
+        comments(python, true),
+        [
+            (1, "The model (docs/fmu.md, \"Time per call\").".to_string()),
+            (4, "a README.md, \"Variables\" line".to_string()),
+        ]
+    );
+    let sentence =
+        "See README, \"Scenes\", docs/usage.md. and the fragment `limits` (docs/robustness.md)";
+    assert_eq!(
+        named_in(sentence),
+        [
+            Named::Page {
+                at: 4,
+                page: "README.md".into(),
+                section: Some("Scenes".into())
+            },
+            Named::Page {
+                at: 22,
+                page: "docs/usage.md".into(),
+                section: None
+            },
+            Named::Fragment {
+                at: 45,
+                end: 62,
+                id: "limits".into()
+            },
+            Named::Page {
+                at: 64,
+                page: "docs/robustness.md".into(),
+                section: None
+            },
+        ]
+    );
+    assert_eq!(
+        sentences("One e.g. two. Three docs/a.md. Four"),
+        ["One e.g. two.", "Three docs/a.md.", "Four"]
+    );
+    // A README section that is not a heading, a fragment the page before it does not embed, a
+    // fragment that does not exist; a page named after a fragment outside parentheses is not
+    // held to it.
+    let problems = comment_problems(
+        "README, \"Dynamics\": a table (fragment `dynamics-checks`). The fragment \
+         `no-such-fragment`. The fragment `limits` (docs/robustness.md, \"Limits\"), timed \
+         in docs/performance.md.",
+    );
+    assert_eq!(
+        problems,
+        [
+            "README.md, \"Dynamics\": no such heading",
+            "README.md does not embed the fragment `dynamics-checks`",
+            "fragment `no-such-fragment`: docs/generated/no-such-fragment.md does not exist",
+        ]
+    );
+}
+
+/// README.md opens with exactly two commands for a fresh machine (the first fenced block:
+/// build the default scene's FMU and run it, run every test) and stays at most 250 lines.
+#[test]
+fn readme_opens_with_two_commands_and_stays_short() {
+    let text = std::fs::read_to_string(repository().join("README.md")).expect("read README.md");
+    let lines = text.lines().count();
+    assert!(lines <= 250, "README.md has {lines} lines: at most 250");
+    let (code, _) = code_and_links(&text);
+    let first = code
+        .iter()
+        .find(|c| c.contains('\n'))
+        .expect("README.md has a fenced block");
+    let commands: Vec<&str> = first
+        .lines()
+        .map(|l| l.split('#').next().unwrap_or("").trim())
+        .filter(|l| !l.is_empty())
+        .collect();
+    assert_eq!(
+        commands,
+        [
+            "cargo run --release -p fmu -- --simulate",
+            "bash tests/run_all.sh"
+        ],
+        "README.md's first block"
+    );
+}
+
+/// Phrases that tell how the code came to be rather than what it is (matched in lower case,
+/// at word boundaries). Plain "previous" and "used to" are not among them: "the previous step",
+/// "the previous law", "used to check" say what is.
+const HISTORY_PHRASES: &[&str] = &[
+    "previous default",
+    "previous version",
+    "previously",
+    "formerly",
+    "used to be",
+    "no longer",
+    "not anymore",
+    "anymore",
+    "any longer",
+    "before this change",
+    "after this change",
+    "until now",
+    "until recently",
+    "in earlier versions",
+    "the old default",
+    "the new default",
+    "now defaults",
+    "is now",
+    "are now",
+    "now uses",
+    "was changed",
+    "were changed",
+    "has been changed",
+    "have been changed",
+    "was replaced",
+    "were replaced",
+    "has been replaced",
+    "was renamed",
+    "has been renamed",
+    "was removed",
+    "has been removed",
+];
+
+/// The history phrases in `text`: (byte offset, phrase).
+fn history_phrases(text: &str) -> Vec<(usize, &'static str)> {
+    let lower = text.to_lowercase();
+    let b = lower.as_bytes();
+    let word = |i: usize| b[i].is_ascii_alphanumeric() || b[i] == b'_';
+    let mut hits = Vec::new();
+    for phrase in HISTORY_PHRASES {
+        for (at, _) in lower.match_indices(phrase) {
+            let end = at + phrase.len();
+            if (at == 0 || !word(at - 1)) && (end == b.len() || !word(end)) {
+                hits.push((at, *phrase));
+            }
+        }
+    }
+    hits.sort();
+    hits
+}
+
+#[test]
+fn history_phrases_are_found() {
+    let found = |t: &str| {
+        history_phrases(t)
+            .into_iter()
+            .map(|(_, p)| p)
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(
+        found("h 3e-4 (the Previous default); it Was Replaced, and is now faster."),
+        ["previous default", "was replaced", "is now"]
+    );
+    for clean in [
+        "the previous step's acceleration",
+        "the value the previous law has",
+        "used to check, never as a dependency",
+        "thesis now", // "is now" inside a word
+        "a nowhere-dense set",
+    ] {
+        assert!(found(clean).is_empty(), "{clean}: {:?}", found(clean));
+    }
+}
+
+/// README.md and every Markdown file under docs/ (generated fragments and reports included)
+/// say what is: none has a phrase of [`HISTORY_PHRASES`].
+#[test]
+fn readme_and_docs_say_what_is() {
+    let mut files = vec![repository().join("README.md")];
+    files.extend(files_under(&repository().join("docs"), &["md"]));
+    let mut failures = Vec::new();
+    for file in files {
+        let text = std::fs::read_to_string(&file).expect("read a Markdown file");
+        for (at, phrase) in history_phrases(&text) {
+            let line = text[..at].matches('\n').count() + 1;
+            failures.push(format!("{}:{line}: \"{phrase}\"", relative(&file)));
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} phrase(s) in README.md or docs/ that tell how something came to be (say what is; \
+         a generated fragment: change the program or test that writes it):\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+/// docs/README.md says no document there points outside the repository: no Markdown file
+/// under docs/ has an http(s) address (a link, an autolink or a bare address).
+#[test]
+fn docs_point_nowhere_outside_the_repository() {
+    let index =
+        std::fs::read_to_string(repository().join("docs/README.md")).expect("read docs/README.md");
+    assert!(
+        index.contains("no document points outside the repository"),
+        "docs/README.md no longer says so: remove this test or restore the statement"
+    );
+    let mut failures = Vec::new();
+    for file in files_under(&repository().join("docs"), &["md"]) {
+        let text = std::fs::read_to_string(&file).expect("read a Markdown file");
+        for (at, _) in text.match_indices("http") {
+            let rest = &text[at..];
+            if rest.starts_with("http://") || rest.starts_with("https://") {
+                let line = text[..at].matches('\n').count() + 1;
+                let address: String = rest
+                    .chars()
+                    .take_while(|c| !c.is_whitespace() && *c != ')')
+                    .collect();
+                failures.push(format!("{}:{line}: {address}", relative(&file)));
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "addresses outside the repository in docs/ (docs/README.md says there are none):\n{}",
+        failures.join("\n")
+    );
 }

@@ -12,7 +12,7 @@
 
 mod common;
 
-/// What `cargo run --release --example NAME` prints, and the committed fragment `id`; `None`
+/// What `cargo run --release --example NAME` prints, and the committed fragment named `id`; `None`
 /// when blessing (the example has then rewritten the fragment).
 fn run_example(name: &str, id: &str) -> Option<(String, String)> {
     let out = std::process::Command::new(env!("CARGO"))

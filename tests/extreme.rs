@@ -3,7 +3,7 @@
 //! `ModelError::StepFailed` with the state from before the step kept, checked for every failed
 //! step by `common::runs::drive_visit`).
 //!
-//! The table of results in README.md and docs/report/extreme.md is generated from these tests
+//! The table of results in docs/robustness.md and docs/report/extreme.md is generated from these tests
 //! (fragment `extreme-cases`, each test measures its rows; checked, or written with
 //! `FLEXROD_BLESS=1`, when the whole file runs):
 //! `cargo test --release --test extreme -- --nocapture`.

@@ -219,7 +219,7 @@ fn random_call_sequences_keep_the_contract() {
     }
 }
 
-/// Sequences of the range generator in the suite (fragment `fuzz-ranges-short`).
+/// Sequences of the range generator in the suite (a run this short writes no fragment).
 const DEFAULT_RANGE_SEQUENCES: u64 = 300;
 
 /// Sequences from which a run of the range generator counts as the long mode (fragment

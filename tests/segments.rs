@@ -25,7 +25,7 @@ use common::generated::{percent, sci, sig, signed_percent, Fragment};
 use common::runs::{self, max_diff, peak};
 use common::{check_generated, exudyn};
 
-/// README, "The finite segment rod": the slider-crank bullet, from two tests (generated
+/// docs/verification.md, "The finite segment rod": the slider-crank bullet, from two tests (generated
 /// fragment `segments-slider-crank`).
 static SLIDER_CRANK: Fragment =
     Fragment::new("segments-slider-crank", "", &["convergence", "balances"]);

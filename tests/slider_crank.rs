@@ -12,7 +12,7 @@ use common::runs;
 
 const W: f64 = 150.0;
 
-/// README, "Dynamics": the table of these checks, one part per test (generated fragment
+/// docs/verification.md, "Dynamics of the slider-crank": the table of these checks, one part per test (generated fragment
 /// `dynamics-checks`, written with FLEXROD_BLESS=1 when the whole file runs).
 static DYNAMICS: Fragment = Fragment::new(
     "dynamics-checks",

@@ -239,6 +239,28 @@ mod tests {
         assert!(n >= 6, "{n} scenes in {}", dir.display());
     }
 
+    /// `[experiment]` is optional (docs/fmu.md, "Keys"): a scene without it passes the
+    /// packager's checks with the default experiment, whose DefaultExperiment the model
+    /// description declares (tests/doc_facts.rs compares the documented defaults).
+    #[test]
+    fn a_scene_without_experiment_is_packaged_with_the_defaults() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/benchmark.toml");
+        let text = std::fs::read_to_string(path).unwrap();
+        let without = &text[..text.find("[experiment]").unwrap()];
+        let scene = Scene::from_toml_str(without, "the scene").unwrap();
+        assert_eq!(scene.experiment, flexrod::scene::ExperimentSpec::default());
+        check_identifier(model_identifier(&scene)).unwrap();
+        check_experiment(&scene, "the scene").unwrap();
+        let description = ModelDescription::for_scene(&scene).unwrap();
+        assert!(
+            description.xml.contains(
+                r#"<DefaultExperiment startTime="0.0" stopTime="0.0838" stepSize="0.0001"/>"#
+            ),
+            "{}",
+            description.xml
+        );
+    }
+
     #[test]
     fn platform_folder_from_os_and_arch() {
         assert_eq!(

@@ -33,6 +33,8 @@ pub struct Run {
     pub frequencies_hz: Vec<f64>,
     /// The integrator used and what its iteration counter counts.
     pub integrator: (&'static str, &'static str),
+    /// The rod as built and what it retains (`Simulation::rod_summary`).
+    pub rod: String,
     /// The model class the `auto` settings chose, and why.
     pub model_class: String,
     /// The warnings of the run, with the communication point after which they came.
@@ -138,6 +140,7 @@ pub fn run(scene: &Scene, options: &Options) -> Result<Run, String> {
         wall_seconds: clock.elapsed().as_secs_f64(),
         frequencies_hz: simulation.frequencies_hz().to_vec(),
         integrator: simulation.mechanism().integrator_name(),
+        rod: simulation.rod_summary(),
         model_class: simulation.mechanism().physics.describe(),
         warnings: record.warnings,
     })
@@ -216,6 +219,7 @@ pub fn print_summary(scene: &Scene, run: &Run, fmu: Option<&Path>) {
         run.stats.newton_iterations as f64 / (run.stats.steps.max(1)) as f64,
         run.stats.halvings
     );
+    println!("  rod: {}", run.rod);
     println!("  model class: {}", run.model_class);
     if let Some(last) = run.outputs.last() {
         println!(

@@ -1,7 +1,11 @@
 //! The packager's command line: `--help` prints the usage to stdout and exits 0; unknown
-//! options and bad values are refused with exit code 2 before anything is built.
+//! options and bad values are refused with exit code 2 before anything is built; the
+//! `--simulate` summary of every shipped scene speaks the scene's words.
 
 use std::process::{Command, Output};
+
+#[path = "../../tests/common/summary.rs"]
+mod summary;
 
 fn fmu(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_fmu"))
@@ -93,4 +97,60 @@ fn simulate_past_the_shared_point_cap_is_refused() {
             assert_eq!(out.status.code(), Some(0), "{stderr}");
         }
     }
+}
+
+/// `--simulate` of every shipped scene: its summary names the rod model built and how it was
+/// chosen, as the scene spells them, and no Rust name (`tests/common/summary.rs`).
+#[test]
+fn simulate_summaries_of_the_shipped_scenes_use_the_scenes_words() {
+    let repository = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."));
+    for path in summary::shipped_scenes(repository) {
+        let scene = flexrod::Scene::from_file(&path).expect("a shipped scene reads");
+        let built = flexrod::Simulation::new(&scene)
+            .expect("a shipped scene builds")
+            .mechanism()
+            .spec
+            .rod
+            .clone();
+        let file = path.display().to_string();
+        let out = fmu(&[&file, "--no-package", "--simulate"]);
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert_eq!(out.status.code(), Some(0), "{file}: {stdout}");
+        let names = summary::rust_names(&stdout, &scene);
+        assert!(
+            names.is_empty(),
+            "{file}: Rust names {names:?} in\n{stdout}"
+        );
+        let set = match scene.rod.model {
+            flexrod::rod::RodModelKind::Auto => "(auto: ".to_string(),
+            model => format!("(set {})", model.name()),
+        };
+        for word in [
+            format!("{}: t = ", scene.name),
+            format!("rod model {} {set}", built.model.name()),
+        ] {
+            assert!(stdout.contains(&word), "{file}: '{word}' not in\n{stdout}");
+        }
+    }
+}
+
+/// The automotive rod's summary says what it retains and what its band is: three modes up to
+/// rod.mode_band_hz = 6000 Hz (the highest retained bending mode is 5162 Hz), and the axial
+/// dynamics chosen against the band's limit, named as such.
+#[test]
+fn automotive_summary_names_the_retained_modes_and_the_band() {
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/automotive_rod.toml");
+    let out = fmu(&[scene, "--no-package", "--simulate"]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{stdout}");
+    for part in [
+        "  rod: rod.model = ffr, rod.elements = 8, rod.reference = simply_supported",
+        "3 modes retained (2 bending, 1 axial), every mode up to rod.mode_band_hz = 6000 Hz",
+        "modes kept: 2012 Hz bending, 3269 Hz axial, 5162 Hz bending",
+        "against 1.5 x the mode band's limit rod.mode_band_hz = 6000 Hz",
+    ] {
+        assert!(stdout.contains(part), "'{part}' not in\n{stdout}");
+    }
+    assert!(!stdout.contains("4 modes"), "{stdout}");
+    assert!(!stdout.contains("retained bending mode 6000"), "{stdout}");
 }

@@ -187,6 +187,9 @@ pub struct PhysicsChoice {
     /// The highest retained bending frequency (estimate: the simply supported rod's mode
     /// `modes`, or the mode band), Hz.
     pub band_top_hz: f64,
+    /// The mode band `rod.mode_band_hz` where the scene gives one: `band_top_hz` is then the
+    /// band's limit (at least the first bending mode), not a retained mode.
+    pub mode_band_hz: Option<f64>,
     /// The tolerance the choice was made for.
     pub tolerance: f64,
     /// `h / L` with `h = sqrt(12 I / A)` (the section's length means).
@@ -278,10 +281,23 @@ impl PhysicsChoice {
                 self.shear_effect, self.tolerance
             )
         };
+        let band = match self.mode_band_hz {
+            Some(band) if band >= self.band_top_hz => format!(
+                "the mode band's limit rod.mode_band_hz = {:.0} Hz (the retained modes lie below it)",
+                self.band_top_hz
+            ),
+            Some(_) => format!(
+                "the first bending mode, estimated {:.0} Hz (above rod.mode_band_hz)",
+                self.band_top_hz
+            ),
+            None => format!(
+                "the highest retained bending mode, estimated {:.0} Hz",
+                self.band_top_hz
+            ),
+        };
         let axial_reason = format!(
-            "auto: slider-rod axial mode {:.0} Hz against {AXIAL_BAND_FACTOR} x the highest retained bending mode {:.0} Hz{}",
+            "auto: slider-rod axial mode {:.0} Hz against {AXIAL_BAND_FACTOR} x {band}{}",
             self.axial_hz,
-            self.band_top_hz,
             if self.heavy_at_c {
                 "; the masses at C reach the rod's"
             } else {
@@ -510,6 +526,7 @@ pub fn choose(
         heavy_at_c,
         axial_hz,
         band_top_hz,
+        mode_band_hz: spec.mode_band_hz,
         tolerance,
         geometrically_exact: spec.model != RodModelKind::Ffr,
         discretization: match spec.model {

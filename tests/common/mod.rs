@@ -8,7 +8,8 @@
 //! - [`fragments`]: the generated-fragment convention (`docs/generated/<id>.md` embedded in
 //!   README.md and docs/ between markers) and [`check_generated`];
 //! - [`child`]: child processes with a time limit;
-//! - [`generated`]: tables assembled from parts measured by several tests, number formats.
+//! - [`generated`]: tables assembled from parts measured by several tests, number formats;
+//! - [`summary`]: what a printed summary of a scene may and must say (the scene's words).
 
 // Not every test file uses every helper.
 #![allow(dead_code)]
@@ -19,6 +20,7 @@ pub mod fragments;
 pub mod generated;
 pub mod published_frequencies;
 pub mod runs;
+pub mod summary;
 
 #[allow(unused_imports)]
 pub use fragments::{

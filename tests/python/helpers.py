@@ -214,7 +214,7 @@ def restore_fmpy_default_logger():
     """Point FMPy's native logger proxy back at its default logger. The proxy (FMPy 0.3) is one
     per process: simulate_fmu(logger=f) points it at f, and a later simulate_fmu without a
     logger of its own then calls f, collected by then, at the FMU's first message, which
-    crashes the process (docs/usage.md, "FMPy")."""
+    crashes the process (docs/usage.md, "Use from other tools": FMPy's logger)."""
     import fmpy.fmi2 as fmi2
     from fmpy.logging import addLoggerProxy
 

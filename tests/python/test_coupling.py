@@ -129,6 +129,6 @@ def test_rigid_limit(bank, engine):
         # a stiff flexible rod (E x 100) approaches the rigid engine: the same coupling error plus
         # the elastic effect, O(1/E). (At E x 1000 Gauss-Seidel's linear torque extrapolation
         # diverges at dt = 1e-4 when the FMU's internal step is 5e-5: the rods' stiff modes ring
-        # in the torque; Jacobi stays within 1.4 % of the fluctuation. README, "System-level coupling".)
+        # in the torque; Jacobi stays within 1.4 % of the fluctuation: docs/coupling.md.)
         es = errs[("E x 1e2", scheme, 1e-4)]
         assert abs(es - e4) < 0.01 * fluct, (es, e4)

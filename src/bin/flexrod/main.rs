@@ -253,11 +253,11 @@ fn modes(args: &ModesArgs) -> Result<(), Failure> {
         ),
     };
     println!(
-        "scene {}: {} elements, {:?} reference conditions, {:?} mass, {eigenproblem}; {} modes retained of {} ({chosen})",
+        "scene {}: rod.elements = {}, rod.reference = {}, rod.mass = {}, {eigenproblem}; {} modes retained of {} ({chosen})",
         scene.name,
         rod.elements,
-        rod.reference,
-        rod.mass,
+        rod.reference.name(),
+        rod.mass.name(),
         kept.len(),
         all.all_frequencies_hz.len(),
     );
@@ -442,7 +442,6 @@ fn simulate(args: &SimulateArgs) -> Result<(), Failure> {
         .iter()
         .map(|o| magnitude(o.pin_c_force))
         .fold(0.0, f64::max);
-    let built = &sim.mechanism().spec.rod;
     let chosen = match scene.rod.model {
         RodModelKind::Auto => format!(
             " (rod.model = auto at {} rad/s)",
@@ -450,10 +449,7 @@ fn simulate(args: &SimulateArgs) -> Result<(), Failure> {
         ),
         _ => String::new(),
     };
-    println!(
-        "scene {}: {:?} rod{chosen}, {} elements, {} modes, {:?}",
-        scene.name, built.model, built.elements, built.modes, built.reference
-    );
+    println!("scene {}{chosen}: {}", scene.name, sim.rod_summary());
     let (integrator, counted) = sim.mechanism().integrator_name();
     // The revolutions the crank turned, from the recorded crank angles (whatever drove it).
     let ran = record.times.last().map_or(0.0, |t| t - t0);
