@@ -46,13 +46,19 @@ fn section<'a>(text: &'a str, heading: &str) -> &'a str {
     &text[start..start + heading.len() + 1 + offset]
 }
 
-/// The shipped scenes, `scenes/*.toml`, by file name.
+/// The rod's shipped scenes, `scenes/*.toml`, by file name (the crankshaft's scene has its
+/// own section in docs/fmu.md).
 fn scene_files() -> BTreeMap<String, PathBuf> {
     std::fs::read_dir(repository().join("scenes"))
         .expect("read scenes/")
         .flatten()
         .map(|e| e.path())
         .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .filter(|p| {
+            let text = std::fs::read_to_string(p).unwrap_or_default();
+            flexrod::fmi::registry::ModelKind::of_scene_text(&text)
+                == flexrod::fmi::registry::ModelKind::Rod
+        })
         .map(|p| (p.file_name().unwrap().to_string_lossy().into_owned(), p))
         .collect()
 }

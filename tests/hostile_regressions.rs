@@ -94,6 +94,15 @@ fn pre_initialization_state(f: &Fmu) -> Vec<u8> {
     }
 }
 
+/// The offset of the model's length (u64) in a serialized state: after the magic, the format
+/// version, the GUID (u32 length + text), the machine state and last step status (u8 each),
+/// the start time, the stop flag and the stop time (docs/fmu.md, "FMU states and
+/// serialization").
+fn model_length_at(bytes: &[u8]) -> usize {
+    let guid = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    16 + guid + 1 + 1 + 8 + 1 + 8
+}
+
 /// `bytes` (a state without a simulation) with its scene text edited by `edit` and the length
 /// and checksum recomputed: what a forger with the format at hand makes.
 fn forged_scene(bytes: &[u8], edit: impl Fn(&str) -> String) -> Vec<u8> {
@@ -106,6 +115,11 @@ fn forged_scene(bytes: &[u8], edit: impl Fn(&str) -> String) -> Vec<u8> {
     let edited = edit(text);
     assert_ne!(edited, text, "the edit applies");
     let mut out = bytes[..start - 4].to_vec();
+    // The model's bytes are length-prefixed (u64) after the shell's header.
+    let at = model_length_at(bytes);
+    let model_len = u64::from_le_bytes(bytes[at..at + 8].try_into().unwrap()) as usize;
+    let model_len = (model_len + edited.len() - len) as u64;
+    out[at..at + 8].copy_from_slice(&model_len.to_le_bytes());
     out.extend_from_slice(&(edited.len() as u32).to_le_bytes());
     out.extend_from_slice(edited.as_bytes());
     out.extend_from_slice(&bytes[start + len..bytes.len() - 8]);
@@ -350,9 +364,8 @@ fn inputs_past_their_windows_in_a_state_are_refused() {
     let vars = Vars::default_scene();
     let source = Fmu::new(&vars, "source");
     let bytes = pre_initialization_state(&source);
-    // The inputs follow the magic, version, GUID, three flags, start time, stop flag, stop time.
-    let guid = vars.guid.as_bytes().len();
-    let inputs = 8 + 4 + 4 + guid + 3 + 8 + 1 + 8;
+    // The inputs follow the model's length and its started flag.
+    let inputs = model_length_at(&bytes) + 8 + 1;
     for (k, name) in ["crank.angle", "crank.speed", "slider.force"]
         .into_iter()
         .enumerate()

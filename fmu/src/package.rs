@@ -247,11 +247,11 @@ mod tests {
         let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/benchmark.toml");
         let text = std::fs::read_to_string(path).unwrap();
         let without = &text[..text.find("[experiment]").unwrap()];
-        let scene = Scene::from_toml_str(without, "the scene").unwrap();
+        let scene = flexrod::Scene::from_toml_str(without, "the scene").unwrap();
         assert_eq!(scene.experiment, flexrod::scene::ExperimentSpec::default());
-        check_identifier(model_identifier(&scene)).unwrap();
-        check_experiment(&scene, "the scene").unwrap();
         let description = ModelDescription::for_scene(&scene).unwrap();
+        check_identifier(&description.info.name).unwrap();
+        check_experiment(&description.info.default_experiment, "the scene").unwrap();
         assert!(
             description.xml.contains(
                 r#"<DefaultExperiment startTime="0.0" stopTime="0.0838" stepSize="0.0001"/>"#

@@ -10,13 +10,18 @@ use flexrod::modal::ReferenceKind;
 use flexrod::rod::{PhysicsSwitch, RodModelKind};
 use flexrod::Scene;
 
-/// The shipped scenes, `scenes/*.toml`, sorted.
+/// The rod's shipped scenes, `scenes/*.toml` (not the crankshaft's), sorted.
 pub fn shipped_scenes(repository: &std::path::Path) -> Vec<PathBuf> {
     let mut scenes: Vec<PathBuf> = std::fs::read_dir(repository.join("scenes"))
         .expect("read scenes/")
         .flatten()
         .map(|e| e.path())
         .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .filter(|p| {
+            let text = std::fs::read_to_string(p).unwrap_or_default();
+            flexrod::fmi::registry::ModelKind::of_scene_text(&text)
+                == flexrod::fmi::registry::ModelKind::Rod
+        })
         .collect();
     scenes.sort();
     assert!(scenes.len() >= 7, "{} scenes in scenes/", scenes.len());
