@@ -43,7 +43,7 @@ pub struct Simulation {
 
 /// Magic bytes and version of serialized snapshots.
 const SNAPSHOT_MAGIC: &[u8; 8] = b"FLEXROD\0";
-const SNAPSHOT_VERSION: u32 = 6;
+const SNAPSHOT_VERSION: u32 = 7;
 
 /// The inputs of a simulation at one moment ([`Simulation::inputs_snapshot`]).
 #[derive(Clone, Copy, Debug)]
@@ -234,7 +234,7 @@ impl Simulation {
         if estimate > tolerance && !self.error_estimate_warned {
             // Formatted by `take_warnings`, outside the step (no allocation while stepping).
             self.error_estimate_warned = true;
-            self.estimate_warning = Some([self.state.time, estimate, self.state.dae.amplitude]);
+            self.estimate_warning = Some([self.state.time, estimate, self.state.amplitude]);
         }
         Ok(self.state.stats)
     }
@@ -253,7 +253,7 @@ impl Simulation {
     pub fn error_estimate(&self) -> f64 {
         self.mechanism
             .physics
-            .error_estimate(self.state.dae.amplitude, self.state.start_vibration)
+            .error_estimate(self.state.amplitude, self.state.start_vibration)
     }
 
     /// Cumulative integrator counters.
@@ -297,49 +297,74 @@ impl Simulation {
         self.state.clone_from(&snapshot.state);
     }
 
-    /// Serialize the state: magic, version, model fingerprint, then the numbers (little endian).
+    /// Serialize the state on its own: magic, version, then [`Simulation::state_to_bytes`].
     pub fn snapshot_to_bytes(&self) -> Vec<u8> {
         let mut out = Vec::new();
         out.extend_from_slice(SNAPSHOT_MAGIC);
         out.extend_from_slice(&SNAPSHOT_VERSION.to_le_bytes());
-        out.extend_from_slice(&self.fingerprint.to_le_bytes());
-        self.state.write_bytes(&mut out);
+        out.extend_from_slice(&self.state_to_bytes());
         out
     }
 
     /// Restore a state from bytes written by [`Simulation::snapshot_to_bytes`] of the same
     /// model. Foreign, truncated or other-model bytes are rejected and the state is unchanged.
     pub fn restore_from_bytes(&mut self, bytes: &[u8]) -> Result<(), ModelError> {
-        let bad = |m: &str| ModelError::State {
-            message: format!("serialized state rejected: {m}"),
-        };
-        if bytes.len() < 20 || &bytes[..8] != SNAPSHOT_MAGIC {
-            return Err(bad(
+        if bytes.len() < 12 || &bytes[..8] != SNAPSHOT_MAGIC {
+            return Err(rejected(
                 "it does not start with this model's header (foreign or truncated bytes)",
             ));
         }
         let version = u32::from_le_bytes(bytes[8..12].try_into().unwrap());
         if version != SNAPSHOT_VERSION {
-            return Err(bad(&format!(
+            return Err(rejected(&format!(
                 "version {version}, this model reads version {SNAPSHOT_VERSION}"
             )));
         }
-        let fingerprint = u64::from_le_bytes(bytes[12..20].try_into().unwrap());
+        self.restore_state_bytes(&bytes[12..])
+    }
+
+    /// The state as part of a larger saved state (whose format carries the version): the
+    /// model's 64-bit fingerprint, then the numbers (`MechanismState::write_bytes`, little
+    /// endian).
+    pub fn state_to_bytes(&self) -> Vec<u8> {
+        let mut out = self.fingerprint.to_le_bytes().to_vec();
+        self.state.write_bytes(&mut out);
+        out
+    }
+
+    /// Restore a state from bytes written by [`Simulation::state_to_bytes`] of the same model:
+    /// the fingerprint must be this model's, every number in the range of an accepted step and
+    /// the crank laws within the input windows. On error the state is unchanged.
+    pub fn restore_state_bytes(&mut self, bytes: &[u8]) -> Result<(), ModelError> {
+        if bytes.len() < 8 {
+            return Err(rejected(&format!(
+                "{} bytes cannot hold the model's fingerprint (truncated bytes)",
+                bytes.len()
+            )));
+        }
+        let fingerprint = u64::from_le_bytes(bytes[..8].try_into().unwrap());
         if fingerprint != self.fingerprint {
-            return Err(bad(
+            return Err(rejected(
                 "it was saved by a model with other parameters or another scene",
             ));
         }
         let mut state = self.state.clone();
         state
-            .read_bytes(&bytes[20..])
-            .map_err(|m: String| bad(&m))?;
+            .read_bytes(&bytes[8..])
+            .map_err(|m: String| rejected(&m))?;
         // The input windows of the set calls, for the law in force and the one before it.
-        check_input(state.input, state.slider_force).map_err(|e| bad(&e.to_string()))?;
+        check_input(state.input, state.slider_force).map_err(|e| rejected(&e.to_string()))?;
         check_input(state.previous_input, state.slider_force)
-            .map_err(|e| bad(&format!("the previous law: {e}")))?;
+            .map_err(|e| rejected(&format!("the previous law: {e}")))?;
         self.state = state;
         Ok(())
+    }
+}
+
+/// A refused serialized state, with the reason.
+fn rejected(reason: &str) -> ModelError {
+    ModelError::State {
+        message: format!("serialized state rejected: {reason}"),
     }
 }
 

@@ -143,7 +143,7 @@ fn crafted_state_bytes_are_rejected_field_by_field() {
     // communication step's last internal step may reach past it, `steps_past_is_cheaper`).
     let st = sim.state();
     let held_len = if st.ahead.held {
-        8 * (4 + 4 * st.ahead.z0.len() + 4 * st.dae.q.len() + st.dae.lambda.len())
+        8 * (3 + 4 * st.ahead.z0.len() + 4 * st.dae.q.len() + st.dae.lambda.len())
     } else {
         0
     };

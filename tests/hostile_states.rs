@@ -299,14 +299,17 @@ fn start_time_at(bytes: &[u8]) -> usize {
     at + 4 + guid.len() + 2
 }
 
-/// The offset of the core's first cached output (`rod.deflection`): after the core's magic,
-/// version and fingerprint, twelve numbers (three times, two laws of four, the slider force).
+/// The offset of the simulation's first cached output (`rod.deflection`) in a serialized
+/// state (docs/fmu.md, "FMU states and serialization"): after the shell's header, the model's
+/// length, its started flag, inputs, scene text and simulation flag, the simulation's length
+/// and fingerprint, twelve numbers (three times, two laws of four, the slider force).
 fn first_output_at(bytes: &[u8]) -> usize {
-    let core = bytes
-        .windows(8)
-        .position(|w| w == b"FLEXROD\0")
-        .expect("the core's bytes");
-    core + 8 + 4 + 8 + 12 * 8
+    let (at, guid) = guid_at(bytes);
+    let model = at + 4 + guid.len() + 1 + 1 + 8 + 1 + 8 + 8;
+    let scene_at = model + 1 + 5 * 8 + 3;
+    let scene_len = u32::from_le_bytes(bytes[scene_at..scene_at + 4].try_into().unwrap()) as usize;
+    let simulation = scene_at + 4 + scene_len + 1 + 8;
+    simulation + 8 + 12 * 8
 }
 
 fn put_f64(bytes: &mut [u8], at: usize, x: f64) {

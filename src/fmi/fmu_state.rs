@@ -40,7 +40,7 @@ use crate::hash::fnv1a_64;
 use crate::limits::EXPERIMENT_TIME_LIMIT;
 
 const MAGIC: &[u8; 8] = b"FLXRFMI2";
-const VERSION: u32 = 4;
+const VERSION: u32 = 5;
 
 /// What the shell saves of an instance besides the model.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -180,7 +180,7 @@ fn attempt(
             .evaluate_stage(system, t, &steps.z, &steps.zd, &mut kv[s], s == last)?;
         *work += 1;
     }
-    let tol = steps.local_tolerance(system, state, h);
+    let tol = steps.local_tolerance(system, h);
     let mut err: f64 = 0.0;
     for a in 0..k {
         let mut ez = 0.0;
@@ -198,6 +198,10 @@ fn attempt(
 }
 
 impl Integrator for AdaptiveRungeKutta {
+    fn set_amplitude(&mut self, amplitude: f64) {
+        self.steps.amplitude = amplitude;
+    }
+
     /// Takes one accepted step of at most `h` (the rest of the communication step): the
     /// state's proposal, stretched to `h` when within 25 % of it.
     fn step(

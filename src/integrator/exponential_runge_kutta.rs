@@ -172,7 +172,7 @@ impl ExponentialForm {
                 *n = oscillators[a].remainder(z[a], zd[a], kv[a]);
             }
         }
-        let tol = steps.local_tolerance(system, state, h);
+        let tol = steps.local_tolerance(system, h);
         let mut err: f64 = 0.0;
         for a in 0..k {
             let d = h * (self.remainders[3][a] - self.remainders[4][a]);
@@ -241,6 +241,10 @@ fn exponential_stage(
 }
 
 impl Integrator for ExponentialRungeKutta {
+    fn set_amplitude(&mut self, amplitude: f64) {
+        self.steps.amplitude = amplitude;
+    }
+
     /// Takes one accepted step of at most `h` (the rest of the communication step): the
     /// state's proposal, stretched to `h` when within 25 % of it.
     fn step(

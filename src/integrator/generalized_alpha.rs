@@ -68,6 +68,8 @@ pub struct GeneralizedAlpha {
     pub coefficients: AlphaCoefficients,
     /// Error control (adaptive steps), or fixed steps when `None`.
     pub adaptive: Option<AlphaErrorControl>,
+    /// The amplitude `A` the accuracy refers to ([`Integrator::set_amplitude`]).
+    amplitude: f64,
     pub tolerance: f64,
     pub max_iterations: usize,
     n: usize,
@@ -107,6 +109,7 @@ impl GeneralizedAlpha {
             trial: DaeState::zeros(n, m),
             factored_for: None,
             adaptive: None,
+            amplitude: 0.0,
         }
     }
 
@@ -119,7 +122,7 @@ impl GeneralizedAlpha {
         let control = self.adaptive.as_ref().expect("adaptive");
         let c = (self.coefficients.beta - 1.0 / 6.0).abs() * h * h;
         // Not below what the Newton iteration resolves (its tolerance on the scaled correction).
-        let tol = (control.tolerance * state.amplitude.max(control.amplitude_floor))
+        let tol = (control.tolerance * self.amplitude.max(control.amplitude_floor))
             .max(10.0 * self.tolerance);
         let mut err: f64 = 0.0;
         for i in 0..self.n {
@@ -321,6 +324,10 @@ impl GeneralizedAlpha {
 }
 
 impl Integrator for GeneralizedAlpha {
+    fn set_amplitude(&mut self, amplitude: f64) {
+        self.amplitude = amplitude;
+    }
+
     fn step(
         &mut self,
         system: &dyn DaeSystem,

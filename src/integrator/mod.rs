@@ -114,6 +114,11 @@ pub trait Integrator: Send {
         h: f64,
     ) -> Result<usize, StepError>;
 
+    /// The amplitude `A` of the motion the error control's accuracy refers to, for the next
+    /// steps (dimensionless, like `v_mid / L`; the caller keeps the largest so far). Methods
+    /// without error control ignore it.
+    fn set_amplitude(&mut self, _amplitude: f64) {}
+
     /// Forget anything kept between steps (a reused factorization), so that the next step
     /// depends on the state alone (a restored state then replays bit for bit).
     fn forget_between_steps(&mut self) {}

@@ -13,9 +13,6 @@ pub struct DaeState {
     pub lambda: Vec<f64>,
     /// The step an adaptive integrator proposes next, s (0: none yet).
     pub step_hint: f64,
-    /// The amplitude of the motion the error control's accuracy refers to (the mechanism keeps
-    /// the largest `|v_mid / L|` so far here; 0 at the start).
-    pub amplitude: f64,
 }
 
 impl DaeState {
@@ -62,7 +59,6 @@ impl Clone for DaeState {
             acc: self.acc.clone(),
             lambda: self.lambda.clone(),
             step_hint: self.step_hint,
-            amplitude: self.amplitude,
         }
     }
 
@@ -75,7 +71,6 @@ impl Clone for DaeState {
         self.acc.clone_from(&source.acc);
         self.lambda.clone_from(&source.lambda);
         self.step_hint = source.step_hint;
-        self.amplitude = source.amplitude;
     }
 }
 

@@ -7,7 +7,8 @@
 //! Error norm (maximum norm, so the control is pointwise):
 //! `err = max_i |e_i| / sc_i`, `sc_z = tol max(A, A_min) s`, `sc_z' = w sc_z`,
 //! with `e` the local error estimate of a try, `A` the amplitude of the motion the accuracy is
-//! stated for (the mechanism keeps the largest `|v_mid / L|` so far in [`DaeState::amplitude`]),
+//! stated for (set by the caller through `Integrator::set_amplitude`: the mechanism passes the
+//! largest `|v_mid / L|` so far),
 //! `A_min` a floor, `s` the coordinate's scale (its value for a deflection of the rod's length)
 //! and `w` the mode's circular frequency (units: `z` in the coordinate's unit, `w` in rad/s). The
 //! step is accepted when `err <= 1`; the next one is `h min(5, max(0.2, 0.9 err^(-1/p)))` with
@@ -51,6 +52,8 @@ pub(super) struct EmbeddedSteps {
     pub closed_form: bool,
     pub rhs: PartitionedRhs,
     pub control: ErrorControl,
+    /// The amplitude `A` the accuracy refers to ([`super::Integrator::set_amplitude`]).
+    pub amplitude: f64,
     pub k: usize,
     /// Stage derivatives: `kz[s]` = z' and `kv[s]` = z'' at stage s (k each).
     pub kz: [Vec<f64>; 7],
@@ -91,6 +94,7 @@ impl EmbeddedSteps {
             q0: vec![0.0; system.n_coordinates()],
             rhs,
             control,
+            amplitude: 0.0,
             k,
             kz: stage(),
             kv: stage(),
@@ -203,10 +207,10 @@ impl EmbeddedSteps {
         .after(work))
     }
 
-    /// The local tolerance of a step `h` from `state` (module documentation; error per unit
-    /// step where set).
-    pub fn local_tolerance(&self, system: &dyn DaeSystem, state: &DaeState, h: f64) -> f64 {
-        let mut tol = self.control.tolerance * state.amplitude.max(self.control.amplitude_floor);
+    /// The local tolerance of a step `h` (module documentation: relative to the amplitude set
+    /// last; error per unit step where set).
+    pub fn local_tolerance(&self, system: &dyn DaeSystem, h: f64) -> f64 {
+        let mut tol = self.control.tolerance * self.amplitude.max(self.control.amplitude_floor);
         let period = system.error_time_scale();
         if let Some(c) = self
             .control

@@ -39,6 +39,9 @@ pub struct MechanismState {
     pub stats: StepStats,
     /// Warnings not yet collected (not serialized).
     pub warnings: Vec<String>,
+    /// The amplitude the error control's accuracy refers to: the largest `|v_mid / L|` so far
+    /// (at communication points and after each accepted internal step; 0 at the start).
+    pub amplitude: f64,
     /// The large-deflection warning was already given.
     pub large_deflection_warned: bool,
     /// The amplitude of `v_mid / L` of the free vibration the start rang (an undeformed start
@@ -84,7 +87,7 @@ impl MechanismState {
         let a = &self.ahead;
         w.flag(a.held);
         if a.held {
-            for x in [a.t0, a.end.t, a.end.step_hint, a.end.amplitude] {
+            for x in [a.t0, a.end.t, a.end.step_hint] {
                 w.f64(x);
             }
             for v in [
@@ -133,7 +136,7 @@ impl MechanismState {
             o.slider_velocity,
             self.dae.t,
             self.dae.step_hint,
-            self.dae.amplitude,
+            self.amplitude,
             self.start_vibration,
         ]
     }
@@ -167,7 +170,7 @@ impl MechanismState {
         o.slider_velocity = o8;
         self.dae.t = t;
         self.dae.step_hint = hint;
-        self.dae.amplitude = amplitude;
+        self.amplitude = amplitude;
         self.start_vibration = vibration;
     }
 
@@ -237,12 +240,7 @@ impl MechanismState {
         };
         if self.ahead.held {
             let a = &mut self.ahead;
-            for x in [
-                &mut a.t0,
-                &mut a.end.t,
-                &mut a.end.step_hint,
-                &mut a.end.amplitude,
-            ] {
+            for x in [&mut a.t0, &mut a.end.t, &mut a.end.step_hint] {
                 *x = r.f64("the held step")?;
             }
             for v in [
@@ -290,7 +288,7 @@ impl MechanismState {
             ("slider.force", self.slider_force),
             ("the integrator time", self.dae.t),
             ("the step proposal", self.dae.step_hint),
-            ("the deflection amplitude", self.dae.amplitude),
+            ("the deflection amplitude", self.amplitude),
         ];
         for (name, x) in named {
             if !x.is_finite() {
@@ -320,7 +318,7 @@ impl MechanismState {
         }
         // Amplitudes of v_mid/L and of the deflection: bounded like the outputs.
         for (name, x) in [
-            ("the deflection amplitude", self.dae.amplitude),
+            ("the deflection amplitude", self.amplitude),
             ("the start's vibration amplitude", self.start_vibration),
         ] {
             if x.abs() >= super::MAX_OUTPUT_MAGNITUDE {
@@ -342,10 +340,10 @@ impl MechanismState {
                 return Err(format!("{name} is {x}, allowed a finite value"));
             }
         }
-        if d.step_hint < 0.0 || d.amplitude < 0.0 {
+        if d.step_hint < 0.0 || self.amplitude < 0.0 {
             return Err(format!(
                 "the step proposal {:e} s or the amplitude {:e} is negative, allowed >= 0",
-                d.step_hint, d.amplitude
+                d.step_hint, self.amplitude
             ));
         }
         if d.t != self.time {
@@ -357,7 +355,7 @@ impl MechanismState {
         }
         let a = &self.ahead;
         if a.held {
-            let values = [a.t0, a.end.t, a.end.step_hint, a.end.amplitude];
+            let values = [a.t0, a.end.t, a.end.step_hint];
             if let Some(x) = values
                 .iter()
                 .chain(&a.z0)
@@ -391,10 +389,10 @@ impl MechanismState {
                     time(self.time)
                 ));
             }
-            if a.end.step_hint < 0.0 || a.end.amplitude < 0.0 {
+            if a.end.step_hint < 0.0 {
                 return Err(format!(
-                    "the held step's proposal {:e} s or amplitude {:e} is negative, allowed >= 0",
-                    a.end.step_hint, a.end.amplitude
+                    "the held step's proposal {:e} s is negative, allowed >= 0",
+                    a.end.step_hint
                 ));
             }
         }

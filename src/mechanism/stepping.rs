@@ -43,6 +43,7 @@ impl Mechanism {
         };
         self.integrator.forget_between_steps();
         let backup_stats = state.stats;
+        let backup_amplitude = state.amplitude;
         let t_end = t_start + h;
         let adaptive = self.integrator.is_adaptive();
         let result = (|| {
@@ -87,6 +88,7 @@ impl Mechanism {
             }
             state.time = t_start;
             state.stats = backup_stats;
+            state.amplitude = backup_amplitude;
         };
         match result {
             Ok(()) => {
@@ -108,7 +110,7 @@ impl Mechanism {
                     Ok(o) => match self.check_large_deflection(state, &o) {
                         Ok(()) => {
                             state.outputs = o;
-                            state.dae.amplitude = state.dae.amplitude.max(o.deflection_rel.abs());
+                            state.amplitude = state.amplitude.max(o.deflection_rel.abs());
                             Ok(())
                         }
                         Err(e) => {
@@ -358,9 +360,8 @@ impl Mechanism {
                 }
                 // The held step ends at or before `t_end`: its end is the state, and its last
                 // stage (the same inputs) the next step's first.
-                let amplitude = state.dae.amplitude;
                 state.dae.clone_from(&state.ahead.end);
-                state.dae.amplitude = amplitude.max(state.dae.amplitude);
+                state.amplitude = self.amplitude_with(&state.dae, state.amplitude);
                 state.ahead.held = false;
                 self.integrator.reuse_first_stage();
                 if state.dae.t >= t_end - 1e-12 * h_comm {
@@ -392,6 +393,7 @@ impl Mechanism {
                     self.backup_ahead.save(&state.ahead);
                     self.ahead_backup = AheadBackup::Saved;
                 }
+                self.integrator.set_amplitude(state.amplitude);
                 match self
                     .integrator
                     .step_ahead(&sys, &state.dae, &mut state.ahead)
@@ -399,7 +401,6 @@ impl Mechanism {
                     Ok(work) => {
                         state.stats.steps += 1;
                         state.stats.newton_iterations += work as u64;
-                        self.track_amplitude(&mut state.ahead.end);
                         continue;
                     }
                     Err(error) => {
@@ -408,11 +409,12 @@ impl Mechanism {
                     }
                 }
             }
+            self.integrator.set_amplitude(state.amplitude);
             match self.integrator.step(&sys, &mut state.dae, h_max) {
                 Ok(work) => {
                     state.stats.steps += 1;
                     state.stats.newton_iterations += work as u64;
-                    self.track_amplitude(&mut state.dae);
+                    state.amplitude = self.amplitude_with(&state.dae, state.amplitude);
                     if state.dae.t >= t_end - 1e-12 * h_max {
                         state.dae.t = t_end;
                     }
@@ -426,15 +428,15 @@ impl Mechanism {
         Ok(())
     }
 
-    /// The error control's amplitude ([`crate::integrator::DaeState::amplitude`], the largest
-    /// `|v_mid / L|` so far) with the deflection of `dae` itself, after each accepted internal
-    /// step: the tolerance follows the motion inside a long communication step too (updated
-    /// at communication points only, one communication step over two revolutions of the
-    /// default scene was held to the floor's tolerance throughout and took 863 internal steps
-    /// instead of about 100).
-    fn track_amplitude(&self, dae: &mut crate::integrator::DaeState) {
+    /// The error control's amplitude ([`MechanismState::amplitude`], the largest `|v_mid / L|`
+    /// so far) with the deflection of `dae` itself, after each accepted internal step: the
+    /// tolerance follows the motion inside a long communication step too (updated at
+    /// communication points only, one communication step over two revolutions of the default
+    /// scene was held to the floor's tolerance throughout and took 863 internal steps instead
+    /// of about 100).
+    fn amplitude_with(&self, dae: &crate::integrator::DaeState, amplitude: f64) -> f64 {
         let here = (self.rod.mid_deflection(&dae.q) / self.rod.length()).abs();
-        dae.amplitude = dae.amplitude.max(here);
+        amplitude.max(here)
     }
 
     /// One internal step to `target`, split in halves on failure, at most `solver.max_halvings`
@@ -466,6 +468,7 @@ impl Mechanism {
                 state,
                 &self.pin_cache,
             );
+            self.integrator.set_amplitude(state.amplitude);
             match self.integrator.step(&sys, &mut state.dae, h) {
                 Ok(work) => {
                     state.dae.t = target;

@@ -494,15 +494,15 @@ impl RodModel {
         Ok(())
     }
 
-    /// The core's bytes of the simulation of `saved` (`None` without one): its magic,
-    /// version and model fingerprint, then its state. The current state is left as it was.
+    /// The bytes of the simulation of `saved` (`None` without one): its model fingerprint,
+    /// then its state ([`Simulation::state_to_bytes`]). The current state is left as it was.
     pub fn simulation_bytes(&mut self, saved: &SavedModel) -> Result<Option<Vec<u8>>, ModelError> {
         let Some(snapshot) = &saved.simulation else {
             return Ok(None);
         };
         self.with_simulation_of(&saved.scene, |s| {
             s.restore(snapshot);
-            Ok(s.snapshot_to_bytes())
+            Ok(s.state_to_bytes())
         })
         .map(Some)
     }
@@ -523,7 +523,7 @@ impl RodModel {
         let simulation = match simulation_bytes {
             None => None,
             Some(b) => Some(self.with_simulation_of(&saved.scene, |s| {
-                s.restore_from_bytes(b)?;
+                s.restore_state_bytes(b)?;
                 Ok(s.snapshot())
             })?),
         };

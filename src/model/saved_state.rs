@@ -7,14 +7,14 @@
 //! inputs: angle, speed, slider force, acceleration, jerk f64, acceleration source u8,
 //!         jerk source u8, force changed u8 (Inputs::to_bytes),
 //! parameters: the scene (u32 length + TOML),
-//! simulation present u8 (+ u64 length + the simulation's bytes: Simulation::snapshot_to_bytes,
-//!         with the model fingerprint of its scene)
+//! simulation present u8 (+ u64 length + the simulation's bytes: Simulation::state_to_bytes,
+//!         the model fingerprint of its scene, then the mechanism's state)
 //! ```
 //!
 //! Every field is checked when read: the inputs against the windows of their set calls, the
 //! scene against its keys' ranges and against this model (only declared parameters
 //! changed: [`super::binding::check_same_model`]), the simulation against its fingerprint and
-//! the ranges of an accepted step (`Simulation::restore_from_bytes`).
+//! the ranges of an accepted step (`Simulation::restore_state_bytes`).
 
 use super::inputs::Inputs;
 use super::instance::{RodModel, SavedModel};
