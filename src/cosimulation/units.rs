@@ -10,8 +10,9 @@ pub struct UnitDefinition {
 }
 
 /// The units of this crate's models: lengths, speeds and accelerations of the slider and
-/// the crank (angles displayed in deg, speeds in rpm), time, force, torque, stress, mass,
-/// density, section properties, rotary inertia and frequency.
+/// the crank (angles displayed in deg, speeds in rpm), time, force, torque, a rotary loss
+/// coefficient (torque per angular speed), stress, mass, density, section properties, rotary
+/// inertia and frequency. A description lists the ones its variables use.
 pub const SI_UNITS: &[UnitDefinition] = &[
     UnitDefinition {
         name: "m",
@@ -61,6 +62,11 @@ pub const SI_UNITS: &[UnitDefinition] = &[
     UnitDefinition {
         name: "N.m",
         base: &[("kg", "1"), ("m", "2"), ("s", "-2")],
+        display: &[],
+    },
+    UnitDefinition {
+        name: "N.m.s",
+        base: &[("kg", "1"), ("m", "2"), ("s", "-1")],
         display: &[],
     },
     UnitDefinition {

@@ -26,7 +26,7 @@ use super::scene::{
     CrankshaftScene, CrankshaftSpec, ANGLE_WINDOW, SPEED_WINDOW, TORQUE_RATE_WINDOW, TORQUE_WINDOW,
 };
 use crate::bytes::{ByteReader, ByteWriter};
-use crate::cosimulation::units::UnitDefinition;
+use crate::cosimulation::units::SI_UNITS;
 use crate::cosimulation::{
     Causality, CoSimulationModel, Declaration, Declarations, DefaultExperiment, Initial,
     InitialDependencies, Interface, ModelInfo, SavedState, StepOutcome, Value, ValueType,
@@ -44,45 +44,6 @@ const DAMPING: VariableId = 101;
 const START_ANGLE: VariableId = 102;
 const START_SPEED: VariableId = 103;
 const TIME: VariableId = 150;
-
-/// The units of the crankshaft's variables.
-pub const UNITS: &[UnitDefinition] = &[
-    UnitDefinition {
-        name: "rad",
-        base: &[("rad", "1")],
-        display: &[("deg", "57.29577951308232")],
-    },
-    UnitDefinition {
-        name: "rad/s",
-        base: &[("s", "-1"), ("rad", "1")],
-        display: &[("rpm", "9.549296585513721")],
-    },
-    UnitDefinition {
-        name: "rad/s2",
-        base: &[("s", "-2"), ("rad", "1")],
-        display: &[],
-    },
-    UnitDefinition {
-        name: "s",
-        base: &[("s", "1")],
-        display: &[],
-    },
-    UnitDefinition {
-        name: "N.m",
-        base: &[("kg", "1"), ("m", "2"), ("s", "-2")],
-        display: &[],
-    },
-    UnitDefinition {
-        name: "N.m.s",
-        base: &[("kg", "1"), ("m", "2"), ("s", "-1")],
-        display: &[],
-    },
-    UnitDefinition {
-        name: "kg.m2",
-        base: &[("kg", "1"), ("m", "2")],
-        display: &[],
-    },
-];
 
 /// The inputs: the torques and their rates, N m and N m/s.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
@@ -279,7 +240,7 @@ impl CrankshaftModel {
                 stop_time: e.stop_time,
                 step_size: e.step_size,
             },
-            units: UNITS,
+            units: SI_UNITS,
             enumeration_types: &[],
         };
         Ok(CrankshaftModel {
