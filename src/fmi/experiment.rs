@@ -1,6 +1,9 @@
 //! The experiment an importer sets up (`fmi2SetupExperiment`, the arguments of
 //! `fmi3EnterInitializationMode`).
 
+/// Relative tolerance on `currentCommunicationPoint` and `stopTime`.
+pub(crate) const TIME_TOLERANCE: f64 = 1e-9;
+
 /// Start and stop time of the experiment.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Experiment {

@@ -30,7 +30,7 @@
 //! | the model's time | a built model after initialization, its time in [start, stop or 1e6] s | `Instance::deserialize_fmu_state`, [`check_time`] |
 
 use super::experiment::Experiment;
-use super::instance::TIME_TOLERANCE;
+use super::experiment::TIME_TOLERANCE;
 use super::standard::Standard;
 use super::state_machine::MachineState;
 use super::status::Status;

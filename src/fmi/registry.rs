@@ -7,8 +7,6 @@
 //! - otherwise: the slider-crank with its flexible rod ([`RodModel`]).
 
 use super::description::ModelDescription;
-use super::instance::Instance;
-use super::logging::Logger;
 use super::standard::Standard;
 use crate::cosimulation::CoSimulationModel;
 use crate::crankshaft::{CrankshaftModel, CrankshaftScene};
@@ -69,22 +67,6 @@ pub fn rod_model(
 /// cannot be read.
 pub fn default_model(standard: Standard) -> Result<Box<dyn CoSimulationModel>, ModelError> {
     rod_model(Scene::benchmark(), standard)
-}
-
-/// An instance of the compiled-in default scene (for tools and tests).
-pub fn default_instance(standard: Standard, logger: Logger) -> Result<Instance, ModelError> {
-    scene_instance(Scene::benchmark(), standard, logger)
-}
-
-/// An instance of the rod's `scene` for `standard` (for tools and tests; no GUID check).
-pub fn scene_instance(
-    scene: Scene,
-    standard: Standard,
-    logger: Logger,
-) -> Result<Instance, ModelError> {
-    let model = rod_model(scene, standard)?;
-    let description = ModelDescription::of(&*model, standard)?;
-    Ok(Instance::new(model, &description, logger))
 }
 
 impl ModelDescription {

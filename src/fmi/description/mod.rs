@@ -13,6 +13,7 @@
 //! - [`units`]: the unit definitions.
 
 mod units;
+mod writer;
 mod xml;
 mod xml3;
 

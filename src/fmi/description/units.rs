@@ -3,7 +3,7 @@
 
 use std::io;
 
-use super::xml::W;
+use super::writer::W;
 use crate::cosimulation::{Declarations, UnitDefinition, ValueType};
 
 pub(super) fn write_units(

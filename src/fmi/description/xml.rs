@@ -6,6 +6,7 @@ use std::io;
 use quick_xml::events::{BytesDecl, Event};
 use quick_xml::Writer;
 
+use super::writer::W;
 use super::CAPABILITIES;
 use crate::cosimulation::{
     Causality, Declarations, DefaultExperiment, EnumerationType, InitialDependencies, ModelInfo,
@@ -63,8 +64,6 @@ pub(super) fn render(info: &ModelInfo, table: &Declarations, guid: &str) -> io::
     bytes.push(b'\n');
     String::from_utf8(bytes).map_err(|e| io::Error::new(io::ErrorKind::InvalidData, e))
 }
-
-pub(super) type W = Writer<Vec<u8>>;
 
 pub(super) fn named_error(name: &str, attribute: &str, e: io::Error) -> io::Error {
     io::Error::new(e.kind(), format!("{name}: {attribute}: {e}"))

@@ -10,7 +10,8 @@ use std::io;
 use quick_xml::events::{BytesDecl, BytesText, Event};
 use quick_xml::Writer;
 
-use super::xml::{named_error, value_text, write_default_experiment, write_type_definitions, W};
+use super::writer::W;
+use super::xml::{named_error, value_text, write_default_experiment, write_type_definitions};
 use crate::cosimulation::{
     Causality, Declarations, InitialDependencies, ModelInfo, Value, ValueType,
 };

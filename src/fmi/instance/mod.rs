@@ -44,8 +44,7 @@ use crate::cosimulation::{CoSimulationModel, Declarations};
 /// `fmi2Type` value of Co-Simulation.
 pub const FMI2_CO_SIMULATION: i32 = 1;
 
-/// Relative tolerance on `currentCommunicationPoint` and `stopTime`.
-pub(crate) const TIME_TOLERANCE: f64 = 1e-9;
+pub(crate) use super::experiment::TIME_TOLERANCE;
 
 /// Arguments of `fmi2Instantiate` or `fmi3InstantiateCoSimulation`, already converted from C.
 pub struct InstantiateArgs<'a> {
@@ -233,6 +232,13 @@ mod tests {
     use crate::fmi::logging::LogSink;
     use crate::fmi::status::StatusKind;
 
+    /// An instance of the compiled-in default scene.
+    fn default_instance(standard: Standard, logger: Logger) -> Instance {
+        let model = crate::fmi::registry::default_model(standard).unwrap();
+        let description = ModelDescription::of(&*model, standard).unwrap();
+        Instance::new(model, &description, logger)
+    }
+
     struct PanickingSink;
     impl LogSink for PanickingSink {
         fn emit(&self, _: Status, _: &'static str, message: &str) {
@@ -242,7 +248,7 @@ mod tests {
 
     fn instance(sink: Option<Box<dyn LogSink>>) -> Instance {
         let logger = Logger::new(sink, false);
-        crate::fmi::registry::default_instance(Standard::Fmi2, logger).unwrap()
+        default_instance(Standard::Fmi2, logger)
     }
 
     #[test]
@@ -266,7 +272,7 @@ mod tests {
         let messages = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
         let sink = Box::new(Capture(messages.clone()));
         let logger = Logger::new(Some(sink), false);
-        let mut i = crate::fmi::registry::default_instance(Standard::Fmi3, logger).unwrap();
+        let mut i = default_instance(Standard::Fmi3, logger);
         let stop = Some(1e-3);
         assert_eq!(
             i.run(Call::SetupExperiment, |i| i
