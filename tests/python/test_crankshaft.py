@@ -3,7 +3,7 @@ and packager as the rod, driven through FMPy with the rod's lifecycle and state 
 description validates, simulation matches the closed form, instances are independent, saved
 and serialized states continue bit for bit (in another instance and another process), foreign
 and corrupted states are refused, bad inputs leave the instance usable, reset restores the
-start values."""
+start values; it turns the rod's FMU in the engine's loop, and runs in libcosim too."""
 
 import json
 import math
@@ -338,3 +338,28 @@ def test_the_crankshaft_fmu_turns_the_rod_fmu_as_a_scripted_shaft_does(cs_dir, d
     assert np.max(np.abs(speeds_fmu - speeds_script)) < 1e-9 * 150.0
     # The rod's torque moves the shaft: the speed is not constant.
     assert np.ptp(speeds_fmu) > 1e-3
+
+
+def test_libcosim_runs_the_crankshaft_fmu_to_the_closed_form(crankshaft_fmu):
+    """A second importer: libcosim (Open Simulation Platform) with a fixed step, the drive
+    torque as an initial value."""
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimObserver import CosimObserver
+    from libcosimpy.CosimSlave import CosimLocalSlave
+
+    md = read_model_description(str(crankshaft_fmu))
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    step_ns, n, torque = 1_000_000, 100, 30.0
+    execution = CosimExecution.from_step_size(step_size=step_ns)
+    index = execution.add_local_slave(
+        CosimLocalSlave(fmu_path=str(crankshaft_fmu), instance_name="crankshaft")
+    )
+    assert execution.real_initial_value(index, vr["drive.torque"], torque)
+    observer = CosimObserver.create_last_value()
+    execution.add_observer(observer)
+    refs = [vr["crank.angle"], vr["crank.speed"]]
+    for _ in range(n):
+        assert execution.step()
+    angle, speed = observer.last_real_values(index, refs)
+    exact_angle, exact_speed = closed_form(np.array([n * step_ns * 1e-9]), torque)
+    assert abs(speed - exact_speed[0]) < 1e-9 and abs(angle - exact_angle[0]) < 1e-9
