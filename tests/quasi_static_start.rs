@@ -154,3 +154,33 @@ fn an_undeformed_start_at_speed_carries_its_free_vibration() {
     assert!(error.contains("start's vibration amplitude"), "{error}");
     assert_eq!(sim.state(), &before);
 }
+
+/// A short, stiff rod with a heavy slider at speed, axial dynamics on (L = 0.2 m, a 10 x 10 mm
+/// steel section, r = 0.05 m, 300 rad/s, a 0.5 kg slider): the quasi-static start converges,
+/// and its pin C force is the steady one, `m r w^2 (1 + r / L)` at top dead centre to the
+/// rod's own inertia.
+#[test]
+fn quasi_static_start_converges_with_axial_dynamics() {
+    use flexrod::rod::PhysicsSwitch;
+    let mut s = Scene::benchmark();
+    s.crank.length = 0.05;
+    s.rod.length = 0.2;
+    s.rod.area = 1e-4;
+    s.rod.area_moment = 1e-8 / 12.0;
+    s.slider.mass = 0.5;
+    s.rod.axial_dynamics = PhysicsSwitch::On;
+    s.start.deflection = StartDeflection::QuasiStatic;
+    let mut sim = Simulation::new(&s).unwrap();
+    let start = CrankInput {
+        angle: 0.0,
+        speed: 300.0,
+        acceleration: 0.0,
+        jerk: 0.0,
+    };
+    sim.start(0.0, start, 0.0)
+        .unwrap_or_else(|e| panic!("the quasi-static start with axial dynamics: {e}"));
+    let fc = sim.outputs().pin_c_force;
+    let steady = 0.5 * 0.05 * 300.0 * 300.0 * (1.0 + 0.05 / 0.2);
+    println!("pin C force at the start: {fc:?}, m r w^2 (1 + r / L) = {steady} N");
+    assert!((fc[0].abs() - steady).abs() < 1e-3 * steady, "{fc:?}");
+}

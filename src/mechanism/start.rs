@@ -186,8 +186,10 @@ impl Mechanism {
     }
 
     /// Deflect the rod quasi-statically at `state.time`: elastic velocities `elastic_rate` (zero
-    /// if empty), elastic accelerations driven to zero by `K_e dp = M_ee p''` (fixed point; `K_e`
-    /// the elastic tangent stiffness including the centrifugal softening), with the rigid
+    /// if empty), elastic accelerations driven to zero by Newton's method on the constrained
+    /// system, `G_e T_e dp = p''` (`T_e` the tangent stiffness's elastic columns, including the
+    /// centrifugal softening; `G_e` the elastic rows of the constrained acceleration response),
+    /// with the rigid
     /// coordinates re-solved on the constraints `Phi(q, t) = 0` and their velocities on
     /// `Phi_q q' = -Phi_t` at each pass, until the last correction is below `tolerance` of the
     /// coordinates' scales (60 passes at most).
@@ -262,20 +264,36 @@ impl Mechanism {
                 0.0,
                 tangent.as_mut(),
             );
-            let mut k = DMatrix::from_fn(ne, ne, |i, j| {
-                tangent[(elastic.start + i, elastic.start + j)]
+            // Newton on p''(p) = 0 for the constrained system: a change dp of the elastic
+            // coordinates changes the generalized forces by -T dp (T the tangent's elastic
+            // columns) and the elastic accelerations by -G_e T dp, G the response of the
+            // accelerations to forces under the constraints (the top-left block of
+            // [[M, Phi_q^T], [Phi_q, 0]]^-1; J. Garcia de Jalon and E. Bayo, "Kinematic and
+            // Dynamic Simulation of Multibody Systems", Springer 1994, section 5.2). With a
+            // heavy slider on the rod's axial mode G_e is far from M_ee^-1.
+            let dim = n + 4;
+            let augmented = DMatrix::from_fn(dim, dim, |i, j| match (i < n, j < n) {
+                (true, true) => mass[(i, j)],
+                (true, false) => jac[(j - n, i)],
+                (false, true) => jac[(i - n, j)],
+                (false, false) => 0.0,
             });
-            let rhs = DVector::from_fn(ne, |i, _| {
-                (0..ne)
-                    .map(|j| {
-                        mass[(elastic.start + i, elastic.start + j)]
-                            * state.dae.qdd[elastic.start + j]
-                    })
-                    .sum::<f64>()
+            let forces = DMatrix::from_fn(dim, ne, |i, j| {
+                if i < n {
+                    let x = tangent[(i, elastic.start + j)];
+                    if x.is_finite() {
+                        x
+                    } else {
+                        0.0
+                    }
+                } else {
+                    0.0
+                }
             });
-            k.iter_mut()
-                .for_each(|x| *x = if x.is_finite() { *x } else { 0.0 });
-            let dp = k.lu().solve(&rhs).ok_or_else(|| ModelError::StepFailed {
+            let response = augmented.lu().solve(&forces).ok_or_else(singular)?;
+            let b = DMatrix::from_fn(ne, ne, |i, j| response[(elastic.start + i, j)]);
+            let rhs = DVector::from_fn(ne, |i, _| state.dae.qdd[elastic.start + i]);
+            let dp = b.lu().solve(&rhs).ok_or_else(|| ModelError::StepFailed {
                 time: t0,
                 step: 0.0,
                 reason:
