@@ -184,3 +184,101 @@ fn quasi_static_start_converges_with_axial_dynamics() {
     println!("pin C force at the start: {fc:?}, m r w^2 (1 + r / L) = {steady} N");
     assert!((fc[0].abs() - steady).abs() < 1e-3 * steady, "{fc:?}");
 }
+
+/// The rows of `tests/data/random_rods/rods.csv` (44 random rods: L/h 8 to 60, sliders up to
+/// twice the rod's mass, end bodies on half) by column name.
+fn random_rods() -> Vec<std::collections::HashMap<String, String>> {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/random_rods/rods.csv"
+    );
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+    let header: Vec<String> = lines.next().unwrap().split(',').map(String::from).collect();
+    lines
+        .map(|l| {
+            header
+                .iter()
+                .cloned()
+                .zip(l.split(',').map(String::from))
+                .collect()
+        })
+        .collect()
+}
+
+/// With axial dynamics on, the quasi-static start converges on every random rod at its speed
+/// (all well below buckling), and on the automotive rod at 6000 rpm: its elastic
+/// accelerations are zero to the solver's round-off.
+#[test]
+fn quasi_static_start_with_axial_dynamics_on_every_random_rod() {
+    use flexrod::rod::PhysicsSwitch;
+    let rods = random_rods();
+    assert_eq!(rods.len(), 44);
+    let mut scenes = Vec::new();
+    for rod in &rods {
+        let x = |k: &str| rod[k].parse::<f64>().unwrap();
+        let mut s = Scene::benchmark();
+        s.rod.model = RodModelKind::Ffr;
+        s.crank.length = x("crank_length");
+        s.rod.length = x("rod_length");
+        s.rod.youngs_modulus = x("youngs_modulus");
+        s.rod.density = x("density");
+        s.rod.area = x("area");
+        s.rod.area_moment = x("area_moment");
+        s.rod.shear_modulus = Some(x("shear_modulus"));
+        s.rod.shear_area = Some(x("shear_area"));
+        s.slider.mass = x("slider_mass");
+        s.rod.big_end.mass = x("big_end_mass");
+        s.rod.big_end.inertia = x("big_end_inertia");
+        s.rod.small_end.mass = x("small_end_mass");
+        s.rod.small_end.inertia = x("small_end_inertia");
+        scenes.push((format!("random rod {}", rod["id"]), s, x("W")));
+    }
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/automotive_rod.toml");
+    let automotive = Scene::from_file(std::path::Path::new(path)).unwrap();
+    scenes.push(("automotive rod".into(), automotive, 628.3));
+    for (name, mut s, speed) in scenes {
+        s.rod.axial_dynamics = PhysicsSwitch::On;
+        s.start.deflection = StartDeflection::QuasiStatic;
+        let mut sim = Simulation::new(&s).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let start = CrankInput {
+            angle: 0.3,
+            speed,
+            acceleration: 0.0,
+            jerk: 0.0,
+        };
+        sim.start(0.0, start, 0.0)
+            .unwrap_or_else(|e| panic!("{name} at {speed} rad/s: {e}"));
+        assert!(sim.outputs().deflection_rel.is_finite(), "{name}");
+    }
+}
+
+/// Where the quasi-static start is refused, the rod is at or above buckling: a slider force
+/// pushing the rod at 0.95 of the Euler load `pi^2 E I / L^2` starts (deflected), at 1.05 times
+/// it the start is refused naming buckling.
+#[test]
+fn quasi_static_start_is_refused_only_at_or_above_buckling() {
+    use flexrod::rod::PhysicsSwitch;
+    let mut s = Scene::benchmark();
+    s.rod.model = RodModelKind::Ffr;
+    s.rod.axial_dynamics = PhysicsSwitch::On;
+    s.start.deflection = StartDeflection::QuasiStatic;
+    let euler = std::f64::consts::PI.powi(2) * s.rod.youngs_modulus * s.rod.area_moment
+        / s.rod.length.powi(2);
+    // At crank angle 0 the slider is at +x: a force along -x compresses the rod.
+    let at_rest = CrankInput {
+        angle: 0.0,
+        speed: 1.0,
+        acceleration: 0.0,
+        jerk: 0.0,
+    };
+    for (share, starts) in [(0.5, true), (0.95, true), (1.05, false), (1.5, false)] {
+        let mut sim = Simulation::new(&s).unwrap();
+        let result = sim.start(0.0, at_rest, -share * euler);
+        match (starts, result) {
+            (true, Ok(())) => {}
+            (false, Err(e)) => assert!(e.to_string().contains("buckling"), "{e}"),
+            (_, r) => panic!("{share} x the Euler load {euler:.1} N: {r:?}"),
+        }
+    }
+}

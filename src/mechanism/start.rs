@@ -306,7 +306,7 @@ impl Mechanism {
                 change = change.max((dp[i] / self.rod.coordinate_scale(elastic.start + i)).abs());
             }
             if change < tolerance {
-                return Ok(());
+                return stable_deflection(&tangent, elastic.clone(), t0);
             }
             if pass == 59 || !change.is_finite() {
                 return Err(ModelError::StepFailed {
@@ -318,4 +318,34 @@ impl Mechanism {
         }
         Ok(())
     }
+}
+
+/// The quasi-static deflection is an equilibrium the rod stays near: the elastic tangent
+/// stiffness (its symmetric part, with the axial load's geometric stiffness and the
+/// centrifugal softening) is positive definite. At or above buckling (the Euler load
+/// `pi^2 E I / L^2` for the pinned rod) it has a negative eigenvalue, and the equilibrium
+/// found is the unstable straight one: refused, naming buckling.
+fn stable_deflection(
+    tangent: &faer::Mat<f64>,
+    elastic: std::ops::Range<usize>,
+    time: f64,
+) -> Result<(), ModelError> {
+    let ne = elastic.len();
+    let k = DMatrix::from_fn(ne, ne, |i, j| {
+        0.5 * (tangent[(elastic.start + i, elastic.start + j)]
+            + tangent[(elastic.start + j, elastic.start + i)])
+    });
+    // A tangent with non-finite entries (an approximation where a term is not defined) says
+    // nothing about stability.
+    if !k.iter().all(|x| x.is_finite()) || k.clone().cholesky().is_some() {
+        return Ok(());
+    }
+    let least = k.symmetric_eigenvalues().min();
+    Err(ModelError::StepFailed {
+        time,
+        step: 0.0,
+        reason: format!(
+            "quasi-static start: the rod is at or above buckling under these loads (the elastic tangent stiffness has the eigenvalue {least:.3e} < 0, so the deflection found is an unstable equilibrium); start undeformed, or lower the compressive load or the speed"
+        ),
+    })
 }
