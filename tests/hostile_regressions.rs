@@ -723,3 +723,35 @@ fn a_rod_with_modes_of_round_off_is_refused_when_built() {
     assert!(text.contains("rod.area_moment"), "{text}");
     assert!(text.contains("lowest retained natural frequency"), "{text}");
 }
+
+/// `rod.deflection_limit` reads the limit that applies: with `rod.model = auto` at a speed where
+/// it takes the segment chain on its modes, the chain's 0.25 once the model is built (the
+/// scene's default, the FFR rod's 0.05, before).
+#[test]
+fn the_deflection_limit_reads_the_limit_that_applies() {
+    use flexrod::cosimulation::CoSimulationModel;
+    use flexrod::model::{RodModel, VariableTable};
+    use flexrod::scene::RodModelKind;
+    let scene = Scene::benchmark();
+    assert_eq!(scene.rod.model, RodModelKind::Auto);
+    let table = VariableTable::for_scene(&scene, flexrod::model::Interface::SCALARS).unwrap();
+    let vr = |name: &str| table.by_name(name).unwrap().value_reference;
+    let (limit, speed) = (vr("rod.deflection_limit"), vr("crank.speed"));
+    for (rad_per_s, applied) in [(150.0, 0.05), (400.0, 0.25)] {
+        let mut model = RodModel::with_table(scene.clone(), table.clone()).unwrap();
+        let read = |m: &RodModel| {
+            let mut x = [0.0];
+            CoSimulationModel::get_real(m, limit, &mut x, 0.0).unwrap();
+            x[0]
+        };
+        CoSimulationModel::set_real(&mut model, speed, rad_per_s).unwrap();
+        assert_eq!(read(&model), 0.05, "before the build");
+        CoSimulationModel::ensure_started(&mut model, 0.0).unwrap();
+        assert_eq!(
+            read(&model),
+            applied,
+            "at {rad_per_s} rad/s: {}",
+            model.start_summary()
+        );
+    }
+}

@@ -24,7 +24,7 @@ pub fn check_same_model(
     let mut normalized = saved.clone();
     for v in table.variables() {
         match v.access {
-            Access::RealParameter { get, set } => {
+            Access::RealParameter { get, set, .. } => {
                 let x = get(saved);
                 if !x.is_finite() {
                     return Err(format!(

@@ -298,7 +298,10 @@ impl RodModel {
                 .simulation
                 .as_ref()
                 .map_or_else(Default::default, Simulation::outputs)),
-            Access::RealParameter { get, .. } => get(&self.scene),
+            Access::RealParameter { get, applied, .. } => match (applied, &self.simulation) {
+                (Some(applied), Some(s)) => applied(s),
+                _ => get(&self.scene),
+            },
             Access::Frequency(i) => *frequencies.get(i).ok_or_else(missing)?,
             Access::Frequencies => {
                 let all = frequencies.get(..out.len()).ok_or_else(missing)?;

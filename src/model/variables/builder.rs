@@ -88,6 +88,16 @@ impl<'a> Builder<'a> {
         }
     }
 
+    /// The Real parameter added last reads, once the model is built, the value that applies
+    /// (see [`Access::RealParameter`]).
+    pub fn applied(&mut self, applied: fn(&crate::simulation::Simulation) -> f64) {
+        if let Some(v) = self.variables.last_mut() {
+            if let Access::RealParameter { applied: a, .. } = &mut v.access {
+                *a = Some(applied);
+            }
+        }
+    }
+
     /// Make the variable added last an array of `n` elements.
     pub fn array(&mut self, n: usize) {
         if let Some(v) = self.variables.last_mut() {
@@ -212,7 +222,11 @@ impl<'a> Builder<'a> {
                 dimension: None,
                 computed: false,
             },
-            Access::RealParameter { get, set },
+            Access::RealParameter {
+                get,
+                set,
+                applied: None,
+            },
         );
     }
 

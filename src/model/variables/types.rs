@@ -6,6 +6,7 @@ use std::ops::{Deref, DerefMut};
 use crate::cosimulation::Declaration;
 use crate::mechanism::Outputs;
 use crate::scene::Scene;
+use crate::simulation::Simulation;
 
 /// The inputs an instance stores between communication points.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -30,10 +31,13 @@ pub enum Access {
     Input(InputSlot),
     /// An output of the simulation.
     Output(OutputGetter),
-    /// A Real parameter stored in the instance's scene.
+    /// A Real parameter stored in the instance's scene. `applied`: where the model resolves the
+    /// value when it is built (a default that depends on what `auto` settings chose), the value
+    /// that applies, read from the built simulation.
     RealParameter {
         get: fn(&Scene) -> f64,
         set: fn(&mut Scene, f64),
+        applied: Option<fn(&Simulation) -> f64>,
     },
     /// An Integer or Enumeration parameter stored in the instance's scene. `set` returns
     /// the allowed range when the value cannot be stored.
