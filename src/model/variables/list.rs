@@ -622,7 +622,7 @@ fn solver_parameters(b: &mut Builder<'_>) {
         DIMENSIONLESS,
         |s| s.rod.deflection_limit(),
         |s, v| s.rod.deflection_limit = Some(v),
-        "|v_mid/L| beyond which rod.deflection_policy applies, in (0, 1]; by default where the rod model is verified (ffr 0.05, segments and modal_segments 0.25); read after initialization, the limit that applies (with rod.model = auto, that of the model it took)",
+        "|v_mid/L| beyond which rod.deflection_policy applies, in (0, 1]; by default where the rod model is verified (ffr 0.05, segments and modal_segments 0.25)",
     );
     b.applied(|s| s.mechanism().spec.rod.deflection_limit());
     b.bounds(Some(Value::Real(0.0)), Some(Value::Real(1.0)));
