@@ -85,6 +85,40 @@ pub struct Declaration {
 }
 
 impl Declaration {
+    /// A scalar of `causality` with the variability and `initial` it implies in this crate's
+    /// models (inputs and outputs continuous, parameters fixed; `initial` exact for parameters,
+    /// calculated for outputs and calculated parameters, none for inputs and the independent
+    /// variable), no start value, bounds or initial dependencies.
+    pub fn new(
+        name: impl Into<String>,
+        value_reference: VariableId,
+        causality: Causality,
+        value_type: ValueType,
+        description: impl Into<String>,
+    ) -> Declaration {
+        let (variability, initial) = match causality {
+            Causality::Independent | Causality::Input => (Variability::Continuous, None),
+            Causality::Output => (Variability::Continuous, Some(Initial::Calculated)),
+            Causality::Parameter => (Variability::Fixed, Some(Initial::Exact)),
+            Causality::CalculatedParameter => (Variability::Fixed, Some(Initial::Calculated)),
+        };
+        Declaration {
+            name: name.into(),
+            value_reference,
+            description: description.into(),
+            causality,
+            variability,
+            initial,
+            value_type,
+            start: None,
+            min: None,
+            max: None,
+            initial_dependencies: InitialDependencies::None,
+            dimension: None,
+            computed: false,
+        }
+    }
+
     /// Number of values the variable takes in a get/set call: 1, or the array's length.
     pub fn value_count(&self) -> usize {
         self.dimension.unwrap_or(1)

@@ -28,9 +28,9 @@ use super::scene::{
 use crate::bytes::{ByteReader, ByteWriter};
 use crate::cosimulation::units::SI_UNITS;
 use crate::cosimulation::{
-    Causality, CoSimulationModel, Declaration, Declarations, DefaultExperiment, Initial,
+    Causality, CoSimulationModel, Declaration, Declarations, DefaultExperiment,
     InitialDependencies, Interface, ModelInfo, SavedState, StepOutcome, Value, ValueType,
-    Variability, VariableId,
+    VariableId,
 };
 use crate::limits::EXPERIMENT_TIME_LIMIT;
 
@@ -86,6 +86,8 @@ fn real(unit: &'static str) -> ValueType {
     }
 }
 
+/// A variable of the crankshaft: outputs depend on every known during initialization
+/// (the acceleration on the torques set), computed by the started model.
 fn declaration(
     name: &str,
     vr: VariableId,
@@ -94,29 +96,16 @@ fn declaration(
     start: Option<f64>,
     description: &str,
 ) -> Declaration {
-    let (variability, initial, computed) = match causality {
-        Causality::Parameter => (Variability::Fixed, Some(Initial::Exact), false),
-        Causality::Output => (Variability::Continuous, Some(Initial::Calculated), true),
-        _ => (Variability::Continuous, None, false),
-    };
+    let output = causality == Causality::Output;
     Declaration {
-        name: name.into(),
-        value_reference: vr,
-        description: description.into(),
-        causality,
-        variability,
-        initial,
-        value_type,
         start: start.map(Value::Real),
-        min: None,
-        max: None,
-        initial_dependencies: if causality == Causality::Output {
+        initial_dependencies: if output {
             InitialDependencies::All
         } else {
             InitialDependencies::None
         },
-        dimension: None,
-        computed,
+        computed: output,
+        ..Declaration::new(name, vr, causality, value_type, description)
     }
 }
 
@@ -212,7 +201,7 @@ fn declarations(spec: &CrankshaftSpec, interface: Interface) -> Declarations {
         v.min = Some(Value::Real(0.0));
     }
     if interface.independent_variable {
-        let mut time = declaration(
+        let time = declaration(
             "time",
             TIME,
             Causality::Independent,
@@ -220,8 +209,6 @@ fn declarations(spec: &CrankshaftSpec, interface: Interface) -> Declarations {
             None,
             "Simulation time",
         );
-        time.initial = None;
-        time.variability = Variability::Continuous;
         list.insert(0, time);
     }
     Declarations::new(list, interface)

@@ -3,9 +3,7 @@
 
 use super::types::{Access, InputSlot, OutputGetter, Variable};
 use super::{Interface, VariableId, VariableTable};
-use crate::cosimulation::{
-    Causality, Declaration, Initial, InitialDependencies, Value, ValueType, Variability,
-};
+use crate::cosimulation::{Causality, Declaration, InitialDependencies, Value, ValueType};
 use crate::scene::Scene;
 
 pub(super) const RAD: ValueType = ValueType::Real {
@@ -108,21 +106,7 @@ impl<'a> Builder<'a> {
     /// The independent variable `time` (causality `independent`).
     pub fn independent(&mut self, name: &str, vr: VariableId, description: &str) {
         self.push(
-            Declaration {
-                name: name.into(),
-                value_reference: vr,
-                description: description.into(),
-                causality: Causality::Independent,
-                variability: Variability::Continuous,
-                initial: None,
-                value_type: real("s"),
-                start: None,
-                min: None,
-                max: None,
-                initial_dependencies: InitialDependencies::None,
-                dimension: None,
-                computed: false,
-            },
+            Declaration::new(name, vr, Causality::Independent, real("s"), description),
             Access::Time,
         );
     }
@@ -150,19 +134,8 @@ impl<'a> Builder<'a> {
     ) {
         self.push(
             Declaration {
-                name: name.into(),
-                value_reference: vr,
-                description: description.into(),
-                causality: Causality::Input,
-                variability: Variability::Continuous,
-                initial: None,
-                value_type: ty,
                 start: Some(Value::Real(start)),
-                min: None,
-                max: None,
-                initial_dependencies: InitialDependencies::None,
-                dimension: None,
-                computed: false,
+                ..Declaration::new(name, vr, Causality::Input, ty, description)
             },
             Access::Input(slot),
         );
@@ -179,19 +152,8 @@ impl<'a> Builder<'a> {
     ) {
         self.push(
             Declaration {
-                name: name.into(),
-                value_reference: vr,
-                description: description.into(),
-                causality: Causality::Output,
-                variability: Variability::Continuous,
-                initial: Some(Initial::Calculated),
-                value_type: ty,
-                start: None,
-                min: None,
-                max: None,
                 initial_dependencies: deps,
-                dimension: None,
-                computed: false,
+                ..Declaration::new(name, vr, Causality::Output, ty, description)
             },
             Access::Output(get),
         );
@@ -208,19 +170,8 @@ impl<'a> Builder<'a> {
     ) {
         self.push(
             Declaration {
-                name: name.into(),
-                value_reference: vr,
-                description: description.into(),
-                causality: Causality::Parameter,
-                variability: Variability::Fixed,
-                initial: Some(Initial::Exact),
-                value_type: ty,
                 start: Some(Value::Real(get(self.scene))),
-                min: None,
-                max: None,
-                initial_dependencies: InitialDependencies::None,
-                dimension: None,
-                computed: false,
+                ..Declaration::new(name, vr, Causality::Parameter, ty, description)
             },
             Access::RealParameter {
                 get,
@@ -241,19 +192,8 @@ impl<'a> Builder<'a> {
     ) {
         self.push(
             Declaration {
-                name: name.into(),
-                value_reference: vr,
-                description: description.into(),
-                causality: Causality::Parameter,
-                variability: Variability::Fixed,
-                initial: Some(Initial::Exact),
-                value_type: ty,
                 start: Some(Value::Integer(get(self.scene))),
-                min: None,
-                max: None,
-                initial_dependencies: InitialDependencies::None,
-                dimension: None,
-                computed: false,
+                ..Declaration::new(name, vr, Causality::Parameter, ty, description)
             },
             Access::IntegerParameter { get, set },
         );
@@ -271,19 +211,8 @@ impl<'a> Builder<'a> {
     ) {
         self.push(
             Declaration {
-                name,
-                value_reference: vr,
-                description,
-                causality: Causality::CalculatedParameter,
-                variability: Variability::Fixed,
-                initial: Some(Initial::Calculated),
-                value_type: ty,
-                start: None,
-                min: None,
-                max: None,
                 initial_dependencies: deps,
-                dimension: None,
-                computed: false,
+                ..Declaration::new(name, vr, Causality::CalculatedParameter, ty, description)
             },
             access,
         );
