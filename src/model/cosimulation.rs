@@ -143,8 +143,8 @@ impl CoSimulationModel for RodModel {
     }
 
     fn write_saved(&mut self, state: &SavedState) -> Result<Vec<u8>, String> {
-        let saved = saved(state)?.clone();
-        self.saved_to_bytes(&saved).map_err(|e| e.to_string())
+        self.saved_to_bytes(saved(state)?)
+            .map_err(|e| e.to_string())
     }
 
     fn read_saved(&mut self, bytes: &[u8]) -> Result<SavedState, String> {
